@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The SpatialIndex policy concept: per-cell storage of point handles.
+///
+/// | expression                 | type        | meaning                                                              | complexity |
+/// |----------------------------|-------------|----------------------------------------------------------------------|------------|
+/// | `typename I::Params`       | aggregate   | parameters with defaults                                             |            |
+/// | `I i{params}`              |             | construct (empty, no cells until reset)                              |            |
+/// | `i.reset(shape)`           | void        | allocate `shape.cell_count()` empty cells                            | O(cells)   |
+/// | `i.clear()`                | void        | empty every cell, keep the allocation                                | O(cells)   |
+/// | `i.insert(cell, h)`        | PointHandle | store h; returns the handle it displaced from the index, or kNoPoint | O(1) amort.|
+/// | `i.remove(cell, h)`        | void        | forget h if still stored (no-op if displaced earlier)                | O(k)       |
+/// | `i.for_each(cell, f)`      | void        | call `f(PointHandle)` for every handle stored in the cell            | O(k)       |
+/// | `i.size()`                 | std::size_t | handles currently stored                                             | O(1)       |
+///
+/// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
+/// cell's occupancy. A displaced point stays in the window and keeps its edges;
+/// it can only no longer be found by later points. The engine removes points
+/// in insertion order (oldest first), which indexes may exploit.
+/// Not thread-safe: one writer, no concurrent readers.
+
+#include <streamclust/types.hpp>
+
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+namespace streamclust {
+namespace detail {
+struct HandleSink {
+  void operator()(PointHandle) const {}
+};
+template <class I, class = void>
+struct is_spatial_index_policy : std::false_type {};
+template <class I>
+struct is_spatial_index_policy<
+    I, std::void_t<typename I::Params, decltype(I{std::declval<const typename I::Params&>()}),
+                   decltype(std::declval<I&>().reset(std::declval<const GridShape&>())),
+                   decltype(std::declval<I&>().clear()),
+                   decltype(std::declval<I&>().insert(CellIndex{}, PointHandle{})),
+                   decltype(std::declval<I&>().remove(CellIndex{}, PointHandle{})),
+                   decltype(std::declval<const I&>().for_each(CellIndex{}, HandleSink{})),
+                   decltype(std::declval<const I&>().size())>>
+    : std::bool_constant<
+          std::is_convertible_v<decltype(std::declval<I&>().insert(CellIndex{}, PointHandle{})), PointHandle> &&
+          std::is_convertible_v<decltype(std::declval<const I&>().size()), std::size_t>> {};
+}  // namespace detail
+
+template <class I>
+inline constexpr bool is_spatial_index_policy_v = detail::is_spatial_index_policy<I>::value;
+
+#if defined(__cpp_concepts) && __cpp_concepts >= 201907L
+template <class I>
+concept SpatialIndexPolicy = is_spatial_index_policy_v<I>;
+#endif
+
+}  // namespace streamclust
+
+#define STREAMCLUST_CHECK_SPATIAL_INDEX_POLICY(I)                                                               \
+  static_assert(::streamclust::is_spatial_index_policy_v<I>,                                                    \
+                "STREAMCLUST_SPATIAL_INDEX_POLICY_INVALID: the spatial_index slot needs a nested Params "       \
+                "aggregate, a constructor from Params, reset(GridShape), clear(), "                              \
+                "`PointHandle insert(CellIndex, PointHandle)`, remove(CellIndex, PointHandle), "                 \
+                "`for_each(CellIndex, F) const` and `size() const` (see docs/policies.md)")
