@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// BatchClusterer: clusters a set of points from scratch with the same
+/// projection, index, mask and linkage as the continuous engine. It is the
+/// oracle of the engine and, with an overwrite grid in range-image mode, the
+/// classic frame-based baseline (Bogoslavskyi & Stachniss).
+
+#include <streamclust/config.hpp>
+#include <streamclust/detail/mask.hpp>
+#include <streamclust/detail/union_find.hpp>
+#include <streamclust/point_traits.hpp>
+#include <streamclust/types.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace streamclust {
+
+/// How the batch clusterer uses its spatial index.
+enum class BatchMode {
+  /// Replay: points enter the index in input order and each links to the
+  /// points the index holds when it arrives (query, then insert). A point
+  /// displaced from a capped or overwrite grid keeps its links. This is
+  /// exactly the engine's rule, so it is the oracle for every index.
+  insertion_order,
+  /// Range image: all points enter the index first; only the points the index
+  /// still holds are linked to each other; displaced points stay unlabelled
+  /// (-1). With OverwriteGrid this is the frame-based baseline.
+  range_image,
+};
+
+/// Labels of one batch run.
+struct BatchResult {
+  /// Per input point: component number (0, 1, ... in order of first
+  /// appearance) or -1 for a rejected or unlabelled point.
+  std::vector<std::int64_t> labels;
+  std::size_t components = 0;
+  GridShape grid{};
+  RejectionCounts rejections{};
+};
+
+/// Clusters whole point sets. O(n w^2 k) per run plus near-linear union-find.
+/// Not thread-safe; one instance per thread.
+///
+/// \code
+/// streamclust::BatchClusterer<streamclust::CArcConfig> batch(params);
+/// batch.set_grid({64, 1024});                  // or let the resolution policy choose
+/// const auto& result = batch.cluster(points);  // any range of points with point_traits
+/// \endcode
+template <class Config>
+class BatchClusterer {
+ public:
+  using traits = config_traits<Config>;
+  STREAMCLUST_CHECK_CONFIG(Config);
+  using Params = ClustererParams<Config>;
+
+  explicit BatchClusterer(const Params& params = Params{}, BatchMode mode = BatchMode::insertion_order)
+      : params_(params),
+        projection_(params.projection),
+        linkage_(params.linkage),
+        index_(params.spatial_index),
+        half_(detail::checked_mask_half_width(params.mask_size)),
+        mode_(mode) {
+    typename traits::resolution resolution(params.resolution);
+    if (!resolution.needs_calibration()) fixed_grid_ = resolution.grid();
+  }
+
+  /// Uses this grid for every run instead of the resolution policy's choice.
+  void set_grid(GridSize size) { fixed_grid_ = size; }
+
+  /// Clusters `points` (a range of any point type with point_traits) in their
+  /// order. A calibrating resolution policy chooses the grid from these
+  /// points unless `set_grid` was called. Returns a reference valid until the
+  /// next run.
+  template <class Range>
+  const BatchResult& cluster(const Range& points) {
+    samples_.clear();
+    coords_.clear();
+    result_ = BatchResult{};
+    for (const auto& p : points) {
+      const Eigen::Vector3f pos = position(p);
+      Projected pr = projection_.project(pos);
+      if (pr.accepted() && !std::isfinite(stamp(p))) pr.reason = RejectReason::non_finite;
+      ++result_.rejections[pr.reason];
+      coords_.push_back(pr);
+      samples_.push_back(pr.accepted() ? make_sample(pos, pr.range, intensity(p), stamp(p)) : Sample{});
+    }
+    GridSize size;
+    if (fixed_grid_) {
+      size = *fixed_grid_;
+    } else {
+      accepted_.clear();
+      for (const Projected& pr : coords_) {
+        if (pr.accepted()) accepted_.push_back(pr);
+      }
+      typename traits::resolution resolution(params_.resolution);
+      size = resolution.calibrate(accepted_, projection_.fov_aspect());
+    }
+    if (size.rows == 0 || size.cols == 0) size = GridSize{1, 1};
+    result_.grid = GridShape{size.rows, size.cols, projection_.wraps_horizontally()};
+    index_.reset(result_.grid);
+
+    const std::size_t n = samples_.size();
+    cells_.assign(n, 0);
+    sets_.reset(n);
+    if (mode_ == BatchMode::insertion_order) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!coords_[i].accepted()) continue;
+        cells_[i] = result_.grid.cell_of(coords_[i].u, coords_[i].v);
+        link_to_index(i);
+        index_.insert(cells_[i], static_cast<PointHandle>(i));
+      }
+    } else {
+      indexed_.assign(n, 0);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!coords_[i].accepted()) continue;
+        cells_[i] = result_.grid.cell_of(coords_[i].u, coords_[i].v);
+        indexed_[i] = 1;
+        const PointHandle displaced = index_.insert(cells_[i], static_cast<PointHandle>(i));
+        if (displaced != kNoPoint) indexed_[displaced] = 0;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        if (indexed_[i]) link_to_index(i);
+      }
+    }
+
+    result_.labels.assign(n, -1);
+    root_label_.assign(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!coords_[i].accepted() || (mode_ == BatchMode::range_image && !indexed_[i])) continue;
+      const std::uint32_t root = sets_.find(static_cast<std::uint32_t>(i));
+      if (root_label_[root] < 0) root_label_[root] = static_cast<std::int64_t>(result_.components++);
+      result_.labels[i] = root_label_[root];
+    }
+    return result_;
+  }
+
+  const BatchResult& last_result() const { return result_; }
+
+ private:
+  void link_to_index(std::size_t i) {
+    const Sample& s = samples_[i];
+    detail::for_each_mask_cell(result_.grid, cells_[i], half_, [&](CellIndex c) {
+      index_.for_each(c, [&](PointHandle h) {
+        if (h != i && linkage_(s, samples_[h])) sets_.unite(static_cast<std::uint32_t>(i), h);
+      });
+    });
+  }
+
+  Params params_;
+  typename traits::projection projection_;
+  typename traits::linkage linkage_;
+  typename traits::spatial_index index_;
+  int half_;
+  BatchMode mode_;
+  std::optional<GridSize> fixed_grid_;
+  std::vector<Sample> samples_;
+  std::vector<Projected> coords_;
+  std::vector<Projected> accepted_;
+  std::vector<CellIndex> cells_;
+  std::vector<char> indexed_;
+  std::vector<std::int64_t> root_label_;
+  detail::UnionFind sets_;
+  BatchResult result_;
+};
+
+}  // namespace streamclust

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// Reading a configuration struct: its named policy slots, the optional
+/// visitor slot, the runtime parameter aggregate of a clusterer, and the
+/// concept checks that open every clusterer.
+///
+/// A configuration is a struct of named slots:
+/// \code
+/// struct MyConfig {
+///   using projection = SphericalProjection;
+///   using spatial_index = BucketGrid;
+///   using linkage = AngularLinkage;
+///   using window = TimeWindow;
+///   using resolution = FixedResolution;
+///   using visitor = NullVisitor;  // optional
+/// };
+/// \endcode
+/// Presets are such structs; derive from one and override a slot.
+
+#include <streamclust/concepts.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace streamclust {
+namespace detail {
+
+/// Stand-in for a missing slot: satisfies no concept, so the slot's static
+/// assertion names what is missing instead of a wall of template errors.
+struct MissingSlot {};
+
+#define STREAMCLUST_DETAIL_SLOT(NAME)                                                  \
+  template <class C, class = void>                                                     \
+  struct slot_##NAME {                                                                 \
+    using type = MissingSlot;                                                          \
+  };                                                                                   \
+  template <class C>                                                                   \
+  struct slot_##NAME<C, std::void_t<typename C::NAME>> {                               \
+    using type = typename C::NAME;                                                     \
+  };
+STREAMCLUST_DETAIL_SLOT(projection)
+STREAMCLUST_DETAIL_SLOT(spatial_index)
+STREAMCLUST_DETAIL_SLOT(linkage)
+STREAMCLUST_DETAIL_SLOT(window)
+STREAMCLUST_DETAIL_SLOT(resolution)
+#undef STREAMCLUST_DETAIL_SLOT
+
+template <class C, class = void>
+struct slot_visitor {
+  using type = NullVisitor;
+};
+template <class C>
+struct slot_visitor<C, std::void_t<typename C::visitor>> {
+  using type = typename C::visitor;
+};
+
+/// Params of a policy, or an empty struct when the slot is invalid (the
+/// static assertion reports the real problem).
+template <class P, class = void>
+struct params_of {
+  struct type {};
+};
+template <class P>
+struct params_of<P, std::void_t<typename P::Params>> {
+  using type = typename P::Params;
+};
+
+}  // namespace detail
+
+/// The policies of a configuration, with the visitor defaulted to NullVisitor.
+template <class Config>
+struct config_traits {
+  using projection = typename detail::slot_projection<Config>::type;
+  using spatial_index = typename detail::slot_spatial_index<Config>::type;
+  using linkage = typename detail::slot_linkage<Config>::type;
+  using window = typename detail::slot_window<Config>::type;
+  using resolution = typename detail::slot_resolution<Config>::type;
+  using visitor = typename detail::slot_visitor<Config>::type;
+};
+
+/// Runtime parameters of a clusterer built from `Config`: one Params per
+/// policy plus the neighbourhood mask width. Brace-constructible:
+/// `ClustererParams<CArcConfig> p; p.linkage.theta_deg = 30.0f;`.
+template <class Config>
+struct ClustererParams {
+  typename detail::params_of<typename config_traits<Config>::projection>::type projection{};
+  typename detail::params_of<typename config_traits<Config>::spatial_index>::type spatial_index{};
+  typename detail::params_of<typename config_traits<Config>::linkage>::type linkage{};
+  typename detail::params_of<typename config_traits<Config>::window>::type window{};
+  typename detail::params_of<typename config_traits<Config>::resolution>::type resolution{};
+  /// Width w of the w x w neighbourhood mask in cells; odd, 1 to 255.
+  int mask_size = 5;
+};
+
+namespace detail {
+inline int checked_mask_half_width(int mask_size) {
+  if (mask_size < 1 || mask_size > 255 || mask_size % 2 == 0) {
+    throw std::invalid_argument("mask_size = " + std::to_string(mask_size) +
+                                " is invalid: expected an odd number of cells in [1, 255]");
+  }
+  return mask_size / 2;
+}
+}  // namespace detail
+
+}  // namespace streamclust
+
+/// Checks every slot of a configuration; used at the top of each clusterer.
+#define STREAMCLUST_CHECK_CONFIG(Config)                                                     \
+  STREAMCLUST_CHECK_PROJECTION_POLICY(typename ::streamclust::config_traits<Config>::projection);       \
+  STREAMCLUST_CHECK_SPATIAL_INDEX_POLICY(typename ::streamclust::config_traits<Config>::spatial_index); \
+  STREAMCLUST_CHECK_LINKAGE_POLICY(typename ::streamclust::config_traits<Config>::linkage);             \
+  STREAMCLUST_CHECK_WINDOW_POLICY(typename ::streamclust::config_traits<Config>::window);               \
+  STREAMCLUST_CHECK_RESOLUTION_POLICY(typename ::streamclust::config_traits<Config>::resolution);       \
+  STREAMCLUST_CHECK_VISITOR_POLICY(typename ::streamclust::config_traits<Config>::visitor)

@@ -1,0 +1,744 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// StreamClusterer: the continuous C-ARC engine (paper, section METHOD).
+
+#include <streamclust/clustering.hpp>
+#include <streamclust/config.hpp>
+#include <streamclust/detail/mask.hpp>
+#include <streamclust/point_traits.hpp>
+#include <streamclust/types.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace streamclust {
+
+/// Handle of a point-graph edge (a 32-bit sequence number that wraps).
+using EdgeHandle = std::uint32_t;
+inline constexpr EdgeHandle kNoEdge = std::numeric_limits<EdgeHandle>::max();
+inline constexpr ClusterId kNoCluster = std::numeric_limits<ClusterId>::max();
+
+/// Counters of the work done since the previous retrieval.
+struct RetrievalStats {
+  std::uint64_t inserted = 0;           ///< points inserted into the graph
+  std::uint64_t evicted = 0;            ///< points that left the window
+  std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
+  std::uint64_t clusters_split = 0;     ///< new clusters created by splits
+};
+
+/// The continuous clusterer: a sliding window over a point stream, a grid
+/// index, a point graph of local clusters and a component graph of bridges.
+///
+/// Per accepted point (`insert`): points that left the window are evicted,
+/// the point is projected to a grid cell, the w x w mask around it is
+/// searched and every candidate passing the linkage becomes a neighbour.
+/// No neighbour: a new local cluster (isolation). Neighbours in one cluster:
+/// the point joins it (expansion). Neighbours in several: the point joins the
+/// most recently created of them and each point-level edge to another
+/// cluster adds one unit of multiplicity to the bridge between the two
+/// clusters (bridging). Eviction removes the point from index and graph,
+/// lowers the multiplicity of every bridge its edges carried (a bridge
+/// disappears at zero) and marks its cluster pending when the point had two
+/// or more edges inside its cluster (removing a vertex of degree <= 1 cannot
+/// disconnect a graph). `retrieve()` validates pending clusters by BFS,
+/// splitting disconnected ones, then labels the window by the connected
+/// components of the component graph.
+///
+/// Stable ids: at each retrieval every component is matched to the ids its
+/// clusters carried at the previous retrieval, weighted by their current
+/// point counts. An old id goes to the component holding most of its points
+/// (merge: the merged component keeps the id with the larger weight; split:
+/// the largest part keeps the id); ties go to the older id. Components left
+/// without an id get a fresh one; ids are never reused.
+///
+/// Time: monotone stream time in seconds. A point earlier than the previous
+/// accepted one is rejected (`time_backwards`). Memory: about 80 bytes per
+/// windowed point plus 12 bytes per edge; the ring buffers grow by doubling
+/// and never shrink, so the steady state allocates nothing per point.
+///
+/// Resolution: a policy that needs calibration (adaptive) makes the engine
+/// buffer the first window unclustered; when the window is complete (or at
+/// the first retrieval) the grid is chosen and the buffered points are
+/// inserted in their original order, so no point is lost (the paper clears
+/// them instead).
+///
+/// Thread safety: none; drive one engine from one thread.
+///
+/// \code
+/// #include <streamclust/streamclust.hpp>
+/// streamclust::CArcParams params;          // C-ARC defaults from the paper
+/// params.theta_deg = 30.0f;                // Livox Mid-360
+/// auto engine = streamclust::make_carc(params);
+/// for (const streamclust::Point& p : stream) {
+///   engine.insert(p);                      // 200 kHz
+///   if (publication_due()) {               // 10-20 Hz
+///     const auto& result = engine.retrieve();
+///     for (const auto& c : result.components_with_at_least(20)) use(c.id, c.centroid);
+///   }
+/// }
+/// \endcode
+template <class Config>
+class StreamClusterer {
+ public:
+  using traits = config_traits<Config>;
+  STREAMCLUST_CHECK_CONFIG(Config);
+
+  using projection_type = typename traits::projection;
+  using spatial_index_type = typename traits::spatial_index;
+  using linkage_type = typename traits::linkage;
+  using window_type = typename traits::window;
+  using resolution_type = typename traits::resolution;
+  using visitor_type = typename traits::visitor;
+  using Params = ClustererParams<Config>;
+
+  /// Throws std::invalid_argument when a parameter is out of range.
+  explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
+      : params_(params),
+        projection_(params.projection),
+        index_(params.spatial_index),
+        linkage_(params.linkage),
+        window_(params.window),
+        resolution_(params.resolution),
+        visitor_(std::move(visitor)),
+        half_(detail::checked_mask_half_width(params.mask_size)) {
+    if (!resolution_.needs_calibration()) set_grid(resolution_.grid());
+  }
+
+  // ---------------------------------------------------------------- input
+
+  /// Offers one point, its time read with `stamp(p)`. Returns why it was not
+  /// inserted, or `accepted`. Every call advances the stream index.
+  /// Amortised O(w^2 k + e) with k points per cell and e neighbours.
+  template <class P>
+  RejectReason insert(const P& p) {
+    return insert(p, stamp(p));
+  }
+
+  /// Offers one point with an explicit stream time [s].
+  template <class P>
+  RejectReason insert(const P& p, double time) {
+    static_assert(is_point_v<P>, "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
+    return insert_position(position(p), intensity(p), time);
+  }
+
+  /// Evicts the points that have left the window at stream time `time` [s]
+  /// without inserting anything (a quiet sensor). Earlier times are ignored.
+  void advance_to(double time) {
+    if (!std::isfinite(time) || (has_time_ && time < last_time_)) return;
+    has_time_ = true;
+    last_time_ = time;
+    evict_expired(time, size());
+  }
+
+  // ------------------------------------------------------------ retrieval
+
+  /// Validates pending clusters, updates the component graph and labels every
+  /// point in the window. May be called at any moment. O(N) for N points in
+  /// the window plus the BFS over pending clusters. The reference stays valid
+  /// until the next call.
+  const Clustering& retrieve() {
+    if (calibrating_ && size() > 0) finish_calibration();
+    validate_pending();
+    label_components();
+    last_stats_ = stats_;
+    stats_ = RetrievalStats{};
+    return result_;
+  }
+
+  /// The last retrieval's result.
+  const Clustering& last_result() const { return result_; }
+  /// Work done between the previous two retrievals.
+  const RetrievalStats& last_stats() const { return last_stats_; }
+
+  // ----------------------------------------------------------- inspection
+
+  /// Points in the window.
+  std::size_t size() const { return static_cast<std::uint32_t>(next_ - oldest_); }
+  bool empty() const { return size() == 0; }
+  /// Points offered so far (the next point's stream index).
+  std::uint64_t offered() const { return offered_; }
+  const RejectionCounts& rejections() const { return rejections_; }
+  /// True while the first window is buffered for the resolution policy.
+  bool calibrating() const { return calibrating_; }
+  /// The grid in use (zero-sized while calibrating).
+  const GridShape& grid() const { return grid_; }
+  const Params& params() const { return params_; }
+  const projection_type& projection() const { return projection_; }
+  const spatial_index_type& spatial_index() const { return index_; }
+  const linkage_type& linkage() const { return linkage_; }
+  const resolution_type& resolution() const { return resolution_; }
+  visitor_type& visitor() { return visitor_; }
+  const visitor_type& visitor() const { return visitor_; }
+
+  /// Calls `f(const Sample&, std::uint64_t stream_index)` for every point in
+  /// the window, oldest first. O(N).
+  template <class F>
+  void for_each_point(F&& f) const {
+    for (PointHandle h = oldest_; h != next_; ++h) f(point(h).sample, point(h).stream_index);
+  }
+
+  // ------------------------------------------- low-level graph access
+  // Used by the Boost.Graph adaptors in <streamclust/graph/...>; stable API.
+
+  /// Handle of the point at window position `pos` (0 = oldest).
+  PointHandle handle_at(std::size_t pos) const { return oldest_ + static_cast<PointHandle>(pos); }
+  /// Window position of a live point.
+  std::size_t position_of(PointHandle h) const { return static_cast<PointHandle>(h - oldest_); }
+  /// True when `h` is in the window.
+  bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
+  const Sample& sample(PointHandle h) const { return point(h).sample; }
+  std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
+  /// Local cluster of a live point (kNoCluster while calibrating).
+  ClusterId cluster_of(PointHandle h) const { return point(h).cluster; }
+  /// Calls `f(PointHandle)` for every live neighbour of live point `h`.
+  /// O(degree).
+  template <class F>
+  void for_each_neighbor(PointHandle h, F&& f) const {
+    const PointRecord& r = point(h);
+    for (std::uint32_t i = 0; i < r.back_count; ++i) {
+      const PointHandle older = edge(r.back_begin + i).older;
+      if (is_live(older)) f(older);
+    }
+    for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
+  }
+  /// Back edges of `h` (to older points, possibly dead) and the head of its
+  /// forward list (to newer points, all live): the raw adjacency.
+  EdgeHandle back_edges_begin(PointHandle h) const { return point(h).back_begin; }
+  std::uint32_t back_edges_count(PointHandle h) const { return point(h).back_count; }
+  EdgeHandle forward_edges_head(PointHandle h) const { return point(h).fwd_head; }
+  PointHandle edge_older(EdgeHandle e) const { return edge(e).older; }
+  PointHandle edge_newer(EdgeHandle e) const { return edge(e).newer; }
+  EdgeHandle edge_next_forward(EdgeHandle e) const { return edge(e).next_fwd; }
+
+  /// Size of the cluster table (live and recycled slots).
+  std::size_t cluster_slots() const { return clusters_.size(); }
+  bool cluster_alive(ClusterId c) const { return c < clusters_.size() && clusters_[c].alive; }
+  /// Live clusters.
+  std::size_t cluster_count() const { return clusters_.size() - free_clusters_.size(); }
+  /// Points of a live cluster.
+  std::size_t cluster_size(ClusterId c) const { return clusters_[c].size; }
+  bool cluster_pending(ClusterId c) const { return clusters_[c].pending; }
+  /// Bridge edges of cluster `c`: (other cluster, multiplicity = live
+  /// point-level edges between the two). Valid until the next mutation.
+  struct Bridge {
+    ClusterId other;
+    std::uint32_t multiplicity;
+  };
+  const std::vector<Bridge>& bridges(ClusterId c) const { return clusters_[c].bridges; }
+
+ private:
+  struct PointRecord {
+    Sample sample;
+    std::uint64_t stream_index = 0;
+    CellIndex cell = 0;
+    ClusterId cluster = kNoCluster;
+    PointHandle next_member = kNoPoint;  ///< next point of the same cluster, insertion order
+    EdgeHandle back_begin = 0;           ///< first edge to an older neighbour
+    std::uint32_t back_count = 0;
+    EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
+    std::uint32_t mark = 0;         ///< BFS epoch
+  };
+  struct EdgeRecord {
+    PointHandle older = kNoPoint;
+    PointHandle newer = kNoPoint;
+    EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
+  };
+  struct Cluster {
+    std::uint32_t size = 0;
+    PointHandle head = kNoPoint;  ///< oldest member
+    PointHandle tail = kNoPoint;  ///< newest member
+    std::uint64_t created = 0;    ///< creation order, for the bridging rule
+    ComponentId stable_id = kNoComponent;  ///< id of its component at the last retrieval
+    bool alive = false;
+    bool pending = false;
+    std::vector<Bridge> bridges;
+  };
+
+  PointRecord& point(PointHandle h) { return points_[h & point_mask_]; }
+  const PointRecord& point(PointHandle h) const { return points_[h & point_mask_]; }
+  EdgeRecord& edge(EdgeHandle e) { return edges_[e & edge_mask_]; }
+  const EdgeRecord& edge(EdgeHandle e) const { return edges_[e & edge_mask_]; }
+
+  void set_grid(GridSize size) {
+    if (size.rows == 0 || size.cols == 0) size = GridSize{1, 1};
+    grid_ = GridShape{size.rows, size.cols, projection_.wraps_horizontally()};
+    index_.reset(grid_);
+    calibrating_ = false;
+  }
+
+  RejectReason reject(RejectReason r) {
+    ++rejections_[r];
+    return r;
+  }
+
+  RejectReason insert_position(const Eigen::Vector3f& pos, float point_intensity, double time) {
+    const std::uint64_t stream_index = offered_++;
+    if (!std::isfinite(time)) return reject(RejectReason::non_finite);
+    const Projected pr = projection_.project(pos);
+    if (!pr.accepted()) return reject(pr.reason);
+    if (has_time_ && time < last_time_) return reject(RejectReason::time_backwards);
+    has_time_ = true;
+    last_time_ = time;
+    ++rejections_[RejectReason::accepted];
+
+    evict_expired(time, size() + 1);
+    reserve_points(size() + 1);
+    const PointHandle h = next_++;
+    PointRecord& r = point(h);
+    r.sample = make_sample(pos, pr.range, point_intensity, time);
+    r.stream_index = stream_index;
+    r.cluster = kNoCluster;
+    r.next_member = kNoPoint;
+    r.back_begin = next_edge_;
+    r.back_count = 0;
+    r.fwd_head = kNoEdge;
+    r.mark = 0;
+    if (calibrating_) {
+      if (window_.complete(point(oldest_).sample.time, time, size())) finish_calibration();
+      return RejectReason::accepted;
+    }
+    r.cell = grid_.cell_of(pr.u, pr.v);
+    link(h);
+    return RejectReason::accepted;
+  }
+
+  /// Chooses the grid from the buffered first window, then inserts the
+  /// buffered points into index and graph in their original order.
+  void finish_calibration() {
+    std::vector<Projected> coords;
+    coords.reserve(size());
+    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(point(h).sample.position));
+    set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
+    std::size_t i = 0;
+    for (PointHandle h = oldest_; h != next_; ++h, ++i) {
+      point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
+      point(h).back_begin = next_edge_;
+      link(h);
+    }
+  }
+
+  /// Finds the neighbours of freshly appended point `h`, records its edges
+  /// and applies isolation, expansion or bridging.
+  void link(PointHandle h) {
+    ++stats_.inserted;
+    neighbours_.clear();
+    {
+      const PointRecord& r = point(h);
+      detail::for_each_mask_cell(grid_, r.cell, half_, [&](CellIndex c) {
+        index_.for_each(c, [&](PointHandle n) {
+          if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+        });
+      });
+    }
+    reserve_edges(neighbours_.size());
+    PointRecord& r = point(h);
+    r.back_begin = next_edge_;
+    r.back_count = static_cast<std::uint32_t>(neighbours_.size());
+    touched_.clear();
+    for (const PointHandle n : neighbours_) {
+      const EdgeHandle e = next_edge_++;
+      PointRecord& nr = point(n);
+      edge(e) = EdgeRecord{n, h, nr.fwd_head};
+      nr.fwd_head = e;
+      auto it = std::find_if(touched_.begin(), touched_.end(),
+                             [&](const Bridge& b) { return b.other == nr.cluster; });
+      if (it == touched_.end()) {
+        touched_.push_back(Bridge{nr.cluster, 1});
+      } else {
+        ++it->multiplicity;
+      }
+    }
+    ClusterId target;
+    if (touched_.empty()) {
+      target = create_cluster();  // isolation
+    } else {
+      target = touched_.front().other;  // expansion, or bridging into the newest cluster
+      for (const Bridge& t : touched_) {
+        if (clusters_[t.other].created > clusters_[target].created) target = t.other;
+      }
+      for (const Bridge& t : touched_) {
+        if (t.other != target) add_bridge(target, t.other, t.multiplicity, true);
+      }
+    }
+    append_member(target, h);
+    index_.insert(point(h).cell, h);  // a displaced point keeps its edges
+  }
+
+  ClusterId create_cluster() {
+    ClusterId id;
+    if (!free_clusters_.empty()) {
+      id = free_clusters_.back();
+      free_clusters_.pop_back();
+    } else {
+      id = static_cast<ClusterId>(clusters_.size());
+      clusters_.emplace_back();
+    }
+    Cluster& c = clusters_[id];
+    c.size = 0;
+    c.head = c.tail = kNoPoint;
+    c.created = clusters_created_++;
+    c.stable_id = kNoComponent;
+    c.alive = true;
+    c.pending = false;
+    c.bridges.clear();
+    visitor_.cluster_created(id);
+    return id;
+  }
+
+  void append_member(ClusterId c, PointHandle h) {
+    Cluster& cl = clusters_[c];
+    PointRecord& r = point(h);
+    r.cluster = c;
+    r.next_member = kNoPoint;
+    if (cl.tail == kNoPoint) {
+      cl.head = h;
+    } else {
+      point(cl.tail).next_member = h;
+    }
+    cl.tail = h;
+    ++cl.size;
+  }
+
+  void add_bridge(ClusterId a, ClusterId b, std::uint32_t multiplicity, bool notify) {
+    auto& la = clusters_[a].bridges;
+    auto it = std::find_if(la.begin(), la.end(), [&](const Bridge& x) { return x.other == b; });
+    if (it != la.end()) {
+      it->multiplicity += multiplicity;
+      auto& lb = clusters_[b].bridges;
+      std::find_if(lb.begin(), lb.end(), [&](const Bridge& x) { return x.other == a; })->multiplicity += multiplicity;
+      return;
+    }
+    la.push_back(Bridge{b, multiplicity});
+    clusters_[b].bridges.push_back(Bridge{a, multiplicity});
+    if (notify) visitor_.clusters_merged(a, b);
+  }
+
+  static void lower_bridge_entry(std::vector<Bridge>& list, ClusterId other, std::uint32_t by) {
+    auto it = std::find_if(list.begin(), list.end(), [&](const Bridge& x) { return x.other == other; });
+    it->multiplicity -= by;
+    if (it->multiplicity == 0) {
+      *it = list.back();
+      list.pop_back();
+    }
+  }
+
+  void lower_bridge(ClusterId a, ClusterId b, std::uint32_t by) {
+    lower_bridge_entry(clusters_[a].bridges, b, by);
+    lower_bridge_entry(clusters_[b].bridges, a, by);
+  }
+
+  void evict_expired(double newest_time, std::size_t count) {
+    while (size() > 0 && window_.expired(point(oldest_).sample.time, newest_time, count)) {
+      evict_oldest();
+      --count;
+    }
+  }
+
+  void evict_oldest() {
+    const PointHandle h = oldest_;
+    PointRecord& r = point(h);
+    if (r.cluster != kNoCluster) {
+      ++stats_.evicted;
+      index_.remove(r.cell, h);
+      const ClusterId c = r.cluster;
+      std::uint32_t intra_degree = 0;
+      for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) {
+        const ClusterId other = point(edge(e).newer).cluster;
+        if (other == c) {
+          ++intra_degree;
+        } else {
+          lower_bridge(c, other, 1);
+        }
+      }
+      // Back edges point to older points, all evicted already (FIFO).
+      Cluster& cl = clusters_[c];
+      cl.head = r.next_member;  // the globally oldest point heads its cluster's list
+      if (cl.head == kNoPoint) cl.tail = kNoPoint;
+      --cl.size;
+      if (cl.size == 0) {
+        cl.alive = false;
+        cl.pending = false;
+        free_clusters_.push_back(c);
+        visitor_.cluster_evicted(c);
+      } else if (intra_degree >= 2 && !cl.pending) {
+        cl.pending = true;
+        pending_.push_back(c);
+      }
+    }
+    ++oldest_;
+    oldest_edge_ = size() > 0 ? point(oldest_).back_begin : next_edge_;
+  }
+
+  void validate_pending() {
+    for (std::size_t i = 0; i < pending_.size(); ++i) {
+      const ClusterId c = pending_[i];
+      if (!clusters_[c].alive || !clusters_[c].pending) continue;
+      clusters_[c].pending = false;
+      ++stats_.clusters_validated;
+      validate(c);
+    }
+    pending_.clear();
+  }
+
+  std::uint32_t next_epoch() {
+    if (++epoch_ == 0) {  // wrapped: clear all marks once every 2^32 BFS runs
+      for (PointHandle h = oldest_; h != next_; ++h) point(h).mark = 0;
+      epoch_ = 1;
+    }
+    return epoch_;
+  }
+
+  /// BFS over the intra-cluster edges of cluster `c`; splits it into its
+  /// connected fragments. The largest fragment keeps the id. O(points + edges
+  /// of c), plus bridge re-attribution for the new fragments.
+  void validate(ClusterId c) {
+    const std::uint32_t epoch = next_epoch();
+    order_.clear();
+    fragment_begin_.clear();
+    for (PointHandle m = clusters_[c].head; m != kNoPoint; m = point(m).next_member) {
+      if (point(m).mark == epoch) continue;
+      fragment_begin_.push_back(order_.size());
+      point(m).mark = epoch;
+      order_.push_back(m);
+      for (std::size_t q = fragment_begin_.back(); q < order_.size(); ++q) {
+        for_each_neighbor(order_[q], [&](PointHandle n) {
+          PointRecord& nr = point(n);
+          if (nr.cluster == c && nr.mark != epoch) {
+            nr.mark = epoch;
+            order_.push_back(n);
+          }
+        });
+      }
+      if (fragment_begin_.size() == 1 && order_.size() == clusters_[c].size) return;  // still connected
+    }
+    fragment_begin_.push_back(order_.size());
+    const std::size_t fragments = fragment_begin_.size() - 1;
+    std::size_t keeper = 0;
+    for (std::size_t f = 1; f < fragments; ++f) {
+      if (fragment_begin_[f + 1] - fragment_begin_[f] > fragment_begin_[keeper + 1] - fragment_begin_[keeper]) keeper = f;
+    }
+    // Relabel the other fragments with new clusters.
+    const ComponentId inherited = clusters_[c].stable_id;
+    for (std::size_t f = 0; f < fragments; ++f) {
+      if (f == keeper) continue;
+      const ClusterId piece = create_cluster();
+      clusters_[piece].stable_id = inherited;
+      for (std::size_t q = fragment_begin_[f]; q < fragment_begin_[f + 1]; ++q) point(order_[q]).cluster = piece;
+      ++stats_.clusters_split;
+    }
+    // Rebuild the member lists in insertion order.
+    PointHandle m = clusters_[c].head;
+    clusters_[c].head = clusters_[c].tail = kNoPoint;
+    clusters_[c].size = 0;
+    while (m != kNoPoint) {
+      const PointHandle next = point(m).next_member;
+      append_member(point(m).cluster, m);
+      m = next;
+    }
+    // Move the bridges carried by the new fragments' edges.
+    for (std::size_t f = 0; f < fragments; ++f) {
+      if (f == keeper) continue;
+      const ClusterId piece = point(order_[fragment_begin_[f]]).cluster;
+      for (std::size_t q = fragment_begin_[f]; q < fragment_begin_[f + 1]; ++q) {
+        for_each_neighbor(order_[q], [&](PointHandle n) {
+          const ClusterId other = point(n).cluster;
+          if (other != piece) {
+            lower_bridge(c, other, 1);
+            add_bridge(piece, other, 1, false);
+          }
+        });
+      }
+      visitor_.cluster_split(c, piece);
+    }
+  }
+
+  /// BFS over the component graph, stable-id assignment, then one pass over
+  /// the window for labels and summaries. O(N + clusters + bridges).
+  void label_components() {
+    const std::size_t slots = clusters_.size();
+    component_of_.assign(slots, kNoCluster);
+    std::uint32_t components = 0;
+    for (ClusterId c = 0; c < slots; ++c) {
+      if (!clusters_[c].alive || component_of_[c] != kNoCluster) continue;
+      queue_.clear();
+      queue_.push_back(c);
+      component_of_[c] = components;
+      for (std::size_t q = 0; q < queue_.size(); ++q) {
+        for (const Bridge& b : clusters_[queue_[q]].bridges) {
+          if (component_of_[b.other] == kNoCluster) {
+            component_of_[b.other] = components;
+            queue_.push_back(b.other);
+          }
+        }
+      }
+      ++components;
+    }
+    assign_stable_ids(components);
+
+    result_.time = last_time_;
+    ++result_.cycle;
+    result_.points.clear();
+    result_.points.reserve(size());
+    result_.components.assign(components, ComponentSummary{});
+    sums_.assign(components, Eigen::Vector3d::Zero());
+    for (std::uint32_t k = 0; k < components; ++k) result_.components[k].id = component_ids_[k];
+    for (PointHandle h = oldest_; h != next_; ++h) {
+      const PointRecord& r = point(h);
+      if (r.cluster == kNoCluster) continue;  // only while calibrating
+      const std::uint32_t k = component_of_[r.cluster];
+      result_.points.push_back(PointLabel{r.stream_index, component_ids_[k]});
+      ComponentSummary& s = result_.components[k];
+      const Eigen::Vector3f& p = r.sample.position;
+      if (s.size == 0) {
+        s.min = s.max = p;
+        s.time_begin = r.sample.time;
+      } else {
+        s.min = s.min.cwiseMin(p);
+        s.max = s.max.cwiseMax(p);
+      }
+      s.time_end = r.sample.time;
+      sums_[k] += p.template cast<double>();
+      ++s.size;
+    }
+    for (std::uint32_t k = 0; k < components; ++k) {
+      ComponentSummary& s = result_.components[k];
+      if (s.size > 0) s.centroid = (sums_[k] / static_cast<double>(s.size)).template cast<float>();
+    }
+    std::sort(result_.components.begin(), result_.components.end(),
+              [](const ComponentSummary& a, const ComponentSummary& b) { return a.id < b.id; });
+  }
+
+  struct Claim {
+    std::uint32_t component;
+    ComponentId id;
+    std::uint64_t weight;
+  };
+
+  void assign_stable_ids(std::uint32_t components) {
+    claims_.clear();
+    for (ClusterId c = 0; c < clusters_.size(); ++c) {
+      const Cluster& cl = clusters_[c];
+      if (cl.alive && cl.stable_id != kNoComponent) claims_.push_back(Claim{component_of_[c], cl.stable_id, cl.size});
+    }
+    // Sum the weight of each (component, old id) pair.
+    std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
+      return a.id != b.id ? a.id < b.id : a.component < b.component;
+    });
+    std::size_t merged = 0;
+    for (std::size_t i = 0; i < claims_.size(); ++i) {
+      if (merged > 0 && claims_[merged - 1].id == claims_[i].id && claims_[merged - 1].component == claims_[i].component) {
+        claims_[merged - 1].weight += claims_[i].weight;
+      } else {
+        claims_[merged++] = claims_[i];
+      }
+    }
+    claims_.resize(merged);
+    // Each old id goes to its heaviest claimant (ties: lower component).
+    std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
+      if (a.id != b.id) return a.id < b.id;
+      return a.weight != b.weight ? a.weight > b.weight : a.component < b.component;
+    });
+    merged = 0;
+    for (std::size_t i = 0; i < claims_.size(); ++i) {
+      if (i == 0 || claims_[i].id != claims_[i - 1].id) claims_[merged++] = claims_[i];
+    }
+    claims_.resize(merged);
+    // Each component keeps its heaviest old id (ties: the older id).
+    std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
+      if (a.component != b.component) return a.component < b.component;
+      return a.weight != b.weight ? a.weight > b.weight : a.id < b.id;
+    });
+    component_ids_.assign(components, kNoComponent);
+    for (const Claim& cl : claims_) {
+      if (component_ids_[cl.component] == kNoComponent) component_ids_[cl.component] = cl.id;
+    }
+    for (auto& id : component_ids_) {
+      if (id == kNoComponent) id = next_component_id_++;
+    }
+    for (ClusterId c = 0; c < clusters_.size(); ++c) {
+      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+    }
+  }
+
+  /// Grows the point ring (doubling) so it can hold `needed` points.
+  void reserve_points(std::size_t needed) {
+    if (needed <= points_.size()) return;
+    std::size_t capacity = std::max<std::size_t>(points_.size() * 2, 1024);
+    while (capacity < needed) capacity *= 2;
+    std::vector<PointRecord> grown(capacity);
+    const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
+    for (PointHandle h = oldest_; h != next_; ++h) grown[h & new_mask] = point(h);
+    points_.swap(grown);
+    point_mask_ = new_mask;
+  }
+
+  /// Grows the edge ring so `extra` more edges fit.
+  void reserve_edges(std::size_t extra) {
+    const std::size_t needed = static_cast<std::uint32_t>(next_edge_ - oldest_edge_) + extra;
+    if (needed <= edges_.size()) return;
+    std::size_t capacity = std::max<std::size_t>(edges_.size() * 2, 4096);
+    while (capacity < needed) capacity *= 2;
+    std::vector<EdgeRecord> grown(capacity);
+    const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
+    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) grown[e & new_mask] = edge(e);
+    edges_.swap(grown);
+    edge_mask_ = new_mask;
+  }
+
+  Params params_;
+  projection_type projection_;
+  spatial_index_type index_;
+  linkage_type linkage_;
+  window_type window_;
+  resolution_type resolution_;
+  visitor_type visitor_;
+  int half_;
+  GridShape grid_{};
+  bool calibrating_ = true;
+
+  // Ring buffer of the window: live handles are [oldest_, next_).
+  std::vector<PointRecord> points_;
+  std::uint32_t point_mask_ = 0;
+  PointHandle oldest_ = 0;
+  PointHandle next_ = 0;
+  // Ring buffer of edges, freed in the same FIFO order: live handles are [oldest_edge_, next_edge_).
+  std::vector<EdgeRecord> edges_;
+  std::uint32_t edge_mask_ = 0;
+  EdgeHandle oldest_edge_ = 0;
+  EdgeHandle next_edge_ = 0;
+
+  std::vector<Cluster> clusters_;
+  std::vector<ClusterId> free_clusters_;
+  std::vector<ClusterId> pending_;
+  std::uint64_t clusters_created_ = 0;
+  ComponentId next_component_id_ = 0;
+
+  std::uint64_t offered_ = 0;
+  bool has_time_ = false;
+  double last_time_ = 0.0;
+  RejectionCounts rejections_{};
+  RetrievalStats stats_{};
+  RetrievalStats last_stats_{};
+  std::uint32_t epoch_ = 0;
+
+  // Scratch buffers, reused so the steady state does not allocate.
+  std::vector<PointHandle> neighbours_;
+  std::vector<Bridge> touched_;
+  std::vector<PointHandle> order_;
+  std::vector<std::size_t> fragment_begin_;
+  std::vector<std::uint32_t> component_of_;
+  std::vector<ClusterId> queue_;
+  std::vector<ComponentId> component_ids_;
+  std::vector<Claim> claims_;
+  std::vector<Eigen::Vector3d> sums_;
+  Clustering result_;
+};
+
+}  // namespace streamclust

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// Ready-made configurations and the plain helper API for users who never
+/// touch templates. A preset is a struct of policy slots: derive from one and
+/// override a slot to make your own.
+///
+/// | preset               | projection | index     | linkage  | window | resolution |
+/// |----------------------|------------|-----------|----------|--------|------------|
+/// | CArcConfig           | spherical  | bucket    | angular  | time   | adaptive   |
+/// | CArcFixedConfig      | spherical  | bucket    | angular  | time   | fixed      |
+/// | CArcCappedConfig     | spherical  | capped    | angular  | time   | adaptive   |
+/// | FrameBaselineConfig  | spherical  | overwrite | angular  | time   | adaptive   |
+/// | EuclideanConfig      | spherical  | bucket    | euclidean| time   | adaptive   |
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/concepts/visitor.hpp>
+#include <streamclust/index/bucket_grid.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/projection/spherical.hpp>
+#include <streamclust/resolution/adaptive.hpp>
+#include <streamclust/resolution/fixed.hpp>
+#include <streamclust/stream_clusterer.hpp>
+#include <streamclust/window/time_window.hpp>
+
+namespace streamclust {
+
+/// C-ARC as in the paper: spherical projection, bucket grid, angular
+/// (Bogoslavskyi) linkage, time window, adaptive resolution.
+struct CArcConfig {
+  using projection = SphericalProjection;
+  using spatial_index = BucketGrid;
+  using linkage = AngularLinkage;
+  using window = TimeWindow;
+  using resolution = AdaptiveResolution;
+  using visitor = NullVisitor;
+};
+
+/// C-ARC with a grid given by the user (no calibration window).
+struct CArcFixedConfig : CArcConfig {
+  using resolution = FixedResolution;
+};
+
+/// C-ARC with at most K points per cell (bounded insertion cost).
+struct CArcCappedConfig : CArcConfig {
+  using spatial_index = CappedGrid;
+};
+
+/// The frame-based baseline's range image: one point per cell, newest wins.
+/// Use with BatchClusterer in BatchMode::range_image for the classic method.
+struct FrameBaselineConfig : CArcConfig {
+  using spatial_index = OverwriteGrid;
+};
+
+/// C-ARC's engine with plain Euclidean single linkage.
+struct EuclideanConfig : CArcConfig {
+  using linkage = EuclideanLinkage;
+};
+
+using CArcClusterer = StreamClusterer<CArcConfig>;
+
+/// The C-ARC parameters in one flat aggregate. Defaults are the paper's
+/// (w = 5, T_M = 2, T_G = 0.1, T_D = 0.9, lambda_G = lambda_D = 0.2) and
+/// Bogoslavskyi's theta = 10 degrees; the paper tunes theta per sensor
+/// (see carc_mid360_params and carc_avia_params).
+struct CArcParams {
+  float theta_deg = 10.0f;           ///< angular linkage threshold [deg], (0, 90)
+  float min_ray_angle_deg = 0.2f;    ///< floor on the ray angle alpha [deg] (near-coincident Livox rays); 0 = off
+  double window_seconds = 0.1;       ///< sliding window T_B [s]
+  int mask_size = 5;                 ///< w of the w x w mask, odd
+  float max_multiplicity = 2.0f;     ///< T_M: mean points per occupied cell at calibration
+  float target_gap = 0.1f;           ///< T_G
+  float target_density = 0.9f;       ///< T_D
+  float gain_gap = 0.2f;             ///< lambda_G
+  float gain_density = 0.2f;         ///< lambda_D
+  SphericalProjection::Params field_of_view{};  ///< FOV bounds and minimum range
+};
+
+/// The Livox Mid-360: 360 x 59 degrees (elevation -7.2 to 52.2), theta = 30 degrees as in the paper.
+inline CArcParams carc_mid360_params() {
+  CArcParams p;
+  p.theta_deg = 30.0f;
+  p.field_of_view.elevation_min_deg = -7.5f;
+  p.field_of_view.elevation_max_deg = 52.5f;
+  return p;
+}
+
+/// The Livox Avia: 70.4 x 77.2 degrees, theta = 80 degrees as in the paper.
+inline CArcParams carc_avia_params() {
+  CArcParams p;
+  p.theta_deg = 80.0f;
+  p.field_of_view.azimuth_min_deg = -35.2f;
+  p.field_of_view.azimuth_max_deg = 35.2f;
+  p.field_of_view.elevation_min_deg = -38.6f;
+  p.field_of_view.elevation_max_deg = 38.6f;
+  return p;
+}
+
+/// Template-level parameters of any config whose slots match C-ARC's
+/// (spherical projection, angular linkage, time window, adaptive resolution).
+template <class Config = CArcConfig>
+ClustererParams<Config> to_clusterer_params(const CArcParams& p) {
+  ClustererParams<Config> out;
+  out.projection = p.field_of_view;
+  out.linkage.theta_deg = p.theta_deg;
+  out.linkage.min_ray_angle_deg = p.min_ray_angle_deg;
+  out.window.duration = p.window_seconds;
+  out.resolution.max_multiplicity = p.max_multiplicity;
+  out.resolution.target_gap = p.target_gap;
+  out.resolution.target_density = p.target_density;
+  out.resolution.gain_gap = p.gain_gap;
+  out.resolution.gain_density = p.gain_density;
+  out.mask_size = p.mask_size;
+  return out;
+}
+
+/// A C-ARC engine from flat parameters. Throws std::invalid_argument on a bad value.
+inline CArcClusterer make_carc(const CArcParams& params = CArcParams{}) {
+  return CArcClusterer(to_clusterer_params<CArcConfig>(params));
+}
+
+}  // namespace streamclust

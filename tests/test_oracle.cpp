@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: MIT
+// The oracle: after every retrieval the continuous partition equals the
+// partition the batch clusterer computes from scratch on the same window,
+// for every combination of standard policies, over random and adversarial
+// streams.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/index/bucket_grid.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/presets.hpp>
+#include <streamclust/projection/cylindrical.hpp>
+#include <streamclust/projection/spherical.hpp>
+#include <streamclust/resolution/fixed.hpp>
+#include <streamclust/stream_clusterer.hpp>
+#include <streamclust/window/count_window.hpp>
+#include <streamclust/window/time_window.hpp>
+
+#include "support/partition.hpp"
+#include "support/streams.hpp"
+
+#include <random>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace sc = streamclust;
+namespace st = streamclust::test;
+
+namespace {
+
+template <class Projection, class Index, class Linkage, class Window>
+struct Combo {
+  using projection = Projection;
+  using spatial_index = Index;
+  using linkage = Linkage;
+  using window = Window;
+  using resolution = sc::FixedResolution;
+};
+
+// Random parameters for one seed. Small grids and wide masks on purpose:
+// crowded cells, masks wider than the grid, seams.
+template <class Config>
+sc::ClustererParams<Config> random_params(std::mt19937_64& rng) {
+  using Proj = typename Config::projection;
+  using Index = typename Config::spatial_index;
+  using Link = typename Config::linkage;
+  using Win = typename Config::window;
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  sc::ClustererParams<Config> p;
+  p.mask_size = 1 + 2 * static_cast<int>(rng() % 4);
+  p.resolution.rows = 1 + static_cast<std::uint32_t>(rng() % 24);
+  p.resolution.cols = 1 + static_cast<std::uint32_t>(rng() % 64);
+  if (rng() % 2) {
+    p.projection.azimuth_min_deg = -60.0f;
+    p.projection.azimuth_max_deg = 60.0f;
+  }
+  if constexpr (std::is_same_v<Proj, sc::SphericalProjection>) {
+    if (rng() % 2) {
+      p.projection.elevation_min_deg = -30.0f;
+      p.projection.elevation_max_deg = 50.0f;
+    }
+  } else {
+    p.projection.z_min = -2.0f;
+    p.projection.z_max = 4.0f;
+  }
+  if constexpr (std::is_same_v<Index, sc::CappedGrid>) p.spatial_index.capacity = 1 + static_cast<std::uint32_t>(rng() % 4);
+  if constexpr (std::is_same_v<Link, sc::EuclideanLinkage>) {
+    p.linkage.max_distance = 0.2f + 2.0f * unit(rng);
+  } else {
+    p.linkage.theta_deg = 5.0f + 60.0f * unit(rng);
+    const float floors[] = {0.0f, 0.2f, 1.0f};
+    p.linkage.min_ray_angle_deg = floors[rng() % 3];
+  }
+  if constexpr (std::is_same_v<Win, sc::TimeWindow>) {
+    const double durations[] = {0.0, 0.0005, 0.01, 0.05, 0.2, 1.0};
+    p.window.duration = durations[rng() % 6];
+  } else {
+    const std::size_t capacities[] = {1, 2, 7, 40, 150};
+    p.window.capacity = capacities[rng() % 5];
+  }
+  return p;
+}
+
+// Compares the engine's last retrieval with a from-scratch batch run on the
+// same window. Returns an empty string on agreement.
+template <class Config>
+std::string compare_with_batch(const sc::StreamClusterer<Config>& engine, sc::BatchClusterer<Config>& batch) {
+  std::vector<sc::Sample> window;
+  std::vector<std::uint64_t> indices;
+  engine.for_each_point([&](const sc::Sample& s, std::uint64_t i) {
+    window.push_back(s);
+    indices.push_back(i);
+  });
+  const sc::Clustering& result = engine.last_result();
+  if (result.points.size() != window.size()) return "engine labelled a different number of points than its window";
+  std::vector<sc::ComponentId> continuous;
+  for (std::size_t i = 0; i < window.size(); ++i) {
+    if (result.points[i].stream_index != indices[i]) return "stream index mismatch";
+    continuous.push_back(result.points[i].label);
+  }
+  batch.set_grid({engine.grid().rows, engine.grid().cols});
+  const sc::BatchResult& reference = batch.cluster(window);
+  if (reference.rejections.rejected() != 0) return "batch rejected a point the engine accepted";
+  std::string mismatch = st::partition_mismatch(continuous, reference.labels);
+  if (!mismatch.empty()) return mismatch;
+  std::set<sc::ComponentId> ids(continuous.begin(), continuous.end());
+  if (ids.size() != result.components.size()) return "component summaries do not match the labels";
+  return {};
+}
+
+template <class Config>
+void run_oracle(std::uint64_t seed) {
+  std::mt19937_64 rng(seed * 7919 + 13);
+  const auto params = random_params<Config>(rng);
+  const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
+  const auto stream = st::make_stream(kind, 120 + seed % 200, seed);
+  sc::StreamClusterer<Config> engine(params);
+  sc::BatchClusterer<Config> batch(params);
+  std::size_t next_retrieval = 1 + rng() % 40;
+  int retrievals = 0;
+  for (std::size_t i = 0; i < stream.size(); ++i) {
+    engine.insert(stream[i]);
+    if (i + 1 == next_retrieval || i + 1 == stream.size()) {
+      engine.retrieve();
+      ++retrievals;
+      const std::string mismatch = compare_with_batch(engine, batch);
+      INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i << ", retrieval "
+                   << retrievals << ", grid " << engine.grid().rows << "x" << engine.grid().cols << ", mask "
+                   << params.mask_size << ", window size " << engine.size());
+      REQUIRE(mismatch == "");
+      next_retrieval += 1 + rng() % 40;
+    }
+  }
+  CHECK(retrievals > 0);
+}
+
+constexpr std::uint64_t kSeeds = 200;
+
+}  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("continuous partition equals the batch partition of the same window", Config, oracle_id) {
+  for (std::uint64_t seed = 0; seed < kSeeds; ++seed) run_oracle<Config>(seed);
+}
+
+using SphB = sc::SphericalProjection;
+using Cyl = sc::CylindricalProjection;
+TEST_CASE_TEMPLATE_APPLY(
+    oracle_id,
+    std::tuple<Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow>>);
+
+TEST_CASE("the C-ARC preset with adaptive resolution agrees with the batch clusterer on its calibrated grid") {
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    auto params = sc::to_clusterer_params<sc::CArcConfig>(sc::CArcParams{});
+    params.window.duration = 0.05;
+    params.resolution.initial_rows = 8;
+    params.resolution.initial_cols = 32;
+    sc::StreamClusterer<sc::CArcConfig> engine(params);
+    sc::BatchClusterer<sc::CArcConfig> batch(params);
+    const auto stream = st::make_stream(st::StreamKind::blobs, 600, seed, 4000.0);
+    CHECK(engine.calibrating());
+    for (std::size_t i = 0; i < stream.size(); ++i) {
+      engine.insert(stream[i]);
+      if (i % 97 == 96) {
+        engine.retrieve();
+        INFO("seed " << seed << " after point " << i);
+        REQUIRE(compare_with_batch(engine, batch) == "");
+      }
+    }
+    CHECK_FALSE(engine.calibrating());
+    CHECK(engine.grid().rows >= 1);
+    CHECK(engine.grid().cols >= 1);
+  }
+}
