@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: MIT
+// Archetypes: the smallest models of each concept, with nothing beyond the
+// concept's valid expressions. Explicitly instantiating both clusterers with
+// them proves the engines use nothing else; running them proves the models
+// are enough to cluster.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/stream_clusterer.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace archetype {
+
+using namespace streamclust;  // NOLINT: test-local brevity
+
+struct Projection {
+  struct Params {};
+  explicit Projection(const Params&) {}
+  Projected project(const Eigen::Vector3f& p) const {
+    Projected r;
+    r.range = p.norm();
+    if (!std::isfinite(r.range)) r.reason = RejectReason::non_finite;
+    if (r.range <= 0.0f) r.reason = RejectReason::too_close;
+    r.u = 0.5f;
+    r.v = 0.5f;
+    return r;
+  }
+  bool wraps_horizontally() const { return false; }
+  float fov_aspect() const { return 1.0f; }
+  Projection(const Projection&) = default;
+  Projection& operator=(const Projection&) = delete;
+};
+
+struct Index {
+  struct Params {};
+  explicit Index(const Params&) {}
+  void reset(const GridShape& g) { cells.assign(g.cell_count(), {}); }
+  void clear() {
+    for (auto& c : cells) c.clear();
+  }
+  PointHandle insert(CellIndex c, PointHandle h) {
+    cells[c].push_back(h);
+    return kNoPoint;
+  }
+  void remove(CellIndex c, PointHandle h) {
+    auto& v = cells[c];
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (v[i] == h) {
+        v.erase(v.begin() + static_cast<std::ptrdiff_t>(i));
+        return;
+      }
+    }
+  }
+  template <class F>
+  void for_each(CellIndex c, F&& f) const {
+    for (const PointHandle h : cells[c]) f(h);
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& c : cells) n += c.size();
+    return n;
+  }
+  std::vector<std::vector<PointHandle>> cells;
+};
+
+struct Linkage {
+  struct Params {};
+  explicit Linkage(const Params&) {}
+  bool operator()(const Sample& a, const Sample& b) const { return (a.position - b.position).squaredNorm() < 1.0f; }
+};
+
+struct Window {
+  struct Params {};
+  explicit Window(const Params&) {}
+  bool expired(double oldest, double newest, std::size_t) const { return newest - oldest > 1.0; }
+  bool complete(double oldest, double newest, std::size_t) const { return newest - oldest >= 1.0; }
+};
+
+struct Resolution {
+  struct Params {};
+  explicit Resolution(const Params&) {}
+  bool needs_calibration() const { return calibrate_pending; }
+  GridSize grid() const { return GridSize{2, 2}; }
+  GridSize calibrate(const std::vector<Projected>&, float) {
+    calibrate_pending = false;
+    return grid();
+  }
+  bool calibrate_pending = true;
+};
+
+struct Visitor {
+  void cluster_created(ClusterId) {}
+  void clusters_merged(ClusterId, ClusterId) {}
+  void cluster_split(ClusterId, ClusterId) {}
+  void cluster_evicted(ClusterId) {}
+};
+
+struct Config {
+  using projection = Projection;
+  using spatial_index = Index;
+  using linkage = Linkage;
+  using window = Window;
+  using resolution = Resolution;
+  using visitor = Visitor;
+};
+
+struct PointXYZT {
+  float x, y, z;
+  double t;
+};
+
+}  // namespace archetype
+
+template class streamclust::StreamClusterer<archetype::Config>;
+template class streamclust::BatchClusterer<archetype::Config>;
+
+TEST_CASE("the engines run on archetype policies") {
+  streamclust::StreamClusterer<archetype::Config> engine;
+  CHECK(engine.calibrating());
+  engine.insert(archetype::PointXYZT{5.0f, 0.0f, 0.0f, 0.0});
+  engine.insert(archetype::PointXYZT{5.5f, 0.0f, 0.0f, 0.5});
+  engine.insert(archetype::PointXYZT{9.0f, 0.0f, 0.0f, 1.0});  // completes the first window
+  CHECK_FALSE(engine.calibrating());
+  const auto& result = engine.retrieve();
+  CHECK(result.points.size() == 3);
+  CHECK(result.components.size() == 2);
+  std::vector<archetype::PointXYZT> points = {{5.0f, 0.0f, 0.0f, 0.0}, {5.5f, 0.0f, 0.0f, 0.5}};
+  streamclust::BatchClusterer<archetype::Config> batch;
+  CHECK(batch.cluster(points).components == 1);
+}

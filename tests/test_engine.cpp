@@ -1,0 +1,429 @@
+// SPDX-License-Identifier: MIT
+// Behaviour of the continuous engine on hand-made streams: the three
+// insertion cases, bridge multiplicity, lazy deletion and splits, stable ids,
+// rejected input, windows, the mask, visitors and result summaries.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/detail/mask.hpp>
+#include <streamclust/streamclust.hpp>
+
+#include "support/partition.hpp"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+namespace sc = streamclust;
+
+namespace {
+
+// One cell holds everything, so the Euclidean linkage alone decides.
+struct OneCellConfig {
+  using projection = sc::SphericalProjection;
+  using spatial_index = sc::BucketGrid;
+  using linkage = sc::EuclideanLinkage;
+  using window = sc::TimeWindow;
+  using resolution = sc::FixedResolution;
+};
+
+struct Events {
+  std::vector<sc::ClusterId> created, evicted;
+  std::vector<std::pair<sc::ClusterId, sc::ClusterId>> merged, split;
+};
+struct RecordingVisitor : sc::NullVisitor {
+  Events* events = nullptr;
+  void cluster_created(sc::ClusterId c) { events->created.push_back(c); }
+  void clusters_merged(sc::ClusterId a, sc::ClusterId b) { events->merged.emplace_back(a, b); }
+  void cluster_split(sc::ClusterId a, sc::ClusterId b) { events->split.emplace_back(a, b); }
+  void cluster_evicted(sc::ClusterId c) { events->evicted.push_back(c); }
+};
+struct RecordingConfig : OneCellConfig {
+  using visitor = RecordingVisitor;
+};
+
+sc::ClustererParams<OneCellConfig> one_cell_params(double window = 10.0) {
+  sc::ClustererParams<OneCellConfig> p;
+  p.resolution = {1, 1};
+  p.linkage.max_distance = 1.0f;
+  p.window.duration = window;
+  p.mask_size = 1;
+  return p;
+}
+
+sc::Point at(float x, float y, double t) { return sc::Point{x, y, 0.0f, 0.0f, t}; }
+
+template <class Engine>
+sc::ComponentId label_of(const Engine& e, std::uint64_t stream_index) {
+  for (const auto& p : e.last_result().points) {
+    if (p.stream_index == stream_index) return p.label;
+  }
+  return sc::kNoComponent;
+}
+
+}  // namespace
+
+TEST_CASE("isolation, expansion and bridging into the most recently created cluster") {
+  Events events;
+  sc::ClustererParams<RecordingConfig> params;
+  params.resolution = {1, 1};
+  params.linkage.max_distance = 1.0f;
+  params.window.duration = 10.0;
+  params.mask_size = 1;
+  sc::StreamClusterer<RecordingConfig> engine(params, RecordingVisitor{sc::NullVisitor{}, &events});
+
+  engine.insert(at(5.0f, 0.0f, 0.0));  // isolation: cluster A
+  engine.insert(at(5.5f, 0.0f, 0.1));  // expansion of A
+  engine.insert(at(7.0f, 0.0f, 0.2));  // isolation: cluster B (1.5 m from A's nearest point)
+  REQUIRE(events.created.size() == 2);
+  const sc::ClusterId a = engine.cluster_of(engine.handle_at(0));
+  const sc::ClusterId b = engine.cluster_of(engine.handle_at(2));
+  CHECK(engine.cluster_of(engine.handle_at(1)) == a);
+  CHECK(a != b);
+  CHECK(engine.bridges(a).empty());
+
+  engine.insert(at(6.3f, 0.0f, 0.3));  // links 5.5 (A) and 7.0 (B): bridging
+  CHECK(events.created.size() == 2);   // no new cluster
+  CHECK(engine.cluster_of(engine.handle_at(3)) == b);  // joins the newer cluster
+  REQUIRE(engine.bridges(a).size() == 1);
+  CHECK(engine.bridges(a)[0].other == b);
+  CHECK(engine.bridges(a)[0].multiplicity == 1);
+  REQUIRE(events.merged.size() == 1);
+
+  const auto& result = engine.retrieve();
+  CHECK(result.components.size() == 1);
+  CHECK(result.points.size() == 4);
+}
+
+TEST_CASE("a bridge carries a multiplicity and disappears with its last point-level link") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(1.0));
+  engine.insert(at(5.2f, 0.0f, 0.0));   // A
+  engine.insert(at(6.8f, 0.0f, 0.1));   // B, 1.6 m away
+  engine.insert(at(6.0f, 0.0f, 0.2));   // bridge: joins B, one link to A
+  engine.insert(at(6.0f, 0.1f, 0.6));   // second bridge point: links A, B and the first bridge
+  const sc::ClusterId a = engine.cluster_of(engine.handle_at(0));
+  REQUIRE(engine.bridges(a).size() == 1);
+  CHECK(engine.bridges(a)[0].multiplicity == 2);
+  CHECK(engine.retrieve().components.size() == 1);
+
+  engine.advance_to(1.05);  // A (t = 0) leaves: both links to A go
+  CHECK(engine.size() == 3);
+  const auto& result = engine.retrieve();
+  CHECK(result.components.size() == 1);
+  for (sc::ClusterId c = 0; c < engine.cluster_slots(); ++c) {
+    if (engine.cluster_alive(c)) CHECK(engine.bridges(c).empty());
+  }
+}
+
+TEST_CASE("a bridge goes when the bridging points leave, and the components separate") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(1.0));
+  engine.insert(at(6.0f, 0.0f, 0.0));  // the bridge first, so it is evicted first
+  engine.insert(at(5.2f, 0.0f, 0.5));  // joins the bridge's cluster
+  engine.insert(at(6.8f, 0.0f, 0.5));  // joins it too
+  CHECK(engine.retrieve().components.size() == 1);
+  engine.advance_to(1.2);  // the bridge leaves: 5.2 and 6.8 are 1.6 m apart
+  const auto& result = engine.retrieve();
+  CHECK(result.points.size() == 2);
+  CHECK(result.components.size() == 2);
+  CHECK(engine.last_stats().clusters_split == 1);
+}
+
+TEST_CASE("lazy deletion: eviction marks a cluster pending only when it can split, and retrieve() splits it") {
+  Events events;
+  sc::ClustererParams<RecordingConfig> params;
+  params.resolution = {1, 1};
+  params.linkage.max_distance = 1.0f;
+  params.window.duration = 1.0;
+  params.mask_size = 1;
+  sc::StreamClusterer<RecordingConfig> engine(params, RecordingVisitor{sc::NullVisitor{}, &events});
+  engine.insert(at(5.0f, 0.0f, 0.0));  // middle of a chain
+  engine.insert(at(4.2f, 0.0f, 0.5));
+  engine.insert(at(3.4f, 0.0f, 0.5));
+  engine.insert(at(5.8f, 0.0f, 0.5));
+  engine.insert(at(6.6f, 0.0f, 0.5));
+  const auto& before = engine.retrieve();
+  REQUIRE(before.components.size() == 1);
+  const sc::ComponentId id = before.components[0].id;
+
+  engine.advance_to(1.01);  // the middle point leaves
+  const sc::ClusterId c = engine.cluster_of(engine.handle_at(0));
+  CHECK(engine.cluster_pending(c));
+  const auto& after = engine.retrieve();
+  CHECK(after.components.size() == 2);
+  CHECK(events.split.size() == 1);
+  // Two parts of two points each: one keeps the id, the other gets a new one.
+  std::set<sc::ComponentId> ids;
+  for (const auto& comp : after.components) ids.insert(comp.id);
+  CHECK(ids.count(id) == 1);
+  CHECK(*ids.rbegin() > id);
+}
+
+TEST_CASE("a leaf leaving does not mark its cluster pending") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(1.0));
+  engine.insert(at(5.0f, 0.0f, 0.0));  // end of a chain
+  engine.insert(at(5.8f, 0.0f, 0.5));
+  engine.insert(at(6.6f, 0.0f, 0.5));
+  engine.retrieve();
+  engine.advance_to(1.01);
+  CHECK_FALSE(engine.cluster_pending(engine.cluster_of(engine.handle_at(0))));
+  CHECK(engine.retrieve().components.size() == 1);
+  CHECK(engine.last_stats().clusters_validated == 0);
+}
+
+TEST_CASE("stable ids survive, merge to the larger part and split to the larger part") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(1.0));
+  // Big object (3 points) near x = 5, small one (2 points) near x = 8.
+  engine.insert(at(4.0f, 0.0f, 0.0));
+  engine.insert(at(4.5f, 0.0f, 0.0));
+  engine.insert(at(5.0f, 0.0f, 0.0));
+  engine.insert(at(8.0f, 0.0f, 0.0));
+  engine.insert(at(8.5f, 0.0f, 0.0));
+  const auto& r1 = engine.retrieve();
+  REQUIRE(r1.components.size() == 2);
+  const sc::ComponentId big = label_of(engine, 0);
+  const sc::ComponentId small = label_of(engine, 3);
+  CHECK(big != small);
+
+  engine.insert(at(5.8f, 0.0f, 0.1));  // joins big
+  const auto& r2 = engine.retrieve();
+  CHECK(r2.components.size() == 2);
+  CHECK(label_of(engine, 5) == big);
+  CHECK(label_of(engine, 3) == small);
+
+  engine.insert(at(6.6f, 0.0f, 0.6));
+  engine.insert(at(7.3f, 0.0f, 0.6));  // links 6.6 and 8.0: everything merges
+  engine.retrieve();
+  CHECK(engine.last_result().components.size() == 1);
+  CHECK(label_of(engine, 3) == big);  // the merged component keeps the heavier id
+
+  engine.advance_to(1.05);  // the five points at t = 0 leave; 5.8, 6.6 and 7.3 stay
+  const auto& r4 = engine.retrieve();
+  CHECK(r4.points.size() == 3);
+  CHECK(r4.components.size() == 1);
+  CHECK(label_of(engine, 6) == big);
+}
+
+TEST_CASE("rejected input is counted by reason and never inserted; stream indices count every record") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  CHECK(engine.insert(at(5.0f, 0.0f, 1.0)) == sc::RejectReason::accepted);
+  CHECK(engine.insert(at(nan, 0.0f, 1.1)) == sc::RejectReason::non_finite);
+  CHECK(engine.insert(at(inf, 0.0f, 1.1)) == sc::RejectReason::non_finite);
+  CHECK(engine.insert(at(5.0f, 0.0f, 1.1), std::numeric_limits<double>::quiet_NaN()) == sc::RejectReason::non_finite);
+  CHECK(engine.insert(at(0.0f, 0.0f, 1.1)) == sc::RejectReason::too_close);
+  CHECK(engine.insert(at(0.05f, 0.0f, 1.1)) == sc::RejectReason::too_close);
+  CHECK(engine.insert(at(5.0f, 0.0f, 0.5)) == sc::RejectReason::time_backwards);
+  CHECK(engine.insert(at(5.5f, 0.0f, 1.2)) == sc::RejectReason::accepted);
+  CHECK(engine.offered() == 8);
+  CHECK(engine.size() == 2);
+  const auto& counts = engine.rejections();
+  CHECK(counts[sc::RejectReason::accepted] == 2);
+  CHECK(counts[sc::RejectReason::non_finite] == 3);
+  CHECK(counts[sc::RejectReason::too_close] == 2);
+  CHECK(counts[sc::RejectReason::time_backwards] == 1);
+  CHECK(counts.rejected() == 6);
+  const auto& result = engine.retrieve();
+  REQUIRE(result.points.size() == 2);
+  CHECK(result.points[0].stream_index == 0);
+  CHECK(result.points[1].stream_index == 7);
+  CHECK(result.points[0].label == result.points[1].label);
+}
+
+TEST_CASE("points outside the field of view are rejected") {
+  auto params = one_cell_params();
+  params.projection.azimuth_min_deg = -30.0f;
+  params.projection.azimuth_max_deg = 30.0f;
+  sc::StreamClusterer<OneCellConfig> engine(params);
+  CHECK(engine.insert(at(5.0f, 0.0f, 0.0)) == sc::RejectReason::accepted);
+  CHECK(engine.insert(at(-5.0f, 0.0f, 0.1)) == sc::RejectReason::outside_fov);
+  CHECK(engine.rejections()[sc::RejectReason::outside_fov] == 1);
+}
+
+TEST_CASE("an empty engine retrieves an empty result, repeatedly") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params());
+  CHECK(engine.retrieve().points.empty());
+  CHECK(engine.retrieve().components.empty());
+  CHECK(engine.last_result().cycle == 2);
+  auto carc = sc::make_carc();
+  CHECK(carc.retrieve().points.empty());
+  CHECK(carc.calibrating());  // nothing to calibrate on yet
+}
+
+TEST_CASE("the time window keeps exactly the points within T_B of the newest") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(0.25));
+  for (int i = 0; i < 10; ++i) engine.insert(at(5.0f + 0.01f * static_cast<float>(i), 0.0f, 0.1 * i));
+  // newest t = 0.9: keeps t >= 0.65 -> 0.7, 0.8, 0.9
+  CHECK(engine.size() == 3);
+  std::vector<std::uint64_t> kept;
+  engine.for_each_point([&](const sc::Sample&, std::uint64_t i) { kept.push_back(i); });
+  CHECK(kept == std::vector<std::uint64_t>{7, 8, 9});
+  engine.advance_to(100.0);  // a long quiet gap empties the window
+  CHECK(engine.empty());
+  CHECK(engine.retrieve().components.empty());
+}
+
+TEST_CASE("a zero-length time window keeps only the points of the newest timestamp") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(0.0));
+  engine.insert(at(5.0f, 0.0f, 1.0));
+  engine.insert(at(5.1f, 0.0f, 1.0));
+  CHECK(engine.size() == 2);
+  engine.insert(at(5.2f, 0.0f, 1.5));
+  CHECK(engine.size() == 1);
+}
+
+TEST_CASE("the count window keeps the N newest points") {
+  struct CountConfig : OneCellConfig {
+    using window = sc::CountWindow;
+  };
+  sc::ClustererParams<CountConfig> params;
+  params.resolution = {1, 1};
+  params.window.capacity = 4;
+  params.mask_size = 1;
+  sc::StreamClusterer<CountConfig> engine(params);
+  for (int i = 0; i < 9; ++i) engine.insert(at(5.0f + 0.1f * static_cast<float>(i), 0.0f, 0.0));
+  std::vector<std::uint64_t> kept;
+  engine.for_each_point([&](const sc::Sample&, std::uint64_t i) { kept.push_back(i); });
+  CHECK(kept == std::vector<std::uint64_t>{5, 6, 7, 8});
+}
+
+TEST_CASE("the mask wraps around the azimuth seam and visits each cell once") {
+  const sc::GridShape wrapping{4, 10, true};
+  std::vector<sc::CellIndex> cells;
+  sc::detail::for_each_mask_cell(wrapping, wrapping.cell_of(0.0f, 0.0f), 1, [&](sc::CellIndex c) { cells.push_back(c); });
+  CHECK(cells == std::vector<sc::CellIndex>{9, 0, 1, 19, 10, 11});
+  cells.clear();
+  const sc::GridShape clamped{4, 10, false};
+  sc::detail::for_each_mask_cell(clamped, clamped.cell_of(0.0f, 0.0f), 1, [&](sc::CellIndex c) { cells.push_back(c); });
+  CHECK(cells == std::vector<sc::CellIndex>{0, 1, 10, 11});
+  cells.clear();
+  const sc::GridShape narrow{1, 3, true};
+  sc::detail::for_each_mask_cell(narrow, 1, 3, [&](sc::CellIndex c) { cells.push_back(c); });
+  CHECK(cells == std::vector<sc::CellIndex>{0, 1, 2});
+}
+
+TEST_CASE("points on both sides of the azimuth seam link through the wrap") {
+  struct SeamConfig : OneCellConfig {};
+  sc::ClustererParams<SeamConfig> params;
+  params.resolution = {4, 360};
+  params.linkage.max_distance = 0.5f;
+  params.mask_size = 3;
+  params.window.duration = 10.0;
+  sc::StreamClusterer<SeamConfig> engine(params);
+  engine.insert(sc::Point{-5.0f, 0.01f, 0.0f, 0.0f, 0.0});   // azimuth just below +180
+  engine.insert(sc::Point{-5.0f, -0.01f, 0.0f, 0.0f, 0.0});  // just above -180
+  CHECK(engine.grid().wrap_columns);
+  CHECK(engine.retrieve().components.size() == 1);
+}
+
+TEST_CASE("invalid engine parameters are refused with a message") {
+  auto params = one_cell_params();
+  params.mask_size = 4;
+  CHECK_THROWS_AS(sc::StreamClusterer<OneCellConfig>{params}, std::invalid_argument);
+  params.mask_size = 0;
+  CHECK_THROWS_AS(sc::StreamClusterer<OneCellConfig>{params}, std::invalid_argument);
+  params.mask_size = -3;
+  CHECK_THROWS_WITH_AS(sc::StreamClusterer<OneCellConfig>{params},
+                       doctest::Contains("mask_size = -3"), std::invalid_argument);
+}
+
+TEST_CASE("component summaries: size, centroid, box, time span; range-v3 views") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params());
+  engine.insert(sc::Point{4.0f, 0.0f, 0.0f, 0.0f, 1.0});
+  engine.insert(sc::Point{4.5f, 0.5f, 0.0f, 0.0f, 1.5});
+  engine.insert(sc::Point{5.0f, 0.0f, 0.3f, 0.0f, 2.0});
+  engine.insert(sc::Point{-9.0f, 0.0f, 0.0f, 0.0f, 2.5});
+  const auto& result = engine.retrieve();
+  REQUIRE(result.components.size() == 2);
+  const auto big = std::find_if(result.components.begin(), result.components.end(),
+                                [](const sc::ComponentSummary& c) { return c.size == 3; });
+  REQUIRE(big != result.components.end());
+  CHECK(big->centroid.x() == doctest::Approx(4.5));
+  CHECK(big->centroid.y() == doctest::Approx(1.0 / 6.0));
+  CHECK(big->centroid.z() == doctest::Approx(0.1));
+  CHECK(big->min.x() == 4.0f);
+  CHECK(big->max.x() == 5.0f);
+  CHECK(big->max.z() == doctest::Approx(0.3));
+  CHECK(big->time_begin == 1.0);
+  CHECK(big->time_end == 2.0);
+  int large = 0;
+  for (const auto& c : result.components_with_at_least(2)) {
+    CHECK(c.size >= 2);
+    ++large;
+  }
+  CHECK(large == 1);
+  std::vector<sc::ComponentId> labels;
+  for (const auto l : result.labels()) labels.push_back(l);
+  CHECK(labels.size() == 4);
+  CHECK(labels[0] == labels[2]);
+  CHECK(labels[0] != labels[3]);
+}
+
+TEST_CASE("a user's own point type with a `time` member, and an explicit time") {
+  struct MyPoint {
+    double x, y, z;
+    double time;
+  };
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params(0.5));
+  engine.insert(MyPoint{5.0, 0.0, 0.0, 1.0});
+  engine.insert(MyPoint{5.2, 0.0, 0.0, 2.0});  // t = 2 evicts the first
+  CHECK(engine.size() == 1);
+  struct Untimed {
+    float x, y, z;
+  };
+  engine.insert(Untimed{5.4f, 0.0f, 0.0f}, 2.1);
+  CHECK(engine.size() == 2);
+  CHECK(engine.retrieve().components.size() == 1);
+}
+
+TEST_CASE("visitor hooks: created, merged, split and evicted") {
+  Events events;
+  sc::ClustererParams<RecordingConfig> params;
+  params.resolution = {1, 1};
+  params.linkage.max_distance = 1.0f;
+  params.window.duration = 1.0;
+  params.mask_size = 1;
+  sc::StreamClusterer<RecordingConfig> engine(params, RecordingVisitor{sc::NullVisitor{}, &events});
+  engine.insert(at(5.0f, 0.0f, 0.0));
+  engine.insert(at(9.0f, 0.0f, 0.0));
+  CHECK(events.created.size() == 2);
+  engine.advance_to(2.0);
+  CHECK(events.evicted.size() == 2);
+  CHECK(engine.cluster_count() == 0);
+  engine.insert(at(5.0f, 0.0f, 2.0));  // reuses a recycled cluster slot
+  CHECK(engine.cluster_slots() == 2);
+  CHECK(engine.cluster_count() == 1);
+}
+
+TEST_CASE("batch range-image mode: displaced points are unlabelled, bucket grids lose nothing") {
+  struct OverwriteConfig : OneCellConfig {
+    using spatial_index = sc::OverwriteGrid;
+  };
+  sc::ClustererParams<OverwriteConfig> params;
+  params.resolution = {1, 4};
+  params.projection.azimuth_min_deg = -40.0f;
+  params.projection.azimuth_max_deg = 40.0f;
+  params.linkage.max_distance = 3.0f;
+  params.mask_size = 3;
+  std::vector<sc::Point> points = {at(5.0f, -3.0f, 0.0), at(5.0f, -2.9f, 0.0), at(5.0f, 3.0f, 0.0), at(5.0f, 0.2f, 0.0)};
+  sc::BatchClusterer<OverwriteConfig> image(params, sc::BatchMode::range_image);
+  const auto& r = image.cluster(points);
+  REQUIRE(r.labels.size() == 4);
+  CHECK(r.labels[0] == -1);  // overwritten by the second point in the same cell
+  CHECK(r.labels[1] >= 0);
+  CHECK(r.labels[2] >= 0);
+  CHECK(r.labels[3] >= 0);
+
+  sc::ClustererParams<OneCellConfig> bucket_params;
+  bucket_params.resolution = {1, 4};
+  bucket_params.projection = params.projection;
+  bucket_params.linkage = params.linkage;
+  bucket_params.mask_size = 3;
+  sc::BatchClusterer<OneCellConfig> replay(bucket_params, sc::BatchMode::insertion_order);
+  sc::BatchClusterer<OneCellConfig> snapshot(bucket_params, sc::BatchMode::range_image);
+  const std::vector<std::int64_t> a = replay.cluster(points).labels;
+  const std::vector<std::int64_t> b = snapshot.cluster(points).labels;
+  CHECK(sc::test::partition_mismatch(a, b) == "");
+  for (auto l : b) CHECK(l >= 0);
+}
