@@ -27,6 +27,8 @@
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/window/time_window.hpp>
 
+#include <type_traits>
+
 namespace streamclust {
 
 /// C-ARC as in the paper: spherical projection, bucket grid, angular
@@ -101,7 +103,8 @@ inline CArcParams carc_avia_params() {
 }
 
 /// Template-level parameters of any config whose slots match C-ARC's
-/// (spherical projection, angular linkage, time window, adaptive resolution).
+/// (spherical projection, angular linkage, time window); the calibration
+/// targets are copied when the resolution slot is AdaptiveResolution.
 template <class Config = CArcConfig>
 ClustererParams<Config> to_clusterer_params(const CArcParams& p) {
   ClustererParams<Config> out;
@@ -109,11 +112,13 @@ ClustererParams<Config> to_clusterer_params(const CArcParams& p) {
   out.linkage.theta_deg = p.theta_deg;
   out.linkage.min_ray_angle_deg = p.min_ray_angle_deg;
   out.window.duration = p.window_seconds;
-  out.resolution.max_multiplicity = p.max_multiplicity;
-  out.resolution.target_gap = p.target_gap;
-  out.resolution.target_density = p.target_density;
-  out.resolution.gain_gap = p.gain_gap;
-  out.resolution.gain_density = p.gain_density;
+  if constexpr (std::is_same_v<typename config_traits<Config>::resolution, AdaptiveResolution>) {
+    out.resolution.max_multiplicity = p.max_multiplicity;
+    out.resolution.target_gap = p.target_gap;
+    out.resolution.target_density = p.target_density;
+    out.resolution.gain_gap = p.gain_gap;
+    out.resolution.gain_density = p.gain_density;
+  }
   out.mask_size = p.mask_size;
   return out;
 }
