@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// AngularLinkage: the Bogoslavskyi & Stachniss angle criterion on actual rays.
+
+#include <streamclust/concepts/linkage.hpp>
+#include <streamclust/types.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace streamclust {
+
+/// The angular criterion of Bogoslavskyi & Stachniss (depth_clustering):
+///
+///     beta = atan2(d2 sin(alpha), d1 - d2 cos(alpha)),  d1 = max(range), d2 = min(range)
+///
+/// and a, b are linked iff beta > theta. beta is the angle at the farther
+/// point between its ray and the segment to the nearer point: small beta means
+/// a large jump in depth (different objects), large beta a surface seen
+/// roughly face-on. Unlike a distance threshold it does not depend on range.
+///
+/// alpha is the ACTUAL angle between the two rays (depth_clustering takes it
+/// from the fixed beam spacing, which does not exist for non-repetitive scans),
+/// computed trig-free from the unit directions: cos(alpha) = u1 . u2,
+/// sin(alpha) = |u1 x u2|. With sin/cos of theta precomputed the test is
+///
+///     d2 sin(alpha) cos(theta) > (d1 - d2 cos(alpha)) sin(theta)
+///
+/// which equals beta > theta for beta in [0, 180] degrees and theta in (0, 90):
+/// when d1 - d2 cos(alpha) <= 0 and sin(alpha) > 0, beta >= 90 > theta and the
+/// inequality holds since its right side is <= 0 < left side (with d1 >= d2
+/// this only happens through rounding; beta < 90 otherwise).
+///
+/// Near-coincident rays: with alpha ~ 0 (Livox rosette revisits, several
+/// points per cell) beta collapses to ~0 as soon as the two ranges differ by
+/// noise, so the pure criterion splits flat surfaces (a wall at 10 m with 2 cm
+/// noise gives beta = 5 degrees at alpha = 0.01 degrees). Remedy: alpha is
+/// floored at `min_ray_angle_deg` (when sin(alpha) < sin(min) and the rays
+/// are less than 90 degrees apart, sin/cos of the minimum are used instead);
+/// 0 disables the floor (pure criterion). Choose it near the sensor's angular
+/// resolution or the cell size. The other remedy is `AngularOrEuclidean`
+/// (combinators.hpp): angular OR a small Euclidean distance.
+///
+/// Exactly symmetric: the operands are put in a canonical order (larger range
+/// first, ties broken by position then direction) before any arithmetic, so
+/// l(a, b) and l(b, a) evaluate the same float operations even when the
+/// compiler contracts `x*y - z*w` into an FMA (which makes a x b and b x a
+/// round differently).
+///
+/// Complexity: O(1): a dot and a cross product, one sqrt, no trigonometry.
+/// Samples are assumed finite (the projection rejects NaN/inf).
+/// Thread safety: immutable; `operator()` is const and thread-safe.
+///
+/// Usage:
+/// \code
+///   streamclust::AngularLinkage link{{10.0f, 0.2f}};  // theta = 10 deg, alpha >= 0.2 deg
+///   bool joined = link(sample_a, sample_b);
+///   float beta = streamclust::AngularLinkage::beta_deg(sample_a, sample_b);  // reference value
+/// \endcode
+class AngularLinkage {
+ public:
+  struct Params {
+    float theta_deg = 10.0f;          ///< [deg] threshold theta, in (0, 90); link iff beta > theta
+    float min_ray_angle_deg = 0.2f;   ///< [deg] floor on alpha, in [0, 90); 0 = pure criterion
+  };
+
+  /// Throws std::invalid_argument for theta outside (0, 90) or a floor
+  /// outside [0, 90) degrees.
+  explicit AngularLinkage(const Params& params) : params_(params) {
+    if (!std::isfinite(params.theta_deg) || !(params.theta_deg > 0.0f) || !(params.theta_deg < 90.0f))
+      throw error("theta_deg", params.theta_deg, "(0, 90) degrees");
+    if (!std::isfinite(params.min_ray_angle_deg) || params.min_ray_angle_deg < 0.0f ||
+        !(params.min_ray_angle_deg < 90.0f))
+      throw error("min_ray_angle_deg", params.min_ray_angle_deg, "[0, 90) degrees (0 disables the floor)");
+    constexpr double deg = 3.14159265358979323846 / 180.0;
+    const double theta = static_cast<double>(params.theta_deg) * deg;
+    const double floor = static_cast<double>(params.min_ray_angle_deg) * deg;
+    sin_theta_ = static_cast<float>(std::sin(theta));
+    cos_theta_ = static_cast<float>(std::cos(theta));
+    sin_min_ = static_cast<float>(std::sin(floor));
+    cos_min_ = static_cast<float>(std::cos(floor));
+  }
+
+  /// True iff beta > theta (with alpha floored at min_ray_angle). O(1).
+  bool operator()(const Sample& a, const Sample& b) const {
+    const bool a_first = precedes(a, b);
+    const Sample& p = a_first ? a : b;  // larger range: d1
+    const Sample& q = a_first ? b : a;  // d2
+    const float d1 = p.range;
+    const float d2 = q.range;
+    float cos_a = p.direction.dot(q.direction);
+    float sin_a = cross_norm(p.direction, q.direction);
+    if (sin_a < sin_min_ && cos_a > 0.0f) {
+      sin_a = sin_min_;
+      cos_a = cos_min_;
+    }
+    return d2 * sin_a * cos_theta_ > (d1 - d2 * cos_a) * sin_theta_;
+  }
+
+  /// Reference beta [deg] of the pure criterion (no floor), computed in
+  /// double with real atan2: alpha = atan2(|u1 x u2|, u1 . u2),
+  /// beta = atan2(d2 sin(alpha), d1 - d2 cos(alpha)). For tests and docs.
+  static float beta_deg(const Sample& a, const Sample& b) {
+    const Eigen::Vector3d u1 = a.direction.cast<double>();
+    const Eigen::Vector3d u2 = b.direction.cast<double>();
+    const Eigen::Vector3d c(u1.y() * u2.z() - u1.z() * u2.y(), u1.z() * u2.x() - u1.x() * u2.z(),
+                            u1.x() * u2.y() - u1.y() * u2.x());
+    const double alpha = std::atan2(c.norm(), u1.dot(u2));
+    const double ra = static_cast<double>(a.range);
+    const double rb = static_cast<double>(b.range);
+    const double d1 = ra > rb ? ra : rb;
+    const double d2 = ra > rb ? rb : ra;
+    const double beta = std::atan2(d2 * std::sin(alpha), d1 - d2 * std::cos(alpha));
+    return static_cast<float>(std::fabs(beta) * 180.0 / 3.14159265358979323846);
+  }
+
+  const Params& params() const { return params_; }
+
+ private:
+  /// Strict canonical order: larger range first, then position, then direction
+  /// (lexicographic). Equal keys mean equal operands, so either order is fine.
+  static bool precedes(const Sample& a, const Sample& b) {
+    if (a.range != b.range) return a.range > b.range;
+    for (int i = 0; i < 3; ++i)
+      if (a.position[i] != b.position[i]) return a.position[i] > b.position[i];
+    for (int i = 0; i < 3; ++i)
+      if (a.direction[i] != b.direction[i]) return a.direction[i] > b.direction[i];
+    return true;
+  }
+
+  /// |u x v| written out (Eigen's cross() lives in <Eigen/Geometry>).
+  static float cross_norm(const Eigen::Vector3f& u, const Eigen::Vector3f& v) {
+    const float x = u.y() * v.z() - u.z() * v.y();
+    const float y = u.z() * v.x() - u.x() * v.z();
+    const float z = u.x() * v.y() - u.y() * v.x();
+    return std::sqrt(x * x + y * y + z * z);
+  }
+
+  static std::invalid_argument error(const char* name, float value, const char* allowed) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(value));
+    return std::invalid_argument(std::string("AngularLinkage: parameter ") + name + " = " + buf +
+                                 " is invalid; allowed: " + allowed);
+  }
+
+  Params params_;
+  float sin_theta_ = 0.0f;
+  float cos_theta_ = 1.0f;
+  float sin_min_ = 0.0f;
+  float cos_min_ = 1.0f;
+};
+
+}  // namespace streamclust
+
+static_assert(streamclust::is_linkage_policy_v<streamclust::AngularLinkage>,
+              "STREAMCLUST_LINKAGE_POLICY_INVALID: AngularLinkage");

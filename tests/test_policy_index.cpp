@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: MIT
+// Unit tests of the spatial-index policies against a brute-force model.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/index/bucket_grid.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+using streamclust::BucketGrid;
+using streamclust::CappedGrid;
+using streamclust::CellIndex;
+using streamclust::GridShape;
+using streamclust::kNoPoint;
+using streamclust::OverwriteGrid;
+using streamclust::PointHandle;
+
+namespace {
+
+/// How each index is built in the tests and the per-cell capacity its model uses.
+template <class I>
+struct IndexUnderTest;
+template <>
+struct IndexUnderTest<BucketGrid> {
+  static BucketGrid make() { return BucketGrid{{2}}; }
+  static constexpr std::size_t capacity = std::numeric_limits<std::size_t>::max();
+};
+template <>
+struct IndexUnderTest<CappedGrid> {
+  static CappedGrid make() { return CappedGrid{{3}}; }
+  static constexpr std::size_t capacity = 3;
+};
+template <>
+struct IndexUnderTest<OverwriteGrid> {
+  static OverwriteGrid make() { return OverwriteGrid{{}}; }
+  static constexpr std::size_t capacity = 1;
+};
+
+/// Brute-force model: one std::vector per cell in insertion order; a full cell
+/// drops its oldest handle (capacity = max for an unbounded bucket).
+struct Model {
+  std::vector<std::vector<PointHandle>> cells;
+  std::size_t capacity = 0;
+
+  void reset(std::size_t n) { cells.assign(n, {}); }
+  PointHandle insert(CellIndex c, PointHandle h) {
+    auto& v = cells[c];
+    PointHandle displaced = kNoPoint;
+    if (v.size() == capacity) {
+      displaced = v.front();
+      v.erase(v.begin());
+    }
+    v.push_back(h);
+    return displaced;
+  }
+  void remove(CellIndex c, PointHandle h) {
+    auto& v = cells[c];
+    const auto it = std::find(v.begin(), v.end(), h);
+    if (it != v.end()) v.erase(it);
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& v : cells) n += v.size();
+    return n;
+  }
+};
+
+template <class I>
+std::vector<PointHandle> contents(const I& index, CellIndex c) {
+  std::vector<PointHandle> out;
+  index.for_each(c, [&](PointHandle h) { out.push_back(h); });
+  return out;
+}
+
+template <class I>
+void check_equal(const I& index, const Model& model) {
+  REQUIRE(index.size() == model.size());
+  for (CellIndex c = 0; c < model.cells.size(); ++c) REQUIRE(contents(index, c) == model.cells[c]);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("spatial index matches the brute-force model on random operation sequences", I, BucketGrid,
+                   CappedGrid, OverwriteGrid) {
+  I index = IndexUnderTest<I>::make();
+  Model model;
+  model.capacity = IndexUnderTest<I>::capacity;
+  std::mt19937 rng(12345);
+  for (const GridShape shape : {GridShape{4, 5, true}, GridShape{2, 3, false}, GridShape{8, 16, true}}) {
+    index.reset(shape);
+    model.reset(shape.cell_count());
+    check_equal(index, model);
+    const auto cells = static_cast<std::uint32_t>(shape.cell_count());
+    std::uniform_int_distribution<std::uint32_t> pick_cell(0, cells - 1);
+    std::uniform_int_distribution<int> percent(0, 99);
+    std::deque<std::pair<PointHandle, CellIndex>> window;  // live points, oldest first
+    // start near the wrap of the 32-bit sequence number: handles are opaque to the index
+    PointHandle next = 0xFFFFFF00u;
+    for (int op = 0; op < 20000; ++op) {
+      const int dice = percent(rng);
+      if (dice < 55 || window.empty()) {
+        const PointHandle h = next++;
+        if (h == kNoPoint) continue;  // the sentinel is never a handle
+        const CellIndex c = pick_cell(rng);
+        const PointHandle displaced = index.insert(c, h);
+        REQUIRE(displaced == model.insert(c, h));
+        window.emplace_back(h, c);
+      } else if (dice < 92) {
+        // the engine's common case: remove the oldest point (even if displaced earlier)
+        const auto [h, c] = window.front();
+        window.pop_front();
+        index.remove(c, h);
+        model.remove(c, h);
+      } else if (dice < 98) {
+        // an arbitrary point of the window
+        std::uniform_int_distribution<std::size_t> pick(0, window.size() - 1);
+        const std::size_t i = pick(rng);
+        const auto [h, c] = window[i];
+        window.erase(window.begin() + static_cast<std::ptrdiff_t>(i));
+        index.remove(c, h);
+        model.remove(c, h);
+      } else {
+        // absent handle / wrong cell: a no-op
+        const CellIndex c = pick_cell(rng);
+        index.remove(c, next + 1000u);
+        model.remove(c, next + 1000u);
+        if (!window.empty()) {
+          const auto [h, hc] = window.back();
+          const CellIndex other = (hc + 1) % cells;
+          index.remove(other, h);
+          model.remove(other, h);
+        }
+      }
+      REQUIRE(index.size() == model.size());
+      if (op % 97 == 0) check_equal(index, model);
+    }
+    check_equal(index, model);
+    // drain in insertion order
+    while (!window.empty()) {
+      index.remove(window.front().second, window.front().first);
+      model.remove(window.front().second, window.front().first);
+      window.pop_front();
+    }
+    check_equal(index, model);
+    CHECK(index.size() == 0);
+    // clear after refilling
+    for (PointHandle h = 0; h < 3 * cells; ++h) {
+      const CellIndex c = h % cells;
+      REQUIRE(index.insert(c, h) == model.insert(c, h));
+    }
+    check_equal(index, model);
+    index.clear();
+    model.reset(shape.cell_count());
+    check_equal(index, model);
+    CHECK(index.size() == 0);
+  }
+}
+
+TEST_CASE("CappedGrid: a full cell's newest point displaces the oldest") {
+  CappedGrid grid{{3}};
+  grid.reset(GridShape{2, 2, false});
+  CHECK(grid.insert(1, 10) == kNoPoint);
+  CHECK(grid.insert(1, 11) == kNoPoint);
+  CHECK(grid.insert(1, 12) == kNoPoint);
+  CHECK(grid.size() == 3);
+  CHECK(grid.insert(1, 13) == 10u);
+  CHECK(grid.insert(1, 14) == 11u);
+  CHECK(grid.size() == 3);
+  CHECK(contents(grid, 1) == std::vector<PointHandle>{12, 13, 14});
+  CHECK(contents(grid, 0).empty());
+  grid.remove(1, 10);  // displaced earlier: no-op
+  CHECK(grid.size() == 3);
+  grid.remove(1, 13);  // middle
+  CHECK(contents(grid, 1) == std::vector<PointHandle>{12, 14});
+  CHECK(grid.insert(1, 15) == kNoPoint);
+  CHECK(grid.insert(1, 16) == 12u);
+  CHECK(contents(grid, 1) == std::vector<PointHandle>{14, 15, 16});
+  grid.remove(1, 14);  // head
+  CHECK(contents(grid, 1) == std::vector<PointHandle>{15, 16});
+  CHECK(grid.size() == 2);
+  CappedGrid single{{1}};
+  single.reset(GridShape{1, 1, false});
+  CHECK(single.insert(0, 5) == kNoPoint);
+  CHECK(single.insert(0, 6) == 5u);
+  CHECK(contents(single, 0) == std::vector<PointHandle>{6});
+  CappedGrid widest{{255}};
+  widest.reset(GridShape{1, 2, false});
+  for (PointHandle h = 0; h < 255; ++h) REQUIRE(widest.insert(1, h) == kNoPoint);
+  CHECK(widest.insert(1, 1000) == 0u);
+  CHECK(widest.size() == 255);
+}
+
+TEST_CASE("CappedGrid: capacity outside [1, 255] throws") {
+  CHECK_THROWS_AS(CappedGrid{{0}}, std::invalid_argument);
+  CHECK_THROWS_AS(CappedGrid{{256}}, std::invalid_argument);
+  try {
+    CappedGrid bad{{300}};
+    FAIL("no exception");
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    CHECK(what.find("capacity") != std::string::npos);
+    CHECK(what.find("300") != std::string::npos);
+    CHECK(what.find("[1, 255]") != std::string::npos);
+  }
+}
+
+TEST_CASE("OverwriteGrid: the newest point wins") {
+  OverwriteGrid grid{{}};
+  grid.reset(GridShape{3, 3, true});
+  CHECK(grid.insert(4, 10) == kNoPoint);
+  CHECK(grid.insert(4, 11) == 10u);
+  CHECK(grid.insert(5, 12) == kNoPoint);
+  CHECK(grid.size() == 2);
+  grid.remove(4, 10);  // overwritten: no-op
+  CHECK(contents(grid, 4) == std::vector<PointHandle>{11});
+  grid.remove(5, 11);  // wrong cell: no-op
+  CHECK(grid.size() == 2);
+  grid.remove(4, 11);
+  CHECK(contents(grid, 4).empty());
+  CHECK(grid.size() == 1);
+  grid.clear();
+  CHECK(grid.size() == 0);
+  CHECK(contents(grid, 5).empty());
+}
+
+TEST_CASE("BucketGrid: keeps every point, FIFO removal, compaction keeps order") {
+  BucketGrid grid{{}};
+  grid.reset(GridShape{1, 2, false});
+  std::vector<PointHandle> expected;
+  for (PointHandle h = 0; h < 100; ++h) {
+    REQUIRE(grid.insert(0, h) == kNoPoint);
+    expected.push_back(h);
+  }
+  CHECK(grid.size() == 100);
+  // interleave oldest-first removal with insertion: crosses the compaction threshold many times
+  for (PointHandle h = 100; h < 1000; ++h) {
+    grid.remove(0, expected.front());
+    expected.erase(expected.begin());
+    REQUIRE(grid.insert(0, h) == kNoPoint);
+    expected.push_back(h);
+    if (h % 11 == 0) {  // 81 extra removals: the bucket shrinks from 100 to 19
+      grid.remove(0, expected.front());
+      expected.erase(expected.begin());
+    }
+    REQUIRE(contents(grid, 0) == expected);
+  }
+  CHECK(grid.cell_size(0) == expected.size());
+  CHECK(contents(grid, 1).empty());
+}

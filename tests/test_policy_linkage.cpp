@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: MIT
+// Unit tests of the linkage policies: thresholds, exact symmetry, known beta
+// values, the near-coincident-ray remedy and the combinators.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/combinators.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using streamclust::AllOf;
+using streamclust::AngularLinkage;
+using streamclust::AngularOrEuclidean;
+using streamclust::AnyOf;
+using streamclust::EuclideanLinkage;
+using streamclust::Sample;
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+Sample at(const Eigen::Vector3f& p) { return streamclust::make_sample(p, p.norm(), 0.0f, 0.0); }
+
+/// Sample at `range` [m] along the ray of azimuth / elevation [deg] (computed in double).
+Sample ray(double az_deg, double el_deg, double range) {
+  const Eigen::Vector3d d(std::cos(el_deg * kDeg) * std::cos(az_deg * kDeg),
+                          std::cos(el_deg * kDeg) * std::sin(az_deg * kDeg), std::sin(el_deg * kDeg));
+  return at((d * range).cast<float>());
+}
+
+/// Reference beta [deg] from the formula with real atan2, given alpha directly.
+double beta_formula_deg(double d1, double d2, double alpha_deg) {
+  const double a = alpha_deg * kDeg;
+  return std::atan2(d2 * std::sin(a), d1 - d2 * std::cos(a)) / kDeg;
+}
+
+template <class F>
+std::string invalid_argument_message(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// Linkage with a fixed answer that counts its calls (for the combinators).
+template <int Id>
+struct Fixed {
+  struct Params {
+    bool value = false;
+  };
+  explicit Fixed(const Params& p) : value(p.value) {}
+  bool operator()(const Sample&, const Sample&) const {
+    ++calls;
+    return value;
+  }
+  bool value;
+  static inline int calls = 0;
+};
+
+void reset_calls() { Fixed<0>::calls = Fixed<1>::calls = Fixed<2>::calls = 0; }
+
+}  // namespace
+
+TEST_CASE("EuclideanLinkage: squared distance <= max_distance^2") {
+  const EuclideanLinkage link{{0.5f}};
+  const Sample o = at({10.0f, 0.0f, 0.0f});
+  CHECK(link(o, at({10.5f, 0.0f, 0.0f})));
+  CHECK(link(at({10.5f, 0.0f, 0.0f}), o));
+  CHECK_FALSE(link(o, at({10.51f, 0.0f, 0.0f})));
+  CHECK(link(o, at({10.3f, 0.0f, 0.39f})));   // 0.4924 m
+  CHECK_FALSE(link(o, at({10.3f, 0.0f, 0.41f})));  // 0.5099 m
+  CHECK(link(o, o));
+  CHECK(EuclideanLinkage{{}}.params().max_distance == 0.5f);
+  for (const float bad : {0.0f, -1.0f, kNaN, kInf}) {
+    const std::string m = invalid_argument_message([&] { EuclideanLinkage{{bad}}; });
+    CHECK(m.find("max_distance") != std::string::npos);
+  }
+}
+
+TEST_CASE("AngularLinkage: beta_deg matches known values") {
+  // equal ranges: the triangle is isosceles, beta = 90 - alpha / 2
+  for (const double alpha : {0.1, 1.0, 5.0, 30.0}) {
+    const Sample a = ray(0.0, 0.0, 10.0);
+    const Sample b = ray(alpha, 0.0, 10.0);
+    CHECK(AngularLinkage::beta_deg(a, b) == doctest::Approx(90.0 - alpha / 2.0).epsilon(1e-4));
+  }
+  // field notes 2.7: wall at 10 m, 2 cm range difference
+  CHECK(AngularLinkage::beta_deg(ray(0.0, 0.0, 10.02), ray(0.01, 0.0, 10.0)) == doctest::Approx(5.0).epsilon(0.01));
+  CHECK(AngularLinkage::beta_deg(ray(0.0, 0.0, 10.02), ray(0.05, 0.0, 10.0)) == doctest::Approx(23.6).epsilon(0.01));
+  CHECK(AngularLinkage::beta_deg(ray(0.0, 0.0, 10.02), ray(0.1, 0.0, 10.0)) == doctest::Approx(41.1).epsilon(0.01));
+  // d1 = 10, d2 = 5, alpha = 10 deg, independent of argument order and of the ray plane
+  const double expected = beta_formula_deg(10.0, 5.0, 10.0);
+  CHECK(expected == doctest::Approx(9.7066).epsilon(1e-3));
+  CHECK(AngularLinkage::beta_deg(ray(20.0, 3.0, 10.0), ray(20.0, 13.0, 5.0)) == doctest::Approx(expected).epsilon(1e-4));
+  CHECK(AngularLinkage::beta_deg(ray(20.0, 13.0, 5.0), ray(20.0, 3.0, 10.0)) == doctest::Approx(expected).epsilon(1e-4));
+  // d1 >= d2 keeps beta below 90 degrees; large alpha with similar ranges comes close
+  CHECK(AngularLinkage::beta_deg(ray(0.0, 0.0, 5.0), ray(60.0, 0.0, 5.5)) ==
+        doctest::Approx(beta_formula_deg(5.5, 5.0, 60.0)).epsilon(1e-4));
+  CHECK(beta_formula_deg(5.5, 5.0, 60.0) == doctest::Approx(55.285).epsilon(1e-4));
+}
+
+TEST_CASE("AngularLinkage: the trig-free decision equals beta > theta on both sides of theta") {
+  struct Case {
+    double d1, d2, alpha_deg;
+  };
+  const std::vector<Case> cases = {{10.0, 5.0, 10.0}, {10.0, 9.9, 1.0},  {20.0, 19.0, 0.5}, {3.0, 2.0, 30.0},
+                                   {50.0, 49.5, 2.0}, {10.0, 10.0, 0.5}, {8.0, 1.0, 45.0}, {5.5, 5.0, 60.0}};
+  for (const Case& c : cases) {
+    const double beta = beta_formula_deg(c.d1, c.d2, c.alpha_deg);
+    CAPTURE(c.d1);
+    CAPTURE(c.d2);
+    CAPTURE(c.alpha_deg);
+    CAPTURE(beta);
+    const Sample a = ray(-7.0, 2.0, c.d1);
+    const Sample b = ray(-7.0 + c.alpha_deg, 2.0, c.d2);
+    for (const double margin : {0.05, 0.5, 3.0}) {
+      if (beta - margin > 0.0 && beta - margin < 90.0) {
+        const AngularLinkage below{{static_cast<float>(beta - margin), 0.0f}};
+        CHECK(below(a, b));
+        CHECK(below(b, a));
+      }
+      if (beta + margin < 90.0) {
+        const AngularLinkage above{{static_cast<float>(beta + margin), 0.0f}};
+        CHECK_FALSE(above(a, b));
+        CHECK_FALSE(above(b, a));
+      }
+    }
+  }
+}
+
+TEST_CASE("AngularLinkage: agrees with beta_deg on random pairs and is exactly symmetric") {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> az(-180.0, 180.0);
+  std::uniform_real_distribution<double> el(-30.0, 30.0);
+  std::uniform_real_distribution<double> range(0.5, 80.0);
+  std::uniform_real_distribution<double> small(-2.0, 2.0);
+  std::uniform_real_distribution<double> tiny(-0.02, 0.02);
+  const AngularLinkage pure{{10.0f, 0.0f}};
+  const AngularLinkage floored{{10.0f, 0.2f}};
+  const AngularLinkage strict{{30.0f, 1.0f}};
+  const AngularOrEuclidean hybrid{{{10.0f, 0.0f}, {0.1f}}};
+  int linked = 0;
+  int split = 0;
+  for (int i = 0; i < 50000; ++i) {
+    const double az0 = az(rng);
+    const double el0 = el(rng);
+    const double r0 = range(rng);
+    const Sample a = ray(az0, el0, r0);
+    // draw in a fixed order (argument evaluation order is unspecified)
+    const double x1 = az(rng);
+    const double x2 = el(rng);
+    const double x3 = range(rng);
+    const double s1 = small(rng);
+    const double s2 = small(rng);
+    const double s3 = small(rng);
+    const double t1 = tiny(rng);
+    Sample b;
+    switch (i % 4) {
+      case 0: b = ray(x1, x2, x3); break;                                     // anything
+      case 1: b = ray(az0 + s1, el0 + s2, r0 * (1.0 + 0.1 * s3)); break;      // neighbours
+      case 2: b = ray(az0 + 0.01 * s1, el0 + 0.01 * s2, r0 + t1); break;      // revisits
+      default: b = ray(az0 + s1, el0, r0); b.range = a.range; break;          // equal ranges
+    }
+    for (const AngularLinkage* l : {&pure, &floored, &strict}) REQUIRE((*l)(a, b) == (*l)(b, a));
+    REQUIRE(hybrid(a, b) == hybrid(b, a));
+    // a threshold right at this pair's beta: the decision hinges on the last bits,
+    // so any operand-order dependence of the float arithmetic would show here
+    const float beta_here = AngularLinkage::beta_deg(a, b);
+    if (beta_here > 0.0f && beta_here < 90.0f) {
+      const AngularLinkage edge{{beta_here, 0.0f}};
+      REQUIRE(edge(a, b) == edge(b, a));
+    }
+    // the pure criterion agrees with the reference beta away from the threshold
+    const float beta = AngularLinkage::beta_deg(a, b);
+    if (std::fabs(beta - 10.0f) > 0.01f && i % 4 != 2) {
+      REQUIRE(pure(a, b) == (beta > 10.0f));
+      (beta > 10.0f ? linked : split)++;
+    }
+    // the floor only ever adds links
+    if (pure(a, b)) REQUIRE(floored(a, b));
+  }
+  CHECK(linked > 1000);
+  CHECK(split > 1000);
+}
+
+TEST_CASE("AngularLinkage: near-coincident rays on a wall split without the floor and link with it") {
+  // a flat wall (plane x = 10 m) seen along rays 0.01 deg apart, +-2 cm range noise
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> noise(-0.02, 0.02);
+  std::vector<Sample> wall;
+  for (int k = 0; k < 200; ++k) {
+    const double az = -1.0 + 0.01 * k;
+    const double r = 10.0 / std::cos(az * kDeg) + noise(rng);
+    wall.push_back(ray(az, 0.0, r));
+  }
+  const AngularLinkage pure{{10.0f, 0.0f}};
+  const AngularLinkage floored{{}};  // defaults: theta 10 deg, floor 0.2 deg
+  const AngularOrEuclidean hybrid{{{10.0f, 0.0f}, {0.1f}}};
+  int pure_breaks = 0;
+  for (std::size_t k = 1; k < wall.size(); ++k) pure_breaks += pure(wall[k - 1], wall[k]) ? 0 : 1;
+  CHECK(pure_breaks > 50);  // the chain falls apart into many pieces
+  // with the floor every pair within 10 rays (0.1 deg) links, as with the hybrid
+  for (std::size_t i = 0; i < wall.size(); ++i) {
+    for (std::size_t j = i + 1; j < wall.size() && j <= i + 10; ++j) {
+      REQUIRE(floored(wall[i], wall[j]));
+      REQUIRE(hybrid(wall[i], wall[j]));
+    }
+  }
+  // the floor does not join a real depth discontinuity: same rays, a second wall 1 m behind
+  const Sample front = ray(0.0, 0.0, 10.0);
+  const Sample back = ray(0.01, 0.0, 11.0);
+  CHECK_FALSE(floored(front, back));
+  CHECK_FALSE(pure(front, back));
+  CHECK_FALSE(hybrid(front, back));
+}
+
+TEST_CASE("AngularLinkage: invalid Params throw") {
+  using P = AngularLinkage::Params;
+  const auto msg = [](const P& p) { return invalid_argument_message([&] { AngularLinkage{p}; }); };
+  CHECK(msg(P{}).empty());
+  CHECK(msg(P{0.0f, 0.2f}).find("theta_deg") != std::string::npos);
+  CHECK(msg(P{90.0f, 0.2f}).find("theta_deg") != std::string::npos);
+  CHECK(msg(P{-5.0f, 0.2f}).find("theta_deg") != std::string::npos);
+  CHECK(msg(P{kNaN, 0.2f}).find("theta_deg") != std::string::npos);
+  CHECK(msg(P{10.0f, -0.1f}).find("min_ray_angle_deg") != std::string::npos);
+  CHECK(msg(P{10.0f, 90.0f}).find("min_ray_angle_deg") != std::string::npos);
+  CHECK(msg(P{10.0f, kInf}).find("min_ray_angle_deg") != std::string::npos);
+  CHECK(msg(P{10.0f, 0.0f}).empty());
+}
+
+TEST_CASE("AllOf / AnyOf: truth tables and short-circuit evaluation") {
+  using And2 = AllOf<Fixed<0>, Fixed<1>>;
+  using Or2 = AnyOf<Fixed<0>, Fixed<1>>;
+  const Sample s = at({1.0f, 0.0f, 0.0f});
+  for (const bool x : {false, true}) {
+    for (const bool y : {false, true}) {
+      CAPTURE(x);
+      CAPTURE(y);
+      reset_calls();
+      const And2 both{{{x}, {y}}};
+      CHECK(both(s, s) == (x && y));
+      CHECK(Fixed<0>::calls == 1);
+      CHECK(Fixed<1>::calls == (x ? 1 : 0));  // second child skipped when the first is false
+      reset_calls();
+      const Or2 either{{{x}, {y}}};
+      CHECK(either(s, s) == (x || y));
+      CHECK(Fixed<0>::calls == 1);
+      CHECK(Fixed<1>::calls == (x ? 0 : 1));  // second child skipped when the first is true
+      for (const bool z : {false, true}) {
+        const AllOf<Fixed<0>, Fixed<1>, Fixed<2>> all3{{{x}, {y}, {z}}};
+        const AnyOf<Fixed<0>, Fixed<1>, Fixed<2>> any3{{{x}, {y}, {z}}};
+        CHECK(all3(s, s) == (x && y && z));
+        CHECK(any3(s, s) == (x || y || z));
+      }
+    }
+  }
+  CHECK(AllOf<>{{}}(s, s));
+  CHECK_FALSE(AnyOf<>{{}}(s, s));
+  CHECK(AllOf<Fixed<0>>{{{true}}}(s, s));
+  CHECK_FALSE(AnyOf<Fixed<0>>{{{false}}}(s, s));
+  CHECK(streamclust::is_linkage_policy_v<And2>);
+  CHECK(streamclust::is_linkage_policy_v<AnyOf<>>);
+}
+
+TEST_CASE("AllOf / AnyOf with real linkages: defaults, params, validation") {
+  const AngularOrEuclidean defaults{AngularOrEuclidean::Params{}};
+  CHECK(defaults.child<0>().params().theta_deg == 10.0f);
+  CHECK(defaults.child<1>().params().max_distance == 0.5f);
+  const AngularOrEuclidean custom{{{12.0f, 0.0f}, {0.1f}}};
+  CHECK(custom.child<0>().params().theta_deg == 12.0f);
+  CHECK(custom.child<1>().params().max_distance == 0.1f);
+  // a depth jump of 5 cm at nearly coincident rays: angular splits, Euclidean (0.1 m) joins
+  const Sample a = ray(0.0, 0.0, 10.0);
+  const Sample b = ray(0.01, 0.0, 10.05);
+  CHECK_FALSE(custom.child<0>()(a, b));
+  CHECK(custom(a, b));
+  // AllOf: angular AND within 1 m
+  const AllOf<AngularLinkage, EuclideanLinkage> bounded{{{10.0f, 0.2f}, {1.0f}}};
+  const Sample far_a = ray(0.0, 0.0, 60.0);
+  const Sample far_b = ray(1.5, 0.0, 60.0);  // beta ~ 89 deg but 1.57 m apart
+  CHECK(bounded.child<0>()(far_a, far_b));
+  CHECK_FALSE(bounded(far_a, far_b));
+  CHECK(bounded(a, ray(0.5, 0.0, 10.0)));
+  CHECK_THROWS_AS((AngularOrEuclidean{{{0.0f, 0.2f}, {0.1f}}}), std::invalid_argument);
+  CHECK_THROWS_AS((AngularOrEuclidean{{{10.0f, 0.2f}, {-0.1f}}}), std::invalid_argument);
+}
