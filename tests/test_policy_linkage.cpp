@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/invalid_argument.hpp"
+
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
@@ -43,15 +45,7 @@ double beta_formula_deg(double d1, double d2, double alpha_deg) {
   return std::atan2(d2 * std::sin(a), d1 - d2 * std::cos(a)) / kDeg;
 }
 
-template <class F>
-std::string invalid_argument_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using streamclust::test::invalid_argument_message;
 
 /// Linkage with a fixed answer that counts its calls (for the combinators).
 template <int Id>

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/invalid_argument.hpp"
+
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 
@@ -25,16 +27,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-/// Message of the std::invalid_argument thrown by f, or "" if none.
-template <class F>
-std::string invalid_argument_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using streamclust::test::invalid_argument_message;
 
 /// Unit direction of azimuth / elevation in degrees.
 Eigen::Vector3f direction_deg(double az, double el) {

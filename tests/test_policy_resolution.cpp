@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/invalid_argument.hpp"
+
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/resolution/fixed.hpp>
 
@@ -27,15 +29,7 @@ using streamclust::RejectReason;
 
 namespace {
 
-template <class F>
-std::string invalid_argument_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using streamclust::test::invalid_argument_message;
 
 Projected coord(float u, float v) {
   Projected p;

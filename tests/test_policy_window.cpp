@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/invalid_argument.hpp"
+
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
 
@@ -27,15 +29,7 @@ void push(const W& window, std::deque<double>& times, double t) {
   times.push_back(t);
 }
 
-template <class F>
-std::string invalid_argument_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using streamclust::test::invalid_argument_message;
 
 }  // namespace
 

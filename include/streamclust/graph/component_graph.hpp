@@ -79,40 +79,18 @@ template <class Engine>
 std::size_t out_degree(std::size_t v, const ComponentGraph<Engine>& g) {
   return g.engine().cluster_alive(static_cast<ClusterId>(v)) ? g.engine().bridges(static_cast<ClusterId>(v)).size() : 0;
 }
+namespace detail {
 template <class Engine>
-std::size_t source(const GraphEdge& e, const ComponentGraph<Engine>&) {
-  return e.source;
-}
-template <class Engine>
-std::size_t target(const GraphEdge& e, const ComponentGraph<Engine>&) {
-  return e.target;
-}
-template <class Engine>
-boost::typed_identity_property_map<std::size_t> get(boost::vertex_index_t, const ComponentGraph<Engine>&) {
-  return {};
-}
+struct is_graph_view<ComponentGraph<Engine>> : std::true_type {};
+}  // namespace detail
 
 }  // namespace streamclust
 
 namespace boost {
 
 template <class Engine>
-struct graph_traits<streamclust::ComponentGraph<Engine>> {
-  struct traversal_category : incidence_graph_tag, vertex_list_graph_tag {};
-  using vertex_descriptor = std::size_t;
-  using edge_descriptor = streamclust::GraphEdge;
-  using directed_category = undirected_tag;
-  using edge_parallel_category = disallow_parallel_edge_tag;
-  using out_edge_iterator = typename streamclust::ComponentGraph<Engine>::OutEdgeIterator;
-  using vertex_iterator = counting_iterator<std::size_t>;
-  using degree_size_type = std::size_t;
-  using vertices_size_type = std::size_t;
-  using edges_size_type = std::size_t;
-  using in_edge_iterator = void;
-  using edge_iterator = void;
-  using adjacency_iterator = void;
-  static vertex_descriptor null_vertex() { return static_cast<std::size_t>(-1); }
-};
+struct graph_traits<streamclust::ComponentGraph<Engine>>
+    : streamclust::detail::view_graph_traits<streamclust::ComponentGraph<Engine>> {};
 
 template <class Engine>
 struct property_map<streamclust::ComponentGraph<Engine>, vertex_index_t> {

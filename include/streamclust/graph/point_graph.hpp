@@ -25,6 +25,7 @@
 #include <boost/property_map/property_map.hpp>
 
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
 namespace streamclust {
@@ -122,32 +123,23 @@ std::size_t out_degree(std::size_t v, const PointGraph<Engine>& g) {
   g.engine().for_each_neighbor(g.engine().handle_at(v), [&](PointHandle) { ++n; });
   return n;
 }
+namespace detail {
+/// Graph views sharing the edge type and the identity vertex index.
+template <class G>
+struct is_graph_view : std::false_type {};
 template <class Engine>
-std::size_t source(const GraphEdge& e, const PointGraph<Engine>&) {
-  return e.source;
-}
-template <class Engine>
-std::size_t target(const GraphEdge& e, const PointGraph<Engine>&) {
-  return e.target;
-}
-template <class Engine>
-boost::typed_identity_property_map<std::size_t> get(boost::vertex_index_t, const PointGraph<Engine>&) {
-  return {};
-}
+struct is_graph_view<PointGraph<Engine>> : std::true_type {};
 
-}  // namespace streamclust
-
-namespace boost {
-
-template <class Engine>
-struct graph_traits<streamclust::PointGraph<Engine>> {
-  struct traversal_category : incidence_graph_tag, vertex_list_graph_tag {};
+/// The graph_traits of every graph view: undirected, incidence + vertex list.
+template <class G>
+struct view_graph_traits {
+  struct traversal_category : boost::incidence_graph_tag, boost::vertex_list_graph_tag {};
   using vertex_descriptor = std::size_t;
-  using edge_descriptor = streamclust::GraphEdge;
-  using directed_category = undirected_tag;
-  using edge_parallel_category = disallow_parallel_edge_tag;
-  using out_edge_iterator = typename streamclust::PointGraph<Engine>::OutEdgeIterator;
-  using vertex_iterator = counting_iterator<std::size_t>;
+  using edge_descriptor = GraphEdge;
+  using directed_category = boost::undirected_tag;
+  using edge_parallel_category = boost::disallow_parallel_edge_tag;
+  using out_edge_iterator = typename G::OutEdgeIterator;
+  using vertex_iterator = boost::counting_iterator<std::size_t>;
   using degree_size_type = std::size_t;
   using vertices_size_type = std::size_t;
   using edges_size_type = std::size_t;
@@ -156,6 +148,28 @@ struct graph_traits<streamclust::PointGraph<Engine>> {
   using adjacency_iterator = void;
   static vertex_descriptor null_vertex() { return static_cast<std::size_t>(-1); }
 };
+}  // namespace detail
+
+template <class G, std::enable_if_t<detail::is_graph_view<G>::value, int> = 0>
+std::size_t source(const GraphEdge& e, const G&) {
+  return e.source;
+}
+template <class G, std::enable_if_t<detail::is_graph_view<G>::value, int> = 0>
+std::size_t target(const GraphEdge& e, const G&) {
+  return e.target;
+}
+template <class G, std::enable_if_t<detail::is_graph_view<G>::value, int> = 0>
+boost::typed_identity_property_map<std::size_t> get(boost::vertex_index_t, const G&) {
+  return {};
+}
+
+}  // namespace streamclust
+
+namespace boost {
+
+template <class Engine>
+struct graph_traits<streamclust::PointGraph<Engine>>
+    : streamclust::detail::view_graph_traits<streamclust::PointGraph<Engine>> {};
 
 template <class Engine>
 struct property_map<streamclust::PointGraph<Engine>, vertex_index_t> {
