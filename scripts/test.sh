@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The full test run (this is .ci/run and the README's test command):
+#   gcc    Release, g++        -> build/gcc    all tests, examples, benchmark smoke runs
+#   clang  Release, clang++-14 -> build/clang  tests and examples (no benchmarks)
+#   asan   Debug, g++, ASan+UBSan -> build/asan tests and examples (bench-labelled tests excluded)
+#
+# Usage:  scripts/test.sh [stage...]          e.g. scripts/test.sh gcc
+# Environment:
+#   STREAMCLUST_STAGES="gcc clang asan"  stages to run (arguments win over it)
+#   SKIP_GCC=1 SKIP_CLANG=1 SKIP_ASAN=1  drop a stage
+#   SKIP_DEPS=1                          do not run scripts/install-deps.sh
+#   JOBS=2                               parallel build and test jobs
+#   BUILD_ROOT=build                     where the build directories go
+#   CMAKE_GENERATOR                      honoured by CMake itself (e.g. Ninja)
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$ROOT"
+
+JOBS=${JOBS:-2}
+BUILD_ROOT=${BUILD_ROOT:-build}
+if [[ $# -gt 0 ]]; then
+  STAGES=("$@")
+else
+  read -r -a STAGES <<<"${STREAMCLUST_STAGES:-gcc clang asan}"
+fi
+
+if [[ -z "${SKIP_DEPS:-}" ]]; then
+  bash scripts/install-deps.sh
+fi
+
+declare -a SUMMARY=()
+T_ALL=$SECONDS
+CURRENT_STAGE=""
+
+print_summary() {
+  local line
+  for line in "${SUMMARY[@]}"; do echo "  $line"; done
+}
+on_exit() {
+  local rc=$?
+  if [[ $rc -ne 0 ]]; then
+    echo
+    echo "=== test.sh: FAILED (exit $rc) in stage '${CURRENT_STAGE:-setup}' after $((SECONDS - T_ALL))s ===" >&2
+    print_summary >&2
+  fi
+}
+trap on_exit EXIT
+
+# configure + build + ctest. Args: name compiler build_type ctest_args... -- cmake_args...
+run_stage() {
+  local name=$1 cxx=$2 build_type=$3
+  shift 3
+  local -a ctest_args=() cmake_args=()
+  while [[ $# -gt 0 && "$1" != "--" ]]; do ctest_args+=("$1"); shift; done
+  [[ $# -gt 0 ]] && shift
+  cmake_args=("$@")
+
+  local dir="$BUILD_ROOT/$name" t0=$SECONDS
+  CURRENT_STAGE=$name
+  echo
+  echo "=== stage $name: $cxx, $build_type, $dir ==="
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE="$build_type" -DCMAKE_CXX_COMPILER="$cxx" "${cmake_args[@]}"
+  local t1=$SECONDS
+  cmake --build "$dir" -j "$JOBS"
+  local t2=$SECONDS
+  (cd "$dir" && ctest --output-on-failure -j "$JOBS" "${ctest_args[@]}")
+  local t3=$SECONDS
+  SUMMARY+=("$(printf '%-6s configure %4ds  build %4ds  test %4ds  total %4ds' \
+    "$name" $((t1 - t0)) $((t2 - t1)) $((t3 - t2)) $((t3 - t0)))")
+}
+
+for stage in "${STAGES[@]}"; do
+  case "$stage" in
+    gcc)
+      [[ -n "${SKIP_GCC:-}" ]] && continue
+      run_stage gcc g++ Release --
+      ;;
+    clang)
+      [[ -n "${SKIP_CLANG:-}" ]] && continue
+      run_stage clang clang++-14 Release -- -DSTREAMCLUST_BUILD_BENCH=OFF
+      ;;
+    asan)
+      [[ -n "${SKIP_ASAN:-}" ]] && continue
+      # C++20 twin and benchmarks are covered by the gcc stage; here they would
+      # only double the (slow, unoptimised) build.
+      run_stage asan g++ Debug -LE bench -- -DSTREAMCLUST_SANITIZE=ON \
+        -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_TEST_CXX20=OFF
+      ;;
+    *)
+      echo "test.sh: unknown stage '$stage' (known: gcc clang asan)" >&2
+      exit 2
+      ;;
+  esac
+done
+
+echo
+CURRENT_STAGE=""
+echo "=== test.sh: all stages passed in $((SECONDS - T_ALL))s ==="
+print_summary

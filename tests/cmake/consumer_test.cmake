@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: MIT
+#
+# cmake -DBUILD_DIR=<streamclust build> -DCONSUMER_SOURCE_DIR=<tests/consumer>
+#       -DWORK_DIR=<scratch dir> -DCXX_COMPILER=<c++> [-DGENERATOR=<gen>]
+#       [-DBUILD_TYPE=<cfg>] [-DEXPECTED_VERSION=<x.y.z>] -P consumer_test.cmake
+#
+# 1. cmake --install BUILD_DIR --prefix WORK_DIR/prefix
+# 2. check the installed tree (merged headers, package files)
+# 3. configure tests/consumer with CMAKE_PREFIX_PATH=WORK_DIR/prefix, build it
+# 4. run the consumer; it must exit 0
+
+cmake_minimum_required(VERSION 3.18)
+
+foreach(_var BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CXX_COMPILER)
+  if(NOT DEFINED ${_var})
+    message(FATAL_ERROR "consumer_test.cmake: -D${_var}=... is required")
+  endif()
+endforeach()
+if(NOT BUILD_TYPE)
+  set(BUILD_TYPE Release)
+endif()
+
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out)
+  if(NOT _rc EQUAL 0)
+    list(JOIN ARGN " " _cmd)
+    message(FATAL_ERROR "FAILED: ${what} (exit ${_rc})\ncommand: ${_cmd}\n${_out}")
+  endif()
+  message(STATUS "ok: ${what}")
+endfunction()
+
+set(_prefix "${WORK_DIR}/prefix")
+set(_build "${WORK_DIR}/build")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+
+run_step("install into ${_prefix}"
+         "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${_prefix}" --config "${BUILD_TYPE}")
+
+# The installed tree: both source include roots merged under include/streamclust,
+# package config + version + targets files.
+file(GLOB _config "${_prefix}/*/cmake/streamclust/streamclustConfig.cmake"
+                  "${_prefix}/*/*/cmake/streamclust/streamclustConfig.cmake")
+if(NOT _config)
+  message(FATAL_ERROR "FAILED: no streamclustConfig.cmake under ${_prefix}")
+endif()
+foreach(_f streamclustConfigVersion.cmake streamclustTargets.cmake)
+  get_filename_component(_dir "${_config}" DIRECTORY)
+  if(NOT EXISTS "${_dir}/${_f}")
+    message(FATAL_ERROR "FAILED: ${_f} missing next to ${_config}")
+  endif()
+endforeach()
+get_filename_component(_src_root "${CONSUMER_SOURCE_DIR}/../.." ABSOLUTE)
+file(GLOB_RECURSE _src_headers RELATIVE "${_src_root}/include" "${_src_root}/include/streamclust/*.hpp")
+file(GLOB_RECURSE _pol_headers RELATIVE "${_src_root}/policies" "${_src_root}/policies/streamclust/*.hpp")
+foreach(_h IN LISTS _src_headers _pol_headers)
+  if(NOT EXISTS "${_prefix}/include/${_h}")
+    message(FATAL_ERROR "FAILED: header <${_h}> was not installed to ${_prefix}/include")
+  endif()
+endforeach()
+list(LENGTH _src_headers _n_src)
+list(LENGTH _pol_headers _n_pol)
+message(STATUS "ok: installed ${_n_src} framework + ${_n_pol} policy headers under ${_prefix}/include/streamclust")
+
+set(_gen_args)
+if(GENERATOR)
+  set(_gen_args -G "${GENERATOR}")
+endif()
+set(_version_args)
+if(EXPECTED_VERSION)
+  set(_version_args "-DSTREAMCLUST_EXPECTED_VERSION=${EXPECTED_VERSION}")
+endif()
+run_step("configure the consumer"
+         "${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${_build}" ${_gen_args}
+         "-DCMAKE_PREFIX_PATH=${_prefix}"
+         "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
+         "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}"
+         "-DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF"
+         "-DSTREAMCLUST_EXPECTED_PREFIX=${_prefix}"
+         ${_version_args})
+run_step("build the consumer" "${CMAKE_COMMAND}" --build "${_build}" --config "${BUILD_TYPE}")
+
+set(_exe "${_build}/consumer")
+if(NOT EXISTS "${_exe}")
+  file(GLOB_RECURSE _exe "${_build}/consumer" "${_build}/consumer.exe")
+endif()
+run_step("run the consumer" "${_exe}")
