@@ -129,7 +129,9 @@ class StreamClusterer {
   }
 
   /// Evicts the points that have left the window at stream time `time` [s]
-  /// without inserting anything (a quiet sensor). Earlier times are ignored.
+  /// without inserting anything (a quiet sensor). A time earlier than the
+  /// newest point's is ignored; later points earlier than `time` are then
+  /// rejected as `time_backwards`.
   void advance_to(double time) {
     if (!std::isfinite(time) || (has_time_ && time < last_time_)) return;
     has_time_ = true;
