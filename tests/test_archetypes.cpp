@@ -131,3 +131,32 @@ TEST_CASE("the engines run on archetype policies") {
   streamclust::BatchClusterer<archetype::Config> batch;
   CHECK(batch.cluster(points).components == 1);
 }
+
+#if defined(__cpp_concepts) && __cpp_concepts >= 201907L
+// Under C++20 the same requirements are concepts usable in constraints.
+namespace {
+template <streamclust::LinkagePolicy L>
+bool linked_with_itself(const L& l, const streamclust::Sample& s) {
+  return l(s, s);
+}
+}  // namespace
+static_assert(streamclust::ProjectionPolicy<archetype::Projection>);
+static_assert(streamclust::SpatialIndexPolicy<archetype::Index>);
+static_assert(streamclust::LinkagePolicy<archetype::Linkage>);
+static_assert(streamclust::WindowPolicy<archetype::Window>);
+static_assert(streamclust::ResolutionPolicy<archetype::Resolution>);
+static_assert(streamclust::VisitorPolicy<archetype::Visitor>);
+static_assert(!streamclust::LinkagePolicy<archetype::Window>);
+
+TEST_CASE("C++20 concepts constrain templates") {
+  const archetype::Linkage linkage{archetype::Linkage::Params{}};
+  CHECK(linked_with_itself(linkage, streamclust::Sample{}));
+}
+#endif
+
+// The C++17 traits say the same.
+static_assert(streamclust::is_linkage_policy_v<archetype::Linkage>);
+static_assert(!streamclust::is_linkage_policy_v<archetype::Window>);
+static_assert(!streamclust::is_spatial_index_policy_v<archetype::Linkage>);
+static_assert(streamclust::is_point_v<archetype::PointXYZT>);
+static_assert(!streamclust::is_point_v<int>);
