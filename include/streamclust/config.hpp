@@ -15,6 +15,7 @@
 ///   using window = TimeWindow;
 ///   using resolution = FixedResolution;
 ///   using visitor = NullVisitor;  // optional
+///   static constexpr bool timed = false;  // optional: measure phase latencies
 /// };
 /// \endcode
 /// Presets are such structs; derive from one and override a slot.
@@ -57,6 +58,11 @@ struct slot_visitor<C, std::void_t<typename C::visitor>> {
   using type = typename C::visitor;
 };
 
+template <class C, class = void>
+struct config_timed : std::false_type {};
+template <class C>
+struct config_timed<C, std::void_t<decltype(C::timed)>> : std::bool_constant<C::timed> {};
+
 /// Params of a policy, or an empty struct when the slot is invalid (the
 /// static assertion reports the real problem).
 template <class P, class = void>
@@ -79,6 +85,9 @@ struct config_traits {
   using window = typename detail::slot_window<Config>::type;
   using resolution = typename detail::slot_resolution<Config>::type;
   using visitor = typename detail::slot_visitor<Config>::type;
+  /// `static constexpr bool timed = true;` in a config makes the engine
+  /// measure its phases (RetrievalStats::phase_us); off by default, free when off.
+  static constexpr bool timed = detail::config_timed<Config>::value;
 };
 
 /// Runtime parameters of a clusterer built from `Config`: one Params per

@@ -11,6 +11,7 @@
 #include <streamclust/types.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -25,12 +26,23 @@ using EdgeHandle = std::uint32_t;
 inline constexpr EdgeHandle kNoEdge = std::numeric_limits<EdgeHandle>::max();
 inline constexpr ClusterId kNoCluster = std::numeric_limits<ClusterId>::max();
 
+/// Wall time spent per phase [microseconds]; measured only for configs with
+/// `static constexpr bool timed = true`, zero otherwise.
+struct PhaseTimes {
+  double insertion = 0.0;         ///< neighbour search, edges, isolation/expansion/bridging
+  double eviction = 0.0;          ///< removing points that left the window
+  double validation = 0.0;        ///< BFS over pending clusters, splits
+  double component_update = 0.0;  ///< BFS over the component graph, stable ids
+  double labelling = 0.0;         ///< labels and summaries of every window point
+};
+
 /// Counters of the work done since the previous retrieval.
 struct RetrievalStats {
   std::uint64_t inserted = 0;           ///< points inserted into the graph
   std::uint64_t evicted = 0;            ///< points that left the window
   std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits
+  PhaseTimes phase_us{};                ///< timed configs only
 };
 
 /// The continuous clusterer: a sliding window over a point stream, a grid
@@ -136,7 +148,9 @@ class StreamClusterer {
     if (!std::isfinite(time) || (has_time_ && time < last_time_)) return;
     has_time_ = true;
     last_time_ = time;
+    const auto t0 = clock_now();
     evict_expired(time, size());
+    add_elapsed(stats_.phase_us.eviction, t0);
   }
 
   // ------------------------------------------------------------ retrieval
@@ -147,7 +161,9 @@ class StreamClusterer {
   /// until the next call.
   const Clustering& retrieve() {
     if (calibrating_ && size() > 0) finish_calibration();
+    const auto t0 = clock_now();
     validate_pending();
+    add_elapsed(stats_.phase_us.validation, t0);
     label_components();
     last_stats_ = stats_;
     stats_ = RetrievalStats{};
@@ -290,7 +306,9 @@ class StreamClusterer {
     last_time_ = time;
     ++rejections_[RejectReason::accepted];
 
+    const auto t0 = clock_now();
     evict_expired(time, size() + 1);
+    add_elapsed(stats_.phase_us.eviction, t0);
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
@@ -307,7 +325,9 @@ class StreamClusterer {
       return RejectReason::accepted;
     }
     r.cell = grid_.cell_of(pr.u, pr.v);
+    const auto t1 = clock_now();
     link(h);
+    add_elapsed(stats_.phase_us.insertion, t1);
     return RejectReason::accepted;
   }
 
@@ -564,6 +584,7 @@ class StreamClusterer {
   /// BFS over the component graph, stable-id assignment, then one pass over
   /// the window for labels and summaries. O(N + clusters + bridges).
   void label_components() {
+    const auto t0 = clock_now();
     const std::size_t slots = clusters_.size();
     component_of_.assign(slots, kNoCluster);
     std::uint32_t components = 0;
@@ -583,6 +604,8 @@ class StreamClusterer {
       ++components;
     }
     assign_stable_ids(components);
+    add_elapsed(stats_.phase_us.component_update, t0);
+    const auto t1 = clock_now();
 
     result_.time = last_time_;
     ++result_.cycle;
@@ -615,6 +638,26 @@ class StreamClusterer {
     }
     std::sort(result_.components.begin(), result_.components.end(),
               [](const ComponentSummary& a, const ComponentSummary& b) { return a.id < b.id; });
+    add_elapsed(stats_.phase_us.labelling, t1);
+  }
+
+  // Phase timing, compiled away unless the config is `timed`.
+  struct NoClock {};
+  static auto clock_now() {
+    if constexpr (traits::timed) {
+      return std::chrono::steady_clock::now();
+    } else {
+      return NoClock{};
+    }
+  }
+  template <class T>
+  static void add_elapsed(double& microseconds, const T& since) {
+    if constexpr (traits::timed) {
+      microseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - since).count();
+    } else {
+      (void)microseconds;
+      (void)since;
+    }
   }
 
   struct Claim {
