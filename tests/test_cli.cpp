@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: MIT
+// The `streamclust` tool, run in-process: end-to-end clustering checked
+// against the batch clusterer, outputs, and the exit-code contract.
+
+#include <doctest/doctest.h>
+
+#include "cli/main.hpp"
+
+#include <streamclust/io/reader.hpp>
+#include <streamclust/sim/synthetic_stream.hpp>
+
+#include "support/partition.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sc = streamclust;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int code;
+  std::string out, err;
+};
+
+RunResult run(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = sc::cli::run_main(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("streamclust_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+/// Writes `seconds` of the synthetic stream as CSV; every 50th record gets a
+/// NaN coordinate (it must come back with label -1).
+std::vector<sc::SyntheticPoint> write_stream_csv(const fs::path& path, double seconds) {
+  sc::SyntheticStream::Params p;
+  p.point_rate = 40000.0;
+  sc::SyntheticStream stream(p);
+  std::vector<sc::SyntheticPoint> points;
+  std::ofstream f(path);
+  f.precision(9);
+  f << "x,y,z,intensity,t\n";
+  while (stream.time() < seconds) {
+    sc::SyntheticPoint q = stream.next();
+    if (points.size() % 50 == 49) q.x = std::numeric_limits<float>::quiet_NaN();
+    points.push_back(q);
+    f << q.x << ',' << q.y << ',' << q.z << ',' << q.intensity << ',' << q.t << '\n';
+  }
+  return points;
+}
+
+struct LabelRow {
+  std::uint64_t cycle;
+  double time;
+  std::uint64_t index;
+  std::int64_t label;
+};
+
+std::vector<LabelRow> read_labels(const fs::path& path) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  REQUIRE(line == "cycle,time,index,label");
+  std::vector<LabelRow> rows;
+  while (std::getline(f, line)) {
+    LabelRow r{};
+    char c1, c2, c3;
+    std::istringstream s(line);
+    s >> r.cycle >> c1 >> r.time >> c2 >> r.index >> c3 >> r.label;
+    REQUIRE(!s.fail());
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::pair<std::uint32_t, std::uint32_t> report_grid(const std::string& json) {
+  std::smatch m;
+  REQUIRE(std::regex_search(json, m, std::regex(R"re("grid": \{"rows": (\d+), "cols": (\d+))re")));
+  return {static_cast<std::uint32_t>(std::stoul(m[1])), static_cast<std::uint32_t>(std::stoul(m[2]))};
+}
+
+}  // namespace
+
+TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the batch clusterer") {
+  const fs::path dir = temp_dir("e2e");
+  const auto points = write_stream_csv(dir / "stream.csv", 0.35);
+  const auto result = run({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30", "--window-time",
+                           "0.1", "--rate", "20", "--labels", (dir / "labels.csv").string(), "--cycles", "all", "--report",
+                           (dir / "report.json").string(), "--verify", "--ply", (dir / "last.ply").string(), "--pcd",
+                           (dir / "last.pcd").string()});
+  INFO(result.err);
+  REQUIRE(result.code == 0);
+  CHECK(result.out.find("streamclust: ") != std::string::npos);
+
+  const auto rows = read_labels(dir / "labels.csv");
+  const std::string report = slurp(dir / "report.json");
+  const auto [grid_rows, grid_cols] = report_grid(report);
+  CHECK(report.find("\"cycles\": [") != std::string::npos);
+  CHECK(report.find("\"validation\"") != std::string::npos);
+  CHECK(report.find("\"non_finite\": ") != std::string::npos);
+
+  // Group the rows by cycle and re-cluster each window with the library's batch clusterer.
+  std::map<std::uint64_t, std::vector<LabelRow>> cycles;
+  for (const auto& r : rows) cycles[r.cycle].push_back(r);
+  CHECK(cycles.size() >= 6);
+  auto options = sc::cli::parse_cluster_options({"x", "--preset", "carc", "--theta", "30", "--window-time", "0.1"});
+  using Config = sc::cli::ToolConfig<sc::SphericalProjection, sc::BucketGrid>;
+  sc::BatchClusterer<Config> batch(sc::cli::make_params<Config>(options));
+  batch.set_grid({grid_rows, grid_cols});
+  for (const auto& [cycle, cycle_rows] : cycles) {
+    std::vector<sc::SyntheticPoint> window;
+    std::vector<std::int64_t> labels;
+    for (const auto& r : cycle_rows) {
+      REQUIRE(r.index < points.size());
+      const bool nan = std::isnan(points[r.index].x);
+      CHECK((r.label == -1) == nan);
+      if (nan) continue;
+      window.push_back(points[r.index]);
+      labels.push_back(r.label);
+    }
+    INFO("cycle " << cycle);
+    const auto& reference = batch.cluster(window);
+    CHECK(sc::test::partition_mismatch(labels, reference.labels) == "");
+  }
+
+  // The point clouds of the last cycle carry its labels.
+  auto reader = sc::io::open_reader((dir / "last.pcd").string(), {});
+  std::vector<sc::io::Record> cloud;
+  while (reader->read(cloud, 4096) > 0) {
+  }
+  const auto& last = cycles.rbegin()->second;
+  std::size_t labelled = 0;
+  for (const auto& r : last) labelled += r.label >= 0;
+  CHECK(cloud.size() == labelled);
+  CHECK(fs::file_size(dir / "last.ply") > 0);
+}
+
+TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabelled") {
+  const fs::path dir = temp_dir("frame");
+  write_stream_csv(dir / "stream.csv", 0.2);
+  const auto result = run({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--grid", "16x64",
+                           "--labels", (dir / "labels.csv").string(), "--quiet"});
+  INFO(result.err);
+  REQUIRE(result.code == 0);
+  CHECK(result.out.empty());
+  const auto rows = read_labels(dir / "labels.csv");
+  std::size_t unlabelled = 0;
+  for (const auto& r : rows) unlabelled += r.label < 0;
+  CHECK(unlabelled > rows.size() / 2);  // 16 x 64 cells cannot hold a 0.1 s window
+  CHECK(unlabelled < rows.size());
+}
+
+TEST_CASE("info reports format, count and time span") {
+  const fs::path dir = temp_dir("info");
+  const auto points = write_stream_csv(dir / "stream.csv", 0.05);
+  const auto result = run({"info", (dir / "stream.csv").string()});
+  INFO(result.err);
+  REQUIRE(result.code == 0);
+  CHECK(result.out.find("csv") != std::string::npos);
+  CHECK(result.out.find(std::to_string(points.size())) != std::string::npos);
+  CHECK(result.out.find("time:") != std::string::npos);
+}
+
+TEST_CASE("exit codes: help 0, usage 2, input 4") {
+  CHECK(run({"--help"}).code == 0);
+  CHECK(run({}).code == 2);
+  const auto help = run({"cluster", "--help"});
+  CHECK(help.code == 0);
+  CHECK(help.out.find("examples:") != std::string::npos);
+  CHECK(run({"info", "--help"}).out.find("examples:") != std::string::npos);
+  CHECK(run({"bogus"}).code == 2);
+  CHECK(run({"cluster"}).code == 2);
+  CHECK(run({"cluster", "a.csv", "--theta", "abc"}).err.find("--theta: expected a number") != std::string::npos);
+  CHECK(run({"cluster", "a.csv", "--mask", "4"}).code == 2);
+  CHECK(run({"cluster", "a.csv", "--index", "kd-tree"}).code == 2);
+  CHECK(run({"cluster", "a.csv", "--window-time", "0.1", "--window-count", "5"}).code == 2);
+  CHECK(run({"cluster", "a.csv", "--frobnicate"}).code == 2);
+  CHECK(run({"cluster", "a.csv", "--mode", "frame", "--verify"}).code == 2);
+
+  const fs::path dir = temp_dir("codes");
+  const auto missing = run({"cluster", (dir / "missing.csv").string()});
+  CHECK(missing.code == 4);
+  CHECK(missing.err.find("missing.csv") != std::string::npos);
+  { std::ofstream(dir / "empty.csv"); }
+  CHECK(run({"cluster", (dir / "empty.csv").string()}).code == 4);
+  {
+    std::ofstream f(dir / "untimed.csv");
+    f << "x,y,z\n1,2,3\n4,5,6\n";
+  }
+  const auto untimed = run({"cluster", (dir / "untimed.csv").string()});
+  CHECK(untimed.code == 4);
+  CHECK(untimed.err.find("point-rate") != std::string::npos);
+  CHECK(run({"cluster", (dir / "untimed.csv").string(), "--point-rate", "1000", "--quiet"}).code == 0);
+  {
+    std::ofstream f(dir / "bad.csv");
+    f << "x,y,z,t\n1,2,3,0\n4,five,6,0.1\n";
+  }
+  const auto bad = run({"cluster", (dir / "bad.csv").string()});
+  CHECK(bad.code == 4);
+  CHECK(bad.err.find("line 3") != std::string::npos);
+}

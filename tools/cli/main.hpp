@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The `streamclust` command: subcommand dispatch, help texts and the
+/// mapping of errors to exit codes (0 ok, 2 usage, 3 verification mismatch,
+/// 4 input error). Callable from tests without spawning a process.
+
+#include "cli/cluster.hpp"
+#include "cli/info.hpp"
+#include "cli/options.hpp"
+
+#include <streamclust/io/error.hpp>
+
+#include <algorithm>
+#include <exception>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace streamclust::cli {
+
+inline const char* main_help() {
+  return R"(streamclust - continuous clustering of LiDAR point streams (C-ARC)
+
+usage: streamclust <command> [options]
+
+commands:
+  cluster INPUT   cluster a recorded stream as the sensor delivered it
+  info INPUT      format, fields, point count, time span and bounds of an input
+
+Run 'streamclust <command> --help' for the options of a command.
+Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error.
+)";
+}
+
+inline const char* cluster_help() {
+  return R"(usage: streamclust cluster INPUT [options]
+
+Streams INPUT point by point through the continuous C-ARC engine, retrieves
+clusters at a fixed rate of stream time and writes the results.
+
+input:
+  --format auto|csv|pcd|ply|kitti   input format (default auto: extension and content)
+  --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
+  --point-rate HZ                   inputs without time: t = index / HZ, in file order
+policies (a preset first, then every option below overrides it):
+  --preset carc|carc-mid360|carc-avia|baseline   (default carc)
+        carc         spherical, bucket grid, angular theta 10, w 5, T_M 2, adaptive grid
+        carc-mid360  carc with theta 30 and the Mid-360 FOV (elevation -7.5..52.5 deg)
+        carc-avia    carc with theta 80 and the Avia FOV (70.4 x 77.2 deg)
+        baseline     overwrite grid in frame mode, w 3, theta 10 (the frame-based method)
+  --window-time SECONDS | --window-count N   sliding window (default 0.1 s)
+  --rate HZ                         retrievals per second of stream time (default 20)
+  --linkage angular|euclidean       --theta DEG (default 10)   --distance M (default 0.5)
+  --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)
+  --mask W                          odd mask width in cells (default 5)
+  --index bucket|capped|overwrite   --cap K (capped grid, default 4)
+  --projection spherical|cylindrical
+  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
+  --min-range M                     closer points are rejected (default 0.1)
+  --grid auto|HxW                   auto: adaptive resolution on the first window
+  --max-multiplicity T_M            adaptive target (default 2)
+  --mode continuous|frame           frame: each retrieval clusters its window from scratch
+outputs:
+  --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)
+  --cycles all|last|N,M,...         cycles written to --labels, --ply, --pcd (default last)
+  --report FILE     JSON: grid and adaptive trace, per-cycle sizes and latencies, totals
+  --ply FILE        last selected cycle, coloured by label, with a label property
+  --pcd FILE        last selected cycle, with a label field
+  --verify          compare every retrieval with the batch clusterer; exit 3 on mismatch
+  --quiet, -q       no progress bar, no summary line
+
+examples:
+  streamclust cluster scan.csv --preset carc-mid360 --labels labels.csv
+  streamclust cluster frames.pcd --point-rate 100000 --window-time 0.2 --report report.json
+  streamclust cluster scan.csv --preset carc-avia --index overwrite --mode frame --ply out.ply
+  streamclust cluster scan.bin --format kitti --point-rate 1200000 --verify
+)";
+}
+
+inline const char* info_help() {
+  return R"(usage: streamclust info INPUT [--format F] [--time-unit U] [--point-rate HZ]
+
+Prints the format, fields, point count, time span and bounds of INPUT,
+reading it once as a stream.
+
+examples:
+  streamclust info scan.pcd
+  streamclust info scan.bin --format kitti --point-rate 1200000
+)";
+}
+
+/// Runs the command line; returns the process exit code.
+inline int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  try {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      (args.empty() ? err : out) << main_help();
+      return args.empty() ? kUsage : kOk;
+    }
+    const std::string& command = args[0];
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
+                      std::find(rest.begin(), rest.end(), "-h") != rest.end();
+    if (command == "cluster") {
+      if (help) {
+        out << cluster_help();
+        return kOk;
+      }
+      return run_cluster(parse_cluster_options(rest), out, err);
+    }
+    if (command == "info") {
+      if (help) {
+        out << info_help();
+        return kOk;
+      }
+      return run_info(parse_info_options(rest), out);
+    }
+    throw UsageError("unknown command '" + command + "' (expected cluster or info)");
+  } catch (const UsageError& e) {
+    err << "streamclust: " << e.what() << "\n";
+    return kUsage;
+  } catch (const io::InputError& e) {
+    err << "streamclust: input error: " << e.what() << "\n";
+    return kInputError;
+  } catch (const std::exception& e) {
+    err << "streamclust: error: " << e.what() << "\n";
+    return kInputError;
+  }
+}
+
+}  // namespace streamclust::cli

@@ -1,0 +1,287 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// Command-line options of the `streamclust` tool: parsing, presets and
+/// validation. Every bad option becomes a UsageError (exit code 2).
+
+#include <streamclust/io/record.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace streamclust::cli {
+
+/// Exit codes, part of the tool's documented contract (docs/cli.md).
+enum ExitCode : int { kOk = 0, kUsage = 2, kMismatch = 3, kInputError = 4 };
+
+/// A usage error: bad option, value or combination. Exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class ProjectionKind { spherical, cylindrical };
+enum class IndexKind { bucket, capped, overwrite };
+enum class LinkageKind { angular, euclidean };
+enum class Mode { continuous, frame };
+
+/// Everything `streamclust cluster` needs, after presets and overrides.
+struct ClusterOptions {
+  std::string input;
+  io::ReadOptions read;
+  // policies
+  ProjectionKind projection = ProjectionKind::spherical;
+  IndexKind index = IndexKind::bucket;
+  std::uint32_t cap = 4;
+  LinkageKind linkage = LinkageKind::angular;
+  float theta_deg = 10.0f;
+  float min_ray_angle_deg = 0.2f;
+  float distance = 0.5f;
+  int mask = 5;
+  bool window_is_count = false;
+  double window_seconds = 0.1;
+  std::size_t window_count = 20000;
+  double rate_hz = 20.0;
+  std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
+  float max_multiplicity = 2.0f;
+  Mode mode = Mode::continuous;
+  // field of view (spherical: degrees; cylindrical: azimuth degrees, z metres)
+  float azimuth_min = -180.0f, azimuth_max = 180.0f;
+  float elevation_min = -90.0f, elevation_max = 90.0f;
+  float z_min = -3.0f, z_max = 3.0f;
+  float min_range = 0.1f;
+  // outputs
+  std::string labels_path, report_path, ply_path, pcd_path;
+  bool all_cycles = false;
+  std::vector<std::uint64_t> cycle_list;  ///< empty and !all_cycles: last cycle only
+  bool verify = false;
+  bool quiet = false;
+};
+
+struct InfoOptions {
+  std::string input;
+  io::ReadOptions read;
+};
+
+inline double parse_number(std::string_view option, const std::string& value) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(value, &used);
+    if (used != value.size()) throw std::invalid_argument("trailing characters");
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError(std::string(option) + ": expected a number, got '" + value + "'");
+  }
+}
+
+inline double parse_positive(std::string_view option, const std::string& value) {
+  const double v = parse_number(option, value);
+  if (!(v > 0.0) || v > 1e12) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
+  return v;
+}
+
+inline std::uint64_t parse_count(std::string_view option, const std::string& value) {
+  const double v = parse_number(option, value);
+  if (!(v >= 1.0) || v > 4e9 || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
+    throw UsageError(std::string(option) + ": expected a whole number >= 1, got '" + value + "'");
+  }
+  return static_cast<std::uint64_t>(v);
+}
+
+/// Applies a named preset to `o` (before the other options override it).
+inline void apply_preset(const std::string& name, ClusterOptions& o) {
+  if (name == "carc") return;  // the defaults above: theta 10, w 5, T_M 2
+  if (name == "carc-mid360") {
+    o.theta_deg = 30.0f;
+    o.elevation_min = -7.5f;
+    o.elevation_max = 52.5f;
+  } else if (name == "carc-avia") {
+    o.theta_deg = 80.0f;
+    o.azimuth_min = -35.2f;
+    o.azimuth_max = 35.2f;
+    o.elevation_min = -38.6f;
+    o.elevation_max = 38.6f;
+  } else if (name == "baseline") {
+    o.index = IndexKind::overwrite;
+    o.mode = Mode::frame;
+    o.mask = 3;
+    o.theta_deg = 10.0f;
+  } else {
+    throw UsageError("--preset: expected carc, carc-mid360, carc-avia or baseline, got '" + name + "'");
+  }
+}
+
+/// Parses `streamclust cluster` arguments (argv after the subcommand).
+inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args) {
+  ClusterOptions o;
+  // The preset applies first, wherever it stands on the command line.
+  for (std::size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] == "--preset") apply_preset(args[i + 1], o);
+  }
+  bool window_time_set = false, window_count_set = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
+      return args[++i];
+    };
+    auto choice = [&](std::initializer_list<const char*> allowed) -> std::string {
+      const std::string v = value();
+      std::string list;
+      for (const char* c : allowed) {
+        if (v == c) return v;
+        list += list.empty() ? c : std::string("|") + c;
+      }
+      throw UsageError(a + ": expected " + list + ", got '" + v + "'");
+    };
+    if (a == "--preset") {
+      value();
+    } else if (a == "--format") {
+      const std::string v = choice({"auto", "csv", "pcd", "ply", "kitti"});
+      if (v != "auto") o.read.format = io::parse_format(v);
+    } else if (a == "--time-unit") {
+      o.read.time_unit = io::parse_time_unit(choice({"s", "ms", "us", "ns"}));
+    } else if (a == "--point-rate") {
+      o.read.point_rate = parse_positive(a, value());
+    } else if (a == "--window-time") {
+      o.window_seconds = parse_number(a, value());
+      if (!(o.window_seconds >= 0.0) || o.window_seconds > 1e6) throw UsageError(a + ": expected seconds >= 0");
+      window_time_set = true;
+    } else if (a == "--window-count") {
+      o.window_count = parse_count(a, value());
+      window_count_set = true;
+    } else if (a == "--rate") {
+      o.rate_hz = parse_positive(a, value());
+    } else if (a == "--linkage") {
+      o.linkage = choice({"angular", "euclidean"}) == "angular" ? LinkageKind::angular : LinkageKind::euclidean;
+    } else if (a == "--theta") {
+      o.theta_deg = static_cast<float>(parse_positive(a, value()));
+    } else if (a == "--min-ray-angle") {
+      o.min_ray_angle_deg = static_cast<float>(parse_number(a, value()));
+    } else if (a == "--distance") {
+      o.distance = static_cast<float>(parse_positive(a, value()));
+    } else if (a == "--mask") {
+      o.mask = static_cast<int>(parse_count(a, value()));
+    } else if (a == "--index") {
+      const std::string v = choice({"bucket", "capped", "overwrite"});
+      o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
+    } else if (a == "--cap") {
+      o.cap = static_cast<std::uint32_t>(parse_count(a, value()));
+    } else if (a == "--projection") {
+      o.projection = choice({"spherical", "cylindrical"}) == "spherical" ? ProjectionKind::spherical
+                                                                          : ProjectionKind::cylindrical;
+    } else if (a == "--grid") {
+      const std::string v = value();
+      if (v == "auto") {
+        o.grid.reset();
+      } else {
+        const auto x = v.find('x');
+        if (x == std::string::npos) throw UsageError("--grid: expected auto or HxW (e.g. 64x1024), got '" + v + "'");
+        o.grid = std::make_pair(static_cast<std::uint32_t>(parse_count("--grid", v.substr(0, x))),
+                                static_cast<std::uint32_t>(parse_count("--grid", v.substr(x + 1))));
+      }
+    } else if (a == "--max-multiplicity") {
+      o.max_multiplicity = static_cast<float>(parse_positive(a, value()));
+    } else if (a == "--mode") {
+      o.mode = choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
+    } else if (a == "--fov-azimuth" || a == "--fov-elevation" || a == "--fov-z") {
+      const std::string v = value();
+      const auto colon = v.find(':');
+      if (colon == std::string::npos) throw UsageError(a + ": expected MIN:MAX, got '" + v + "'");
+      const auto lo = static_cast<float>(parse_number(a, v.substr(0, colon)));
+      const auto hi = static_cast<float>(parse_number(a, v.substr(colon + 1)));
+      if (a == "--fov-azimuth") {
+        o.azimuth_min = lo;
+        o.azimuth_max = hi;
+      } else if (a == "--fov-elevation") {
+        o.elevation_min = lo;
+        o.elevation_max = hi;
+      } else {
+        o.z_min = lo;
+        o.z_max = hi;
+      }
+    } else if (a == "--min-range") {
+      o.min_range = static_cast<float>(parse_number(a, value()));
+    } else if (a == "--labels") {
+      o.labels_path = value();
+    } else if (a == "--report") {
+      o.report_path = value();
+    } else if (a == "--ply") {
+      o.ply_path = value();
+    } else if (a == "--pcd") {
+      o.pcd_path = value();
+    } else if (a == "--cycles") {
+      const std::string v = value();
+      o.all_cycles = v == "all";
+      o.cycle_list.clear();
+      if (v != "all" && v != "last") {
+        std::size_t start = 0;
+        while (start <= v.size()) {
+          const auto comma = v.find(',', start);
+          const std::string item = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+          const double n = parse_number("--cycles", item);
+          if (!(n >= 0.0) || n != static_cast<double>(static_cast<std::uint64_t>(n))) {
+            throw UsageError("--cycles: expected all, last or a comma-separated list of cycle numbers >= 0, got '" +
+                             v + "'");
+          }
+          o.cycle_list.push_back(static_cast<std::uint64_t>(n));
+          if (comma == std::string::npos) break;
+          start = comma + 1;
+        }
+      }
+    } else if (a == "--verify") {
+      o.verify = true;
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "' (see streamclust cluster --help)");
+    } else if (o.input.empty()) {
+      o.input = a;
+    } else {
+      throw UsageError("more than one input file: '" + o.input + "' and '" + a + "'");
+    }
+  }
+  if (o.input.empty()) throw UsageError("missing INPUT file (see streamclust cluster --help)");
+  if (window_time_set && window_count_set) throw UsageError("--window-time and --window-count exclude each other");
+  o.window_is_count = window_count_set;
+  if (o.mask % 2 == 0 || o.mask > 255) throw UsageError("--mask: expected an odd number of cells from 1 to 255");
+  if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
+  if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
+  return o;
+}
+
+inline InfoOptions parse_info_options(const std::vector<std::string>& args) {
+  InfoOptions o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--format" || a == "--time-unit" || a == "--point-rate") {
+      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
+      const std::string& v = args[++i];
+      if (a == "--format") {
+        if (v != "auto") {
+          o.read.format = io::parse_format(v);
+          if (!o.read.format) throw UsageError("--format: expected auto|csv|pcd|ply|kitti, got '" + v + "'");
+        }
+      } else if (a == "--time-unit") {
+        o.read.time_unit = io::parse_time_unit(v);
+        if (!o.read.time_unit) throw UsageError("--time-unit: expected s|ms|us|ns, got '" + v + "'");
+      } else {
+        o.read.point_rate = parse_positive(a, v);
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "' (see streamclust info --help)");
+    } else if (o.input.empty()) {
+      o.input = a;
+    } else {
+      throw UsageError("more than one input file");
+    }
+  }
+  if (o.input.empty()) throw UsageError("missing INPUT file (see streamclust info --help)");
+  return o;
+}
+
+}  // namespace streamclust::cli
