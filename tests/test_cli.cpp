@@ -220,3 +220,11 @@ TEST_CASE("exit codes: help 0, usage 2, input 4") {
   CHECK(bad.code == 4);
   CHECK(bad.err.find("line 3") != std::string::npos);
 }
+
+TEST_CASE("the --verify comparison finds the first point where two partitions differ") {
+  using sc::cli::first_partition_mismatch;
+  CHECK_FALSE(first_partition_mismatch({0, 0, 1, 2}, {7, 7, 3, 9}).has_value());
+  CHECK(first_partition_mismatch({0, 0, 1}, {7, 8, 3}) == std::optional<std::size_t>(1));  // a split
+  CHECK(first_partition_mismatch({0, 1, 1}, {4, 4, 4}) == std::optional<std::size_t>(1));  // a merge
+  CHECK(first_partition_mismatch({0, 1}, {0, 1, 2}) == std::optional<std::size_t>(2));     // lengths differ
+}

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -142,6 +143,21 @@ class FrameWindow {
 
 inline bool stderr_is_terminal() { return ::isatty(2) == 1; }
 
+/// Position of the first point at which two labelings stop being the same
+/// partition (no bijection between their labels), or nothing when they agree.
+/// O(n log n). Both must have the same length.
+inline std::optional<std::size_t> first_partition_mismatch(const std::vector<std::int64_t>& a,
+                                                           const std::vector<std::int64_t>& b) {
+  std::map<std::int64_t, std::int64_t> forward, backward;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    const auto f = forward.emplace(a[i], b[i]).first;
+    const auto r = backward.emplace(b[i], a[i]).first;
+    if (f->second != b[i] || r->second != a[i]) return i;
+  }
+  if (a.size() != b.size()) return std::min(a.size(), b.size());
+  return std::nullopt;
+}
+
 /// Runs `streamclust cluster`. Returns the exit code; throws io::InputError
 /// (exit 4) and UsageError (exit 2).
 template <class Projection, class Index>
@@ -234,16 +250,11 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
         engine->for_each_point([&](const Sample& s2, std::uint64_t) { samples.push_back(s2); });
         batch->set_grid({engine->grid().rows, engine->grid().cols});
         const auto& reference = batch->cluster(samples);
-        std::map<std::int64_t, std::int64_t> forward, backward;
-        for (std::size_t i = 0; i < samples.size(); ++i) {
-          const auto f = forward.emplace(label[i], reference.labels[i]).first;
-          const auto b = backward.emplace(reference.labels[i], label[i]).first;
-          if (f->second != reference.labels[i] || b->second != label[i]) {
-            err << "streamclust: verify: cycle " << cycle << " (t = " << cycle_time << " s): point " << index[i]
-                << " has continuous label " << label[i] << " but the batch clusterer puts it with a different set"
-                << " of points (batch component " << reference.labels[i] << ")\n";
-            return kMismatch;
-          }
+        if (const auto i = first_partition_mismatch(label, reference.labels)) {
+          err << "streamclust: verify: cycle " << cycle << " (t = " << cycle_time << " s): point " << index[*i]
+              << " has continuous label " << label[*i] << " but the batch clusterer puts it with a different set"
+              << " of points (batch component " << reference.labels[*i] << ")\n";
+          return kMismatch;
         }
       }
     } else {
