@@ -228,3 +228,24 @@ TEST_CASE("the --verify comparison finds the first point where two partitions di
   CHECK(first_partition_mismatch({0, 1, 1}, {4, 4, 4}) == std::optional<std::size_t>(1));  // a merge
   CHECK(first_partition_mismatch({0, 1}, {0, 1, 2}) == std::optional<std::size_t>(2));     // lengths differ
 }
+
+TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {
+  const fs::path dir = temp_dir("simulate");
+  const auto sim = run({"simulate", "--seconds", "0.1", "--point-rate", "20000", "--out", (dir / "s.csv").string()});
+  INFO(sim.err);
+  REQUIRE(sim.code == 0);
+  auto reader = sc::io::open_reader((dir / "s.csv").string(), {});
+  std::vector<sc::io::Record> records;
+  while (reader->read(records, 1000) > 0) {
+  }
+  CHECK(records.size() == 2000);
+  CHECK(reader->info().has_label);
+  std::size_t objects = 0;
+  for (const auto& r : records) objects += r.label > 0;
+  CHECK(objects > 0);
+  CHECK(run({"simulate", "--seconds", "0.05", "--out", (dir / "s.pcd").string(), "--quiet"}).code == 0);
+  CHECK(run({"cluster", (dir / "s.pcd").string(), "--quiet"}).code == 0);
+  CHECK(run({"simulate", "--out", (dir / "s.txt").string()}).code == 2);
+  CHECK(run({"simulate", "--scene", "mars", "--out", (dir / "s.csv").string()}).code == 2);
+  CHECK(run({"simulate", "--help"}).out.find("examples:") != std::string::npos);
+}

@@ -9,6 +9,7 @@
 #include "cli/cluster.hpp"
 #include "cli/info.hpp"
 #include "cli/options.hpp"
+#include "cli/simulate.hpp"
 
 #include <streamclust/io/error.hpp>
 
@@ -28,6 +29,7 @@ usage: streamclust <command> [options]
 commands:
   cluster INPUT   cluster a recorded stream as the sensor delivered it
   info INPUT      format, fields, point count, time span and bounds of an input
+  simulate        write a simulated stream with its ground truth
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error.
@@ -91,6 +93,21 @@ examples:
 )";
 }
 
+inline const char* simulate_help() {
+  return R"(usage: streamclust simulate --out FILE [--sensor synthetic] [--scene room] [--seconds S]
+                            [--point-rate HZ] [--seed N] [--quiet]
+
+Writes a simulated point stream with its ground truth to FILE (.csv: columns
+x,y,z,intensity,t,label; .pcd: binary with a label field). label is the id
+of the object hit, 0 for structure (floor, ceiling, walls). Deterministic
+for a given seed. Defaults: 1 s at 200 kHz, seed 1.
+
+examples:
+  streamclust simulate --seconds 2 --out room.csv
+  streamclust simulate --seconds 0.5 --seed 7 --out room.pcd
+)";
+}
+
 /// Runs the command line; returns the process exit code.
 inline int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   try {
@@ -116,7 +133,14 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       }
       return run_info(parse_info_options(rest), out);
     }
-    throw UsageError("unknown command '" + command + "' (expected cluster or info)");
+    if (command == "simulate") {
+      if (help) {
+        out << simulate_help();
+        return kOk;
+      }
+      return run_simulate(parse_simulate_options(rest), out);
+    }
+    throw UsageError("unknown command '" + command + "' (expected cluster, info or simulate)");
   } catch (const UsageError& e) {
     err << "streamclust: " << e.what() << "\n";
     return kUsage;
