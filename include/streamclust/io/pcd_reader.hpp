@@ -94,7 +94,10 @@ class PcdReader final : public PointReader {
 
   static std::string join(const std::vector<std::string_view>& v, std::size_t from) {
     std::string r;
-    for (std::size_t i = from; i < v.size(); ++i) r += (i > from ? " " : "") + std::string(v[i]);
+    for (std::size_t i = from; i < v.size(); ++i) {
+      if (i > from) r += ' ';
+      r.append(v[i].data(), v[i].size());
+    }
     return r;
   }
 
