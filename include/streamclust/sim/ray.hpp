@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The vocabulary shared by the scan simulator's sensor models and scenes.
+///
+/// A sensor model is any type with `Ray next()` returning the next firing in
+/// order (unit direction in the sensor frame: x forward, z up; stream time in
+/// seconds, non-decreasing) and `double point_rate() const` [Hz]. A scene
+/// answers `std::optional<Hit> cast(const Eigen::Vector3f& origin, const
+/// Eigen::Vector3f& direction, double time) const` in the world frame.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+
+namespace streamclust::sim {
+
+/// One firing of a sensor.
+struct Ray {
+  Eigen::Vector3f direction = Eigen::Vector3f::UnitX();  ///< unit vector, sensor frame
+  double time = 0.0;                                     ///< stream time [s]
+  int laser = 0;                                         ///< emitter index
+};
+
+/// The first surface a ray meets.
+struct Hit {
+  float range = 0.0f;  ///< distance along the ray [m]
+  int instance = 0;    ///< ground-truth instance id; 0 = structure (ground, walls, ceiling)
+};
+
+/// A simulated point with its ground truth, in the sensor frame at capture time.
+struct SimPoint {
+  float x = 0.0f;
+  float y = 0.0f;
+  float z = 0.0f;
+  float intensity = 0.0f;
+  double t = 0.0;    ///< stream time [s]
+  int instance = 0;  ///< ground truth: 0 structure, > 0 object instance
+};
+
+}  // namespace streamclust::sim
