@@ -128,7 +128,9 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
   using Config = sc::cli::ToolConfig<sc::SphericalProjection, sc::BucketGrid>;
   sc::BatchClusterer<Config> batch(sc::cli::make_params<Config>(options));
   batch.set_grid({grid_rows, grid_cols});
-  for (const auto& [cycle, cycle_rows] : cycles) {
+  for (const auto& entry : cycles) {
+    const std::uint64_t cycle = entry.first;  // not a structured binding: clang 14 cannot capture those in INFO
+    const std::vector<LabelRow>& cycle_rows = entry.second;
     std::vector<sc::SyntheticPoint> window;
     std::vector<std::int64_t> labels;
     for (const auto& r : cycle_rows) {
