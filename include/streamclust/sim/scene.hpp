@@ -1,0 +1,462 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// A ray-castable world for the scan simulator: static structure (instance
+/// 0), static objects and moving objects, each object a set of analytic
+/// shapes (shapes.hpp) with a unique ground-truth instance id > 0.
+///
+/// \code
+/// namespace sim = streamclust::sim;
+/// sim::Scene scene;
+/// scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite({0, 0, 1}, {0, 0, 0})));  // ground, id 0
+/// const int box = scene.add_object("box", sim::ShapeSet().add(sim::Box::aligned({4, -1, 0}, {5, 1, 1})));
+/// const int walker = scene.add_moving_object(
+///     "person", sim::ShapeSet().add(sim::Capsule::standing(0, 0, 0, 1.7f, 0.3f)),  // local frame, feet at 0
+///     sim::Trajectory::back_and_forth({3, -4, 0}, {3, 4, 0}, 1.2f));
+/// std::optional<sim::Hit> hit = scene.cast({0, 0, 1}, {1, 0, 0}, /*time=*/0.5);  // world frame
+/// \endcode
+///
+/// Thread safety: `cast` and every other const member are safe to call
+/// concurrently; building (the `add_*` members) is not.
+
+#include <streamclust/sim/ray.hpp>
+#include <streamclust/sim/shapes.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace streamclust::sim {
+
+namespace detail {
+
+/// SplitMix64 with its own distributions, so that the simulator's streams
+/// are bit-identical across standard libraries (std::*_distribution are
+/// implementation-defined). Not thread-safe; cheap to copy.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed = 1) : state_(seed) {}
+
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, 1).
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  /// Uniform in [lo, hi).
+  float uniform(float lo, float hi) { return lo + static_cast<float>(uniform()) * (hi - lo); }
+  /// Uniform integer in [lo, hi] (hi >= lo; the tiny modulo bias is irrelevant here).
+  int uniform_int(int lo, int hi) {
+    const auto span = static_cast<std::uint64_t>(static_cast<std::int64_t>(hi) - lo + 1);
+    return lo + static_cast<int>(next() % span);
+  }
+  /// Standard normal (Box-Muller, one value per call).
+  double normal() {
+    constexpr double kTwoPi = 6.283185307179586476925;
+    const double u1 = 1.0 - uniform();  // (0, 1]
+    const double u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+/// Seeds a generator from a user seed and a stream tag, so that different
+/// consumers of the same seed get unrelated streams.
+inline SplitMix64 make_rng(std::uint64_t seed, std::uint64_t tag) {
+  SplitMix64 mix(seed ^ (tag * 0xD1B54A32D192ED03ull));
+  return SplitMix64(mix.next());
+}
+
+}  // namespace detail
+
+/// A set of shapes hit as one body: `nearest` returns the closest hit over
+/// all of them. Its bounds are kept up to date as shapes are added
+/// (infinite planes make them unbounded).
+class ShapeSet {
+ public:
+  ShapeSet& add(const Plane& p) {
+    planes_.push_back(p);
+    if (p.bounded) {
+      bounds_.extend(p.bounds());
+    } else {
+      unbounded_ = true;
+    }
+    return *this;
+  }
+  ShapeSet& add(const Box& b) { return push(boxes_, b); }
+  ShapeSet& add(const Cylinder& c) { return push(cylinders_, c); }
+  ShapeSet& add(const Sphere& s) { return push(spheres_, s); }
+  ShapeSet& add(const Ellipsoid& e) { return push(ellipsoids_, e); }
+  ShapeSet& add(const Capsule& c) { return push(capsules_, c); }
+
+  /// All shapes of `other`, in their coordinates.
+  ShapeSet& add(const ShapeSet& other) {
+    for (const Plane& p : other.planes_) add(p);
+    for (const Box& b : other.boxes_) add(b);
+    for (const Cylinder& c : other.cylinders_) add(c);
+    for (const Sphere& s : other.spheres_) add(s);
+    for (const Ellipsoid& e : other.ellipsoids_) add(e);
+    for (const Capsule& c : other.capsules_) add(c);
+    return *this;
+  }
+
+  /// Bounds of the bounded shapes; see `unbounded()`.
+  const Aabb& bounds() const { return bounds_; }
+  /// True when the set holds an infinite plane.
+  bool unbounded() const { return unbounded_; }
+  std::size_t size() const {
+    return planes_.size() + boxes_.size() + cylinders_.size() + spheres_.size() + ellipsoids_.size() + capsules_.size();
+  }
+  bool empty() const { return size() == 0; }
+
+  /// The nearest hit distance over all shapes if below `best`, else `best`.
+  /// `direction` should be a unit vector. O(size()).
+  float nearest(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                float best = std::numeric_limits<float>::infinity()) const {
+    consider(planes_, origin, direction, best);
+    consider(boxes_, origin, direction, best);
+    consider(cylinders_, origin, direction, best);
+    consider(spheres_, origin, direction, best);
+    consider(ellipsoids_, origin, direction, best);
+    consider(capsules_, origin, direction, best);
+    return best;
+  }
+
+  /// The nearest hit distance, or nothing.
+  std::optional<float> intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) const {
+    const float t = nearest(origin, direction);
+    if (t < std::numeric_limits<float>::infinity()) return t;
+    return std::nullopt;
+  }
+
+ private:
+  template <class S>
+  ShapeSet& push(std::vector<S>& v, const S& s) {
+    v.push_back(s);
+    bounds_.extend(s.bounds());
+    return *this;
+  }
+  template <class S>
+  static void consider(const std::vector<S>& v, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float& best) {
+    for (const S& s : v) {
+      const std::optional<float> t = sim::intersect(s, o, d);
+      if (t && *t < best) best = *t;
+    }
+  }
+
+  std::vector<Plane> planes_;
+  std::vector<Box> boxes_;
+  std::vector<Cylinder> cylinders_;
+  std::vector<Sphere> spheres_;
+  std::vector<Ellipsoid> ellipsoids_;
+  std::vector<Capsule> capsules_;
+  Aabb bounds_;
+  bool unbounded_ = false;
+};
+
+/// Position and heading of a moving object at one time.
+struct Pose {
+  Eigen::Vector3f position = Eigen::Vector3f::Zero();  ///< world [m]
+  float cos_yaw = 1.0f;                                ///< heading (direction of motion) about +z
+  float sin_yaw = 0.0f;
+};
+
+/// A periodic path followed at constant speed: a closed polyline (a segment
+/// travelled back and forth is the polyline a -> b -> a, with an
+/// instantaneous turn at each end) or a horizontal circle.
+class Trajectory {
+ public:
+  /// Standing still at `p` (heading +x).
+  static Trajectory fixed(const Eigen::Vector3f& p) { return loop({p}, 0.0f); }
+
+  /// From `a` to `b` and back at `speed` [m/s]; `phase` [m] is the distance
+  /// already travelled along a -> b -> a at t = 0 (any value, wrapped).
+  static Trajectory back_and_forth(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float speed, float phase = 0.0f) {
+    return loop({a, b}, speed, phase);
+  }
+
+  /// Around the closed polyline `points` (last joined to first) at `speed`
+  /// [m/s], starting `phase` [m] along it at t = 0.
+  static Trajectory loop(std::vector<Eigen::Vector3f> points, float speed, float phase = 0.0f) {
+    if (points.empty()) throw std::invalid_argument("Trajectory::loop: points must not be empty");
+    Trajectory t;
+    t.kind_ = Kind::polyline;
+    t.points_ = std::move(points);
+    t.speed_ = speed;
+    t.phase_ = phase;
+    const std::size_t n = t.points_.size();
+    t.cumulative_.assign(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3f seg = t.points_[(i + 1) % n] - t.points_[i];
+      t.cumulative_[i + 1] = t.cumulative_[i] + static_cast<double>(seg.norm());
+      const Eigen::Vector2f h(seg.x(), seg.y());
+      const float len = h.norm();
+      t.headings_.push_back(len > 1e-6f ? Eigen::Vector2f(h / len) : Eigen::Vector2f(1.0f, 0.0f));
+    }
+    return t;
+  }
+
+  /// Around the horizontal circle of `radius` about `center` at `speed`
+  /// [m/s] (> 0 counter-clockwise seen from above), starting at angle
+  /// `phase` [rad] (0: center + radius * x).
+  static Trajectory circle(const Eigen::Vector3f& center, float radius, float speed, float phase = 0.0f) {
+    Trajectory t;
+    t.kind_ = Kind::circle;
+    t.points_ = {center};
+    t.radius_ = std::abs(radius);
+    t.speed_ = speed;
+    t.phase_ = phase;
+    return t;
+  }
+
+  /// Pose at stream time `time` [s]. O(number of polyline points).
+  Pose pose(double time) const {
+    Pose p;
+    if (kind_ == Kind::circle) {
+      constexpr double kTwoPi = 6.283185307179586476925;
+      double angle = static_cast<double>(phase_);
+      if (radius_ > 0.0f) angle += static_cast<double>(speed_) * time / static_cast<double>(radius_);
+      angle -= kTwoPi * std::floor(angle / kTwoPi);
+      const float c = static_cast<float>(std::cos(angle));
+      const float s = static_cast<float>(std::sin(angle));
+      p.position = points_[0] + radius_ * Eigen::Vector3f(c, s, 0.0f);
+      p.cos_yaw = speed_ >= 0.0f ? -s : s;
+      p.sin_yaw = speed_ >= 0.0f ? c : -c;
+      return p;
+    }
+    const double total = cumulative_.back();
+    if (!(total > 1e-9)) {
+      p.position = points_[0];
+      return p;
+    }
+    double s = static_cast<double>(phase_) + static_cast<double>(speed_) * time;
+    s -= total * std::floor(s / total);
+    std::size_t i = 0;
+    const std::size_t n = points_.size();
+    while (i + 1 < n && s >= cumulative_[i + 1]) ++i;
+    const double len = cumulative_[i + 1] - cumulative_[i];
+    const float f = len > 1e-12 ? static_cast<float>((s - cumulative_[i]) / len) : 0.0f;
+    const Eigen::Vector3f& a = points_[i];
+    const Eigen::Vector3f& b = points_[(i + 1) % n];
+    p.position = a + f * (b - a);
+    const float sign = speed_ >= 0.0f ? 1.0f : -1.0f;
+    p.cos_yaw = sign * headings_[i].x();
+    p.sin_yaw = sign * headings_[i].y();
+    return p;
+  }
+
+  Eigen::Vector3f position(double time) const { return pose(time).position; }
+
+  /// Bounds of every position the trajectory takes.
+  Aabb swept_bounds() const {
+    Aabb b;
+    if (kind_ == Kind::circle) {
+      const Eigen::Vector3f r(radius_, radius_, 0.0f);
+      return Aabb{points_[0] - r, points_[0] + r};
+    }
+    for (const Eigen::Vector3f& p : points_) b.extend(p);
+    return b;
+  }
+
+  /// Time for one full period [s] (infinity when standing still).
+  double period() const {
+    constexpr double kTwoPi = 6.283185307179586476925;
+    const double length = kind_ == Kind::circle ? kTwoPi * static_cast<double>(radius_) : cumulative_.back();
+    if (speed_ == 0.0f || !(length > 0.0)) return std::numeric_limits<double>::infinity();
+    return length / std::abs(static_cast<double>(speed_));
+  }
+
+ private:
+  enum class Kind { polyline, circle };
+  Trajectory() = default;
+
+  Kind kind_ = Kind::polyline;
+  std::vector<Eigen::Vector3f> points_;
+  std::vector<double> cumulative_;
+  std::vector<Eigen::Vector2f> headings_;
+  float radius_ = 0.0f;
+  float speed_ = 0.0f;
+  float phase_ = 0.0f;
+};
+
+/// What a scene knows about one of its objects (for tests, ground truth
+/// summaries and tools; not used when casting).
+struct ObjectInfo {
+  int instance = 0;     ///< > 0, unique in the scene
+  std::string label;    ///< e.g. "desk", "person", "trunk"
+  bool moving = false;  ///< true: follows a trajectory
+  Aabb bounds;          ///< world bounds over all times (swept along the trajectory)
+};
+
+/// A world of analytic shapes with ground-truth instance ids. See the file
+/// comment for an example and thread safety.
+class Scene {
+ public:
+  /// Adds structure (instance 0): ground, walls, ceiling, facades. Infinite
+  /// planes are tested for every ray; bounded shapes are culled by bounds.
+  void add_structure(const ShapeSet& shapes) {
+    if (shapes.empty()) return;
+    if (shapes.unbounded()) {
+      unbounded_.push_back(Body{shapes.bounds(), shapes, 0});
+    } else {
+      statics_.push_back(Body{shapes.bounds(), shapes, 0});
+    }
+  }
+
+  /// Adds a static object in world coordinates; returns its instance id
+  /// (1, 2, ... in order of addition). Throws std::invalid_argument for an
+  /// empty or unbounded set.
+  int add_object(std::string label, const ShapeSet& shapes) {
+    check_object(shapes, "add_object");
+    const int id = next_id_++;
+    statics_.push_back(Body{shapes.bounds(), shapes, id});
+    infos_.push_back(ObjectInfo{id, std::move(label), false, shapes.bounds()});
+    anchors_.push_back(shapes.bounds().center());
+    return id;
+  }
+
+  /// Adds a moving object: `local` is given in the object's frame, whose
+  /// origin follows `trajectory` and whose +x axis points along the motion
+  /// when `face_motion` (otherwise it stays parallel to world +x). Returns
+  /// its instance id.
+  int add_moving_object(std::string label, const ShapeSet& local, Trajectory trajectory, bool face_motion = true) {
+    check_object(local, "add_moving_object");
+    const int id = next_id_++;
+    Mover m{local, std::move(trajectory), face_motion, {}, Eigen::Vector3f::Zero(), 0.0f, id};
+    const Aabb& lb = local.bounds();
+    m.local_center = lb.center();
+    m.local_radius = 0.5f * (lb.hi - lb.lo).norm();
+    // Swept bounds: every position, plus the local body rotated anywhere.
+    const float reach = m.local_center.head<2>().norm() + m.local_radius;
+    const Aabb path = m.trajectory.swept_bounds();
+    m.swept.lo = path.lo - Eigen::Vector3f(reach, reach, -lb.lo.z());
+    m.swept.hi = path.hi + Eigen::Vector3f(reach, reach, lb.hi.z());
+    if (!face_motion) {
+      m.swept.lo = path.lo + lb.lo;
+      m.swept.hi = path.hi + lb.hi;
+    }
+    infos_.push_back(ObjectInfo{id, std::move(label), true, m.swept});
+    anchors_.push_back(Eigen::Vector3f::Zero());
+    movers_.push_back(std::move(m));
+    return id;
+  }
+
+  /// The first surface along the ray from `origin` in `direction` (world
+  /// frame; normalized here if it is not a unit vector) at stream time
+  /// `time` [s]: its distance [m] and instance id (0 for structure), or
+  /// nothing. Shapes containing the origin are ignored (shapes.hpp).
+  /// O(objects) bound tests plus the shapes of the objects whose bounds the
+  /// ray crosses. Thread-safe.
+  std::optional<Hit> cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, double time) const {
+    Eigen::Vector3f d = direction;
+    const float n2 = d.squaredNorm();
+    if (!(n2 > 1e-24f) || !std::isfinite(n2) || !origin.allFinite()) return std::nullopt;
+    if (std::abs(n2 - 1.0f) > 1e-5f) d /= std::sqrt(n2);
+    const Eigen::Vector3f inv = detail::safe_inverse(d);
+
+    float best = std::numeric_limits<float>::infinity();
+    int instance = -1;
+    for (const Body& b : unbounded_) take(b.shapes.nearest(origin, d, best), b.instance, best, instance);
+    for (const Body& b : statics_) {
+      if (!detail::ray_hits_aabb(b.bounds, origin, inv, best)) continue;
+      take(b.shapes.nearest(origin, d, best), b.instance, best, instance);
+    }
+    for (const Mover& m : movers_) {
+      if (!detail::ray_hits_aabb(m.swept, origin, inv, best)) continue;
+      const Pose p = m.trajectory.pose(time);
+      const float c = m.face_motion ? p.cos_yaw : 1.0f;
+      const float s = m.face_motion ? p.sin_yaw : 0.0f;
+      // Into the object frame: rotate by -yaw about the trajectory position.
+      const Eigen::Vector3f r = origin - p.position;
+      const Eigen::Vector3f lo(c * r.x() + s * r.y(), -s * r.x() + c * r.y(), r.z());
+      const Eigen::Vector3f ld(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());
+      // Bounding sphere (unit direction): closest approach and reach.
+      const Eigen::Vector3f oc = lo - m.local_center;
+      const float tc = -oc.dot(ld);
+      const float dist2 = (oc + tc * ld).squaredNorm();
+      if (dist2 > m.local_radius * m.local_radius || tc + m.local_radius < 0.0f || tc - m.local_radius > best) {
+        continue;
+      }
+      take(m.shapes.nearest(lo, ld, best), m.instance, best, instance);
+    }
+    if (instance < 0) return std::nullopt;
+    return Hit{best, instance};
+  }
+
+  /// The objects, in order of instance id (1, 2, ...). Structure is not listed.
+  const std::vector<ObjectInfo>& objects() const { return infos_; }
+  /// Number of objects (= the largest instance id).
+  std::size_t object_count() const { return infos_.size(); }
+
+  /// A reference point of object `instance` at `time`: the trajectory
+  /// position (the local origin, e.g. between a person's feet) for a moving
+  /// object, the bounds center for a static one. Throws std::out_of_range
+  /// for an unknown id.
+  Eigen::Vector3f position(int instance, double time) const {
+    if (instance < 1 || instance > static_cast<int>(infos_.size())) {
+      std::string msg("Scene::position: unknown instance ");
+      msg.append(std::to_string(instance));
+      throw std::out_of_range(msg);
+    }
+    const auto k = static_cast<std::size_t>(instance - 1);
+    if (!infos_[k].moving) return anchors_[k];
+    for (const Mover& m : movers_)
+      if (m.instance == instance) return m.trajectory.position(time);
+    return anchors_[k];  // unreachable
+  }
+
+ private:
+  struct Body {
+    Aabb bounds;
+    ShapeSet shapes;
+    int instance = 0;
+  };
+  struct Mover {
+    ShapeSet shapes;  // local frame
+    Trajectory trajectory;
+    bool face_motion = true;
+    Aabb swept;
+    Eigen::Vector3f local_center;
+    float local_radius = 0.0f;
+    int instance = 0;
+  };
+
+  static void take(float t, int id, float& best, int& instance) {
+    if (t < best) {
+      best = t;
+      instance = id;
+    }
+  }
+
+  static void check_object(const ShapeSet& shapes, const char* where) {
+    if (shapes.empty() || shapes.unbounded()) {
+      std::string msg("Scene::");
+      msg.append(where);
+      msg.append(": an object needs at least one shape and no infinite plane");
+      throw std::invalid_argument(msg);
+    }
+  }
+
+  std::vector<Body> unbounded_;
+  std::vector<Body> statics_;
+  std::vector<Mover> movers_;
+  std::vector<ObjectInfo> infos_;
+  std::vector<Eigen::Vector3f> anchors_;
+  int next_id_ = 1;
+};
+
+}  // namespace streamclust::sim

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The scan simulator: a sensor model's rays, carried by a moving sensor,
+/// ray-cast into a Scene, returned as points with ground truth in the
+/// sensor frame at capture time.
+///
+/// The sensor concept (see ray.hpp):
+///
+/// | expression          | type                   | meaning                                        |
+/// |---------------------|------------------------|------------------------------------------------|
+/// | `s.next()`          | convertible to `Ray`   | the next firing: unit direction in the sensor frame (x forward, z up), stream time [s], non-decreasing |
+/// | `cs.point_rate()`   | convertible to `double`| nominal firings per second [Hz]                |
+///
+/// \code
+/// namespace sim = streamclust::sim;
+/// sim::Simulator<MySensor>::Params params;
+/// params.velocity = {1.0f, 0.0f, 0.0f};  // drive along world +x at 1 m/s
+/// params.dropout = 0.05f;
+/// sim::Simulator<MySensor> simulator(MySensor{}, sim::office_scene(7), params);
+/// while (simulator.time() < 1.0) {
+///   const sim::SimPoint p = simulator.next();  // sensor frame at p.t, p.instance = ground truth
+///   engine.insert(p);
+/// }
+/// \endcode
+///
+/// Thread safety: none (one simulator per thread; the Scene may be shared
+/// by copies since casting is const).
+
+#include <streamclust/sim/ray.hpp>
+#include <streamclust/sim/scene.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace streamclust::sim {
+
+namespace detail {
+
+template <class S, class = void>
+struct is_sim_sensor : std::false_type {};
+
+template <class S>
+struct is_sim_sensor<S, std::void_t<decltype(std::declval<S&>().next()), decltype(std::declval<const S&>().point_rate())>>
+    : std::bool_constant<std::is_convertible_v<decltype(std::declval<S&>().next()), Ray> &&
+                         std::is_convertible_v<decltype(std::declval<const S&>().point_rate()), double>> {};
+
+inline void require_param(bool ok, const char* name, double value, const char* allowed) {
+  if (ok) return;
+  std::string msg("Simulator::Params: ");
+  msg.append(name);
+  msg.append(" = ");
+  msg.append(std::to_string(value));
+  msg.append(" is invalid, expected ");
+  msg.append(allowed);
+  throw std::invalid_argument(msg);
+}
+
+/// Reflectivity in [0.15, 0.85) hashed from the instance id; 0.35 for structure.
+inline float reflectivity(int instance) {
+  if (instance <= 0) return 0.35f;
+  std::uint64_t h = static_cast<std::uint64_t>(instance) * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 29;
+  return 0.15f + 0.7f * static_cast<float>(h % 1000u) / 1000.0f;
+}
+
+}  // namespace detail
+
+/// True when `S` models the sensor concept (see the file comment).
+template <class S>
+inline constexpr bool is_sim_sensor_v = detail::is_sim_sensor<S>::value;
+
+/// Fires a sensor's rays into a scene; see the file comment for an example.
+///
+/// Per firing, in order:
+/// 1. `ray = sensor.next()`; the direction is normalized.
+/// 2. Sensor pose at `ray.time`: position `start_position + velocity * t`
+///    (world frame, constant velocity), yaw `yaw_rate * t` about world +z
+///    (no roll, no pitch). The ray is rotated into the world and cast into
+///    the scene at `ray.time` (moving objects are where they are then).
+/// 3. Measured range = true range + N(0, range_noise) along the ray.
+/// 4. No return when nothing is hit, when the measured range is outside
+///    [min_range, max_range], or (with probability `dropout`, drawn only for
+///    rays that would have returned) at random. Like a Livox driver, which
+///    drops no-return firings, the simulator then moves on to the next ray.
+/// 5. The point is `direction * measured range` in the SENSOR frame at
+///    capture time, stamped `ray.time`, with the hit's instance id and an
+///    intensity `255 * reflectivity(instance)` (a fixed per-object value in
+///    [38, 217], 89 for structure, like the calibrated reflectivity a Livox
+///    reports: no range fall-off).
+///
+/// Deterministic: the same sensor, scene, and params (seed included) give a
+/// bit-identical stream (the generator is SplitMix64 with its own
+/// distributions, independent of the standard library).
+template <class Sensor>
+class Simulator {
+  static_assert(is_sim_sensor_v<Sensor>,
+                "STREAMCLUST_SIM_SENSOR_INVALID: a sensor needs `Ray next()` (direction in the sensor frame, time in "
+                "seconds) and `double point_rate() const` [Hz]");
+
+ public:
+  struct Params {
+    float range_noise = 0.02f;  ///< standard deviation of the range noise along the ray [m], >= 0
+    float dropout = 0.0f;       ///< probability that a would-be return is lost, in [0, 1)
+    float max_range = 40.0f;    ///< measured ranges above: no return [m], > min_range
+    float min_range = 0.1f;     ///< measured ranges below: no return [m], >= 0
+    Eigen::Vector3f start_position{0.0f, 0.0f, 1.0f};  ///< sensor origin in the world at t = 0 [m]
+    Eigen::Vector3f velocity{0.0f, 0.0f, 0.0f};        ///< ego-motion, world frame [m/s]
+    float yaw_rate = 0.0f;                             ///< ego-rotation about world +z [rad/s]
+    std::uint64_t seed = 1;                            ///< noise and dropout stream
+  };
+
+  /// What happened to the firings so far.
+  struct Stats {
+    std::uint64_t fired = 0;         ///< rays taken from the sensor and cast
+    std::uint64_t returned = 0;      ///< points returned by next()
+    std::uint64_t no_hit = 0;        ///< nothing hit
+    std::uint64_t out_of_range = 0;  ///< measured range outside [min_range, max_range]
+    std::uint64_t dropped = 0;       ///< lost to random dropout
+  };
+
+  /// Consecutive firings without a return after which next() gives up.
+  static constexpr std::uint64_t kMaxConsecutiveMisses = 1000000;
+
+  /// Throws std::invalid_argument for invalid params (message names the
+  /// parameter, its value and the allowed range). Takes the first ray from
+  /// the sensor (so that time() can report it).
+  Simulator(Sensor sensor, Scene scene, const Params& params)
+      : sensor_(std::move(sensor)), scene_(std::move(scene)), params_(params), rng_(detail::make_rng(params.seed, 0x5115)) {
+    validate(params_);
+    pending_ = sensor_.next();
+  }
+
+  /// The next point, skipping firings without a return. Throws
+  /// std::runtime_error after kMaxConsecutiveMisses firings in a row
+  /// without a return (a scene that returns nothing). O(1) amortized
+  /// per firing (one Scene::cast).
+  SimPoint next() {
+    for (std::uint64_t misses = 0; misses < kMaxConsecutiveMisses; ++misses) {
+      const Ray ray = pending_;
+      pending_ = sensor_.next();
+      ++stats_.fired;
+      std::optional<SimPoint> p = fire(ray);
+      if (p) {
+        ++stats_.returned;
+        return *p;
+      }
+    }
+    std::string msg("Simulator::next: no return in ");
+    msg.append(std::to_string(kMaxConsecutiveMisses));
+    msg.append(" consecutive firings (empty scene, or everything out of range?)");
+    throw std::runtime_error(msg);
+  }
+
+  /// Stream time of the next firing [s] (it may produce no return).
+  double time() const { return pending_.time; }
+
+  /// Sensor position in the world at time t [m].
+  Eigen::Vector3f sensor_position(double t) const {
+    return params_.start_position + static_cast<float>(t) * params_.velocity;
+  }
+  /// Sensor yaw about world +z at time t [rad].
+  float sensor_yaw(double t) const { return static_cast<float>(static_cast<double>(params_.yaw_rate) * t); }
+
+  const Stats& stats() const { return stats_; }
+  const Params& params() const { return params_; }
+  const Scene& scene() const { return scene_; }
+  const Sensor& sensor() const { return sensor_; }
+
+ private:
+  static void validate(const Params& p) {
+    detail::require_param(std::isfinite(p.range_noise) && p.range_noise >= 0.0f, "range_noise", p.range_noise,
+                          "a finite value >= 0 [m]");
+    detail::require_param(p.dropout >= 0.0f && p.dropout < 1.0f, "dropout", p.dropout, "a probability in [0, 1)");
+    detail::require_param(std::isfinite(p.min_range) && p.min_range >= 0.0f, "min_range", p.min_range,
+                          "a finite value >= 0 [m]");
+    detail::require_param(std::isfinite(p.max_range) && p.max_range > p.min_range, "max_range", p.max_range,
+                          "a finite value > min_range [m]");
+    detail::require_param(p.start_position.allFinite(), "start_position (a coordinate)",
+                          static_cast<double>(p.start_position.sum()), "finite coordinates [m]");
+    detail::require_param(p.velocity.allFinite(), "velocity (a component)", static_cast<double>(p.velocity.sum()),
+                          "finite components [m/s]");
+    detail::require_param(std::isfinite(p.yaw_rate), "yaw_rate", p.yaw_rate, "a finite value [rad/s]");
+  }
+
+  std::optional<SimPoint> fire(const Ray& ray) {
+    const float n2 = ray.direction.squaredNorm();
+    if (!(n2 > 0.0f) || !std::isfinite(n2)) {
+      ++stats_.no_hit;
+      return std::nullopt;
+    }
+    const Eigen::Vector3f d = ray.direction / std::sqrt(n2);
+    const double t = ray.time;
+    const double yaw = static_cast<double>(params_.yaw_rate) * t;
+    const float c = static_cast<float>(std::cos(yaw));
+    const float s = static_cast<float>(std::sin(yaw));
+    const Eigen::Vector3f world(c * d.x() - s * d.y(), s * d.x() + c * d.y(), d.z());
+    const std::optional<Hit> hit = scene_.cast(sensor_position(t), world, t);
+    if (!hit) {
+      ++stats_.no_hit;
+      return std::nullopt;
+    }
+    float range = hit->range;
+    if (params_.range_noise > 0.0f) range += params_.range_noise * static_cast<float>(rng_.normal());
+    if (!(range >= params_.min_range) || !(range <= params_.max_range)) {
+      ++stats_.out_of_range;
+      return std::nullopt;
+    }
+    if (params_.dropout > 0.0f && rng_.uniform() < static_cast<double>(params_.dropout)) {
+      ++stats_.dropped;
+      return std::nullopt;
+    }
+    const Eigen::Vector3f p = range * d;
+    return SimPoint{p.x(), p.y(), p.z(), 255.0f * detail::reflectivity(hit->instance), t, hit->instance};
+  }
+
+  Sensor sensor_;
+  Scene scene_;
+  Params params_;
+  detail::SplitMix64 rng_;
+  Ray pending_;
+  Stats stats_;
+};
+
+}  // namespace streamclust::sim
