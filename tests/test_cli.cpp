@@ -233,7 +233,8 @@ TEST_CASE("the --verify comparison finds the first point where two partitions di
 
 TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {
   const fs::path dir = temp_dir("simulate");
-  const auto sim = run({"simulate", "--seconds", "0.1", "--point-rate", "20000", "--out", (dir / "s.csv").string()});
+  const auto sim = run({"simulate", "--sensor", "synthetic", "--scene", "room", "--seconds", "0.1", "--point-rate",
+                        "20000", "--out", (dir / "s.csv").string()});
   INFO(sim.err);
   REQUIRE(sim.code == 0);
   auto reader = sc::io::open_reader((dir / "s.csv").string(), {});
@@ -245,9 +246,26 @@ TEST_CASE("simulate writes a stream with ground truth that cluster reads back") 
   std::size_t objects = 0;
   for (const auto& r : records) objects += r.label > 0;
   CHECK(objects > 0);
-  CHECK(run({"simulate", "--seconds", "0.05", "--out", (dir / "s.pcd").string(), "--quiet"}).code == 0);
-  CHECK(run({"cluster", (dir / "s.pcd").string(), "--quiet"}).code == 0);
+  for (const char* sensor : {"mid360", "mid40", "mid70", "avia", "spinning32"}) {
+    for (const char* scene : {"office", "forest", "street"}) {
+      INFO(sensor << " in " << scene);
+      const auto r = run({"simulate", "--sensor", sensor, "--scene", scene, "--seconds", "0.05", "--speed", "1",
+                          "--out", (dir / "m.pcd").string(), "--quiet"});
+      REQUIRE(r.code == 0);
+      auto pcd = sc::io::open_reader((dir / "m.pcd").string(), {});
+      std::vector<sc::io::Record> cloud;
+      while (pcd->read(cloud, 4096) > 0) {
+      }
+      CHECK(cloud.size() > 100);
+      std::size_t labelled = 0;
+      for (const auto& r2 : cloud) labelled += r2.label > 0;
+      CHECK(labelled > 0);
+    }
+  }
+  CHECK(run({"cluster", (dir / "m.pcd").string(), "--quiet"}).code == 0);
+  CHECK(run({"simulate", "--sensor", "synthetic", "--out", (dir / "s.csv").string()}).code == 2);
   CHECK(run({"simulate", "--out", (dir / "s.txt").string()}).code == 2);
   CHECK(run({"simulate", "--scene", "mars", "--out", (dir / "s.csv").string()}).code == 2);
+  CHECK(run({"simulate", "--dropout", "2", "--out", (dir / "s.csv").string()}).code == 2);
   CHECK(run({"simulate", "--help"}).out.find("examples:") != std::string::npos);
 }

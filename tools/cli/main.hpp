@@ -94,17 +94,25 @@ examples:
 }
 
 inline const char* simulate_help() {
-  return R"(usage: streamclust simulate --out FILE [--sensor synthetic] [--scene room] [--seconds S]
-                            [--point-rate HZ] [--seed N] [--quiet]
+  return R"(usage: streamclust simulate --out FILE [--sensor S] [--scene C] [--seconds S] [--seed N]
+                            [--speed M/S] [--yaw-rate RAD/S] [--noise M] [--dropout P] [--max-range M]
 
 Writes a simulated point stream with its ground truth to FILE (.csv: columns
-x,y,z,intensity,t,label; .pcd: binary with a label field). label is the id
-of the object hit, 0 for structure (floor, ceiling, walls). Deterministic
-for a given seed. Defaults: 1 s at 200 kHz, seed 1.
+x,y,z,intensity,t,label; .pcd: binary with a label field). label is the
+instance id of the object hit, 0 for structure (ground, walls, ceiling).
+Points are in the sensor frame at capture time; no-returns are dropped.
+Deterministic for a given seed.
+
+  --sensor mid360|mid40|mid70|avia|spinning32   (default mid360; rates 200/100/100/240/576 kHz)
+  --scene office|forest|street                  (default office)
+  --sensor synthetic --scene room               the older built-in stand-in (--point-rate HZ)
+  --seconds S (default 1)  --seed N (default 1)
+  --speed M/S  --yaw-rate RAD/S                 ego-motion (default 0)
+  --noise M (default 0.02)  --dropout P (default 0)  --max-range M (default 40)
 
 examples:
-  streamclust simulate --seconds 2 --out room.csv
-  streamclust simulate --seconds 0.5 --seed 7 --out room.pcd
+  streamclust simulate --sensor mid360 --scene office --seconds 2 --out office.csv
+  streamclust simulate --sensor avia --scene forest --speed 1.5 --out forest.pcd
 )";
 }
 
