@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/temp_dir.hpp"
+
 #include <streamclust/io/reader.hpp>
 #include <streamclust/io/writers.hpp>
 
@@ -22,23 +24,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ErrorTempDir {
-  fs::path dir;
-  explicit ErrorTempDir(const std::string& name) {
-    std::random_device rd;
-    dir = fs::temp_directory_path() / ("streamclust_io_errors_" + name + "_" + std::to_string(rd()));
-    fs::create_directories(dir);
-  }
-  ~ErrorTempDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string file(const std::string& name, const std::string& content) const {
-    const std::string p = (dir / name).string();
-    std::ofstream(p, std::ios::binary) << content;
-    return p;
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
+/// A per-test temporary directory (tests/support/temp_dir.hpp).
+struct ErrorTempDir : streamclust::test::TempDir {
+  explicit ErrorTempDir(const std::string& name) : TempDir("io_errors", name) {}
 };
 
 io::ReadOptions with_rate() {

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/temp_dir.hpp"
+
 #include <streamclust/io/lzf.hpp>
 #include <streamclust/io/reader.hpp>
 #include <streamclust/point_traits.hpp>
@@ -21,23 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A fresh directory under the system temp directory, removed at scope exit.
-struct ReaderTempDir {
-  fs::path dir;
-  explicit ReaderTempDir(const std::string& name) {
-    std::random_device rd;
-    dir = fs::temp_directory_path() / ("streamclust_io_readers_" + name + "_" + std::to_string(rd()));
-    fs::create_directories(dir);
-  }
-  ~ReaderTempDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string file(const std::string& name, const std::string& content) const {
-    const std::string p = (dir / name).string();
-    std::ofstream(p, std::ios::binary) << content;
-    return p;
-  }
+/// A per-test temporary directory (tests/support/temp_dir.hpp).
+struct ReaderTempDir : streamclust::test::TempDir {
+  explicit ReaderTempDir(const std::string& name) : TempDir("io_readers", name) {}
 };
 
 std::vector<io::Record> read_all(io::PointReader& r, std::size_t chunk = 1000) {

@@ -56,6 +56,24 @@ class OutFile {
   std::ofstream out_;
 };
 
+template <class T>
+void append_number(std::string& s, T v);
+
+/// Appends "x<sep>y<sep>z<sep>intensity<sep>t<sep>" of a record (text formats).
+template <class Record>
+void append_point_fields(std::string& s, const Record& r, char sep) {
+  append_number(s, r.x);
+  s += sep;
+  append_number(s, r.y);
+  s += sep;
+  append_number(s, r.z);
+  s += sep;
+  append_number(s, r.intensity);
+  s += sep;
+  append_number(s, r.t);
+  s += sep;
+}
+
 /// Appends the shortest round-trip text of v ("nan", "inf", "-inf" for non-finite values).
 template <class T>
 void append_number(std::string& s, T v) {
@@ -122,16 +140,7 @@ inline void write_csv_points(const std::string& path, const std::vector<Record>&
   std::string s = "x,y,z,intensity,t,label\n";
   for (std::size_t i = 0; i < records.size(); ++i) {
     const Record& r = records[i];
-    detail::append_number(s, r.x);
-    s += ',';
-    detail::append_number(s, r.y);
-    s += ',';
-    detail::append_number(s, r.z);
-    s += ',';
-    detail::append_number(s, r.intensity);
-    s += ',';
-    detail::append_number(s, r.t);
-    s += ',';
+    detail::append_point_fields(s, r, ',');
     s += std::to_string(detail::label_of(records, labels, i));
     s += '\n';
     if (s.size() > (1u << 16)) {
@@ -170,16 +179,7 @@ inline void write_pcd(const std::string& path, const std::vector<Record>& record
   if (encoding == "ascii") {
     for (std::size_t i = 0; i < n; ++i) {
       const Record& r = records[i];
-      detail::append_number(s, r.x);
-      s += ' ';
-      detail::append_number(s, r.y);
-      s += ' ';
-      detail::append_number(s, r.z);
-      s += ' ';
-      detail::append_number(s, r.intensity);
-      s += ' ';
-      detail::append_number(s, r.t);
-      s += ' ';
+      detail::append_point_fields(s, r, ' ');
       s += std::to_string(detail::label32(path, detail::label_of(records, labels, i)));
       s += '\n';
       if (s.size() > (1u << 16)) {
@@ -263,17 +263,9 @@ inline void write_ply(const std::string& path, const std::vector<Record>& record
       put(&l, 4);
       put(c.data(), 3);
     } else {
-      detail::append_number(s, r.x);
-      s += ' ';
-      detail::append_number(s, r.y);
-      s += ' ';
-      detail::append_number(s, r.z);
-      s += ' ';
-      detail::append_number(s, r.intensity);
-      s += ' ';
-      detail::append_number(s, r.t);
-      s += ' ' + std::to_string(l) + ' ' + std::to_string(c[0]) + ' ' + std::to_string(c[1]) + ' ' +
-           std::to_string(c[2]) + '\n';
+      detail::append_point_fields(s, r, ' ');
+      s += std::to_string(l) + ' ' + std::to_string(c[0]) + ' ' + std::to_string(c[1]) + ' ' + std::to_string(c[2]) +
+           '\n';
     }
     if (s.size() > (1u << 16)) {
       out.write(s);
