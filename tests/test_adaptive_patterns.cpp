@@ -91,7 +91,17 @@ TEST_CASE("adaptive resolution converges on every simulated sensor pattern") {
         // A repetitive pattern (the spinning sensor over several turns) fires
         // exactly the same directions again: no grid can go below that.
         const sc::AdaptiveStep final_step = sc::AdaptiveResolution::measure(p.coords, grid);
-        CHECK(final_step.mean_multiplicity <= std::max(t_m, duplicate_floor(p.coords)) * 1.0001f);
+        const float floor = duplicate_floor(p.coords);
+        INFO("final M_mu " << final_step.mean_multiplicity << ", duplicate floor " << floor << ", stop "
+                           << std::string(sc::to_string(loop.stop_reason())));
+        if (final_step.mean_multiplicity > t_m) {
+          // Documented fallback: only when refining stopped paying, near the floor.
+          CHECK(loop.stop_reason() == sc::AdaptiveStop::refinement_futile);
+          CHECK(floor > t_m);
+          CHECK(final_step.mean_multiplicity <= floor * 1.05f);
+        } else {
+          CHECK(loop.stop_reason() != sc::AdaptiveStop::iteration_cap);
+        }
         // The aspect constraint: cols / rows within a factor of the FOV aspect.
         const double ratio = static_cast<double>(grid.cols) / grid.rows;
         CHECK(ratio <= p.fov_aspect * params.aspect_factor * 1.01 + 1.0 / grid.rows);

@@ -21,6 +21,7 @@
 #include <vector>
 
 using streamclust::AdaptiveResolution;
+using streamclust::AdaptiveStop;
 using streamclust::AdaptiveStep;
 using streamclust::FixedResolution;
 using streamclust::GridSize;
@@ -195,8 +196,10 @@ TEST_CASE("AdaptiveResolution: the control loop reacts to the density of the clo
 TEST_CASE("AdaptiveResolution: degenerate input and limits") {
   SUBCASE("empty input keeps the initial grid and records nothing") {
     AdaptiveResolution res{{16, 128}};
+    CHECK(res.stop_reason() == AdaptiveStop::not_run);
     const GridSize g = res.calibrate({}, 2.0f);
     CHECK(g == GridSize{16, 128});
+    CHECK(res.stop_reason() == AdaptiveStop::no_input);
     CHECK(res.grid() == g);
     CHECK(res.trace().empty());
     CHECK_FALSE(res.needs_calibration());
@@ -230,12 +233,49 @@ TEST_CASE("AdaptiveResolution: degenerate input and limits") {
     CHECK(res.trace().size() < 50);  // stopped at a fixed point, not by the iteration limit
     CHECK(res.trace().back().mean_multiplicity == doctest::Approx(1000.0));
   }
+  SUBCASE("all points in one direction: refinement is futile, the coarsest grid is kept") {
+    // Exact duplicates, and points along one ray with jitter far below any
+    // cell: no grid separates them. With the default max_cells (2^24) the
+    // loop must not walk up to a gigantic grid.
+    for (const float jitter : {0.0f, 1e-7f}) {
+      INFO("jitter " << jitter);
+      std::vector<Projected> one_direction;
+      for (int i = 0; i < 5000; ++i) one_direction.push_back(coord(0.4f + jitter * static_cast<float>(i % 7), 0.6f));
+      AdaptiveResolution res{{}};
+      const GridSize g = res.calibrate(one_direction, 4.0f);
+      CHECK(res.stop_reason() == AdaptiveStop::refinement_futile);
+      CHECK(res.trace().size() == 2);  // one refinement that gained nothing
+      CHECK(g == res.trace().front().grid);  // the coarsest grid with the lowest M_mu
+      CHECK(res.trace().back().mean_multiplicity == doctest::Approx(5000.0));
+    }
+  }
+  SUBCASE("a repetitive pattern stops refining at its duplicate floor") {
+    // 400 distinct directions, each fired 3 times (three turns of a spinning
+    // sensor): M_mu cannot fall below 3 > T_M = 2.
+    std::vector<Projected> turns;
+    for (int turn = 0; turn < 3; ++turn)
+      for (int i = 0; i < 400; ++i) turns.push_back(coord(0.05f + 0.9f * static_cast<float>(i) / 400.0f, 0.5f + 0.001f * static_cast<float>(i % 5)));
+    AdaptiveResolution res{{}};
+    const GridSize g = res.calibrate(turns, 4.0f);
+    CHECK(res.stop_reason() == AdaptiveStop::refinement_futile);
+    const float mu = AdaptiveResolution::measure(turns, g).mean_multiplicity;
+    CHECK(mu >= 3.0f);
+    CHECK(mu <= 3.0f * 1.05f);
+    // Coarsest within 1 % of the best: no measured grid with (nearly) as low
+    // a multiplicity has fewer cells.
+    for (const AdaptiveStep& s : res.trace()) {
+      if (s.mean_multiplicity <= mu) CHECK(std::uint64_t{s.grid.rows} * s.grid.cols >= std::uint64_t{g.rows} * g.cols);
+    }
+  }
   SUBCASE("a single point") {
     AdaptiveResolution res{{}};
     const GridSize g = res.calibrate({coord(0.5f, 0.5f)}, 2.0f);
     CHECK(g.rows >= 1);
     CHECK(g.cols >= 1);
     CHECK(res.trace().size() <= 50);
+    CHECK(res.stop_reason() != AdaptiveStop::iteration_cap);
+    CHECK(res.stop_reason() != AdaptiveStop::refinement_futile);
+    CHECK(AdaptiveResolution::measure({coord(0.5f, 0.5f)}, g).mean_multiplicity == doctest::Approx(1.0));
   }
   SUBCASE("max_iterations bounds the trace") {
     AdaptiveResolution::Params p;

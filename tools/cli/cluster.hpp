@@ -380,9 +380,11 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     report.grid_wraps = engine->grid().wrap_columns;
     report.adaptive = engine->resolution().adaptive();
     report.trace = engine->resolution().trace();
+    report.stop = engine->resolution().stop_reason();
   } else {
     report.adaptive = frame_resolution.adaptive();
     report.trace = frame_resolution.trace();
+    report.stop = frame_resolution.stop_reason();
   }
   report.records = records;
   report.rejections = rejected_by_reason;

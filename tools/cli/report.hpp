@@ -38,6 +38,7 @@ struct Report {
   bool grid_wraps = false;
   bool adaptive = false;
   std::vector<AdaptiveStep> trace;
+  AdaptiveStop stop = AdaptiveStop::not_run;
   std::vector<CycleReport> cycles;
   std::uint64_t records = 0;
   RejectionCounts rejections{};
@@ -87,7 +88,7 @@ inline void write_report(std::ostream& o, const Report& r) {
     << ",\n  \"mode\": " << json_string(r.mode) << ",\n";
   o << "  \"grid\": {\"rows\": " << r.grid_rows << ", \"cols\": " << r.grid_cols
     << ", \"wrap_columns\": " << (r.grid_wraps ? "true" : "false") << ", \"adaptive\": " << (r.adaptive ? "true" : "false")
-    << ", \"trace\": [";
+    << ", \"stop\": " << json_string(to_string(r.stop)) << ", \"trace\": [";
   for (std::size_t i = 0; i < r.trace.size(); ++i) {
     const AdaptiveStep& s = r.trace[i];
     o << (i ? ", " : "") << "{\"rows\": " << s.grid.rows << ", \"cols\": " << s.grid.cols

@@ -30,6 +30,29 @@ struct AdaptiveStep {
   float mean_multiplicity = 0.0f;   ///< M_mu = points / |V|
 };
 
+/// Why AdaptiveResolution's last calibrate() stopped (see its class comment).
+enum class AdaptiveStop : std::uint8_t {
+  not_run,            ///< calibrate() has not been called
+  no_input,           ///< no accepted coordinate: the initial grid was kept
+  converged,          ///< M_mu <= T_M and stable within 1 %
+  fixed_point,        ///< the update proposed an already measured grid
+  refinement_futile,  ///< refining no longer lowered M_mu enough (shared directions)
+  iteration_cap,      ///< max_iterations grids measured
+};
+
+/// Lower-case name of `s` ("converged", ...), for reports.
+inline const char* to_string(AdaptiveStop s) {
+  switch (s) {
+    case AdaptiveStop::not_run: return "not_run";
+    case AdaptiveStop::no_input: return "no_input";
+    case AdaptiveStop::converged: return "converged";
+    case AdaptiveStop::fixed_point: return "fixed_point";
+    case AdaptiveStop::refinement_futile: return "refinement_futile";
+    case AdaptiveStop::iteration_cap: return "iteration_cap";
+  }
+  return "unknown";
+}
+
 /// Chooses the grid from the projected coordinates of the first window with
 /// the exponential control loop of C-ARC, so the grid fits the sensor's scan
 /// pattern and the chosen window T_B.
@@ -50,8 +73,11 @@ struct AdaptiveStep {
 ///
 /// Update, per iteration (d in {v: rows, h: cols}):
 /// - if M_mu > T_M (too many collisions) the grid is refined uniformly:
-///   N_d <- max(N_d + 1, ceil(N_d sqrt(M_mu / T_M))) for both axes (M_mu
-///   scales roughly with 1 / cells, so this aims at T_M in one step);
+///   N_d <- max(N_d + 1, ceil(N_d sqrt(r))) for both axes with
+///   r = max(M_mu / T_M, (M_mu - 1) / (T_M - 1)): for points scattered over
+///   the cells (Poisson occupancy) the excess M_mu - 1 scales with 1 / cells,
+///   so this aims at T_M in one step (the plain ratio M_mu / T_M approaches
+///   T_M = 1.25 in many tiny steps);
 /// - otherwise N_d <- floor(N_d exp(lambda_D e_D - lambda_G e_G)) with
 ///   e_D = (D_d - T_D) / T_D and e_G = (G_d - T_G) / T_G;
 /// - then constraints: N_d >= 1; cols / rows within
@@ -61,17 +87,30 @@ struct AdaptiveStep {
 ///   max_cells (both scaled down). The initial grid is constrained the same
 ///   way before the first measurement.
 ///
-/// Stopping (the paper: "once M_mu stabilises"): M_mu <= T_M and its relative
-/// change from the previous iteration < 1 %; or the update leaves the grid
-/// unchanged; or it proposes a grid already measured (a cycle); or
-/// max_iterations grids were measured. The result is the last measured grid
-/// with M_mu <= T_M (or, if none has, the last one measured: e.g. exact
-/// duplicate points with max_cells reached). Every measured grid is in
-/// `trace()`.
+/// Stopping (the paper: "once M_mu stabilises"), reported by stop_reason():
+/// - `converged`: M_mu <= T_M and its relative change from the previous
+///   iteration < 1 %;
+/// - `fixed_point`: the update leaves the grid unchanged, or proposes a grid
+///   already measured (a cycle);
+/// - `refinement_futile`: a uniform refinement lowered the excess M_mu - 1 by
+///   less than a tenth of the ideal 1 / cells scaling (duplicates: by
+///   nothing; steps whose ideal gain is < 10 % are not judged). Finer cells cannot separate points that share a direction: exact
+///   duplicates, all points along one ray, or a repetitive (spinning) sensor
+///   that fired the same directions on several turns, whose M_mu cannot drop
+///   below the number of turns in the window;
+/// - `iteration_cap`: max_iterations grids were measured.
+/// The result is the last measured grid with M_mu <= T_M. If no measured
+/// grid reaches T_M (documented fallback, typically `refinement_futile`), the
+/// result is the COARSEST measured grid whose M_mu is within 1 % of the
+/// lowest measured M_mu: refining further would only add empty cells (for
+/// points all in one direction that is the initial grid, never a max_cells
+/// grid). Every measured grid is in `trace()`.
 ///
-/// Degenerate input: no accepted coordinate -> the initial grid is kept
-/// unchanged, the trace is empty, needs_calibration() becomes false. Never a
-/// zero dimension, never more than max_iterations iterations; deterministic.
+/// Degenerate input: no accepted coordinate (an empty window) -> the initial
+/// grid is kept unchanged, the trace is empty, stop_reason() is `no_input`,
+/// needs_calibration() becomes false. One point: M_mu = 1 <= T_M, the loop
+/// converges near the initial grid. Never a zero dimension, never more than
+/// max_iterations iterations; deterministic.
 ///
 /// Complexity of calibrate: O(iterations x N log N) for N accepted points
 /// (two sorts of cell indices per iteration; no H x W matrix is allocated).
@@ -137,35 +176,44 @@ class AdaptiveResolution {
     const bool any = std::any_of(coords.begin(), coords.end(), [](const Projected& p) { return p.accepted(); });
     if (!any) {
       grid_ = GridSize{params_.initial_rows, params_.initial_cols};  // documented fallback
+      stop_ = AdaptiveStop::no_input;
       return grid_;
     }
     std::vector<CellIndex> keys;
     std::vector<CellIndex> scratch;
     std::vector<GridSize> visited;
     GridSize g = constrain(params_.initial_rows, params_.initial_cols, fov_aspect);
-    float previous_mu = -1.0f;
+    stop_ = AdaptiveStop::iteration_cap;
     for (std::uint32_t it = 0; it < params_.max_iterations; ++it) {
       const AdaptiveStep step = measure_into(coords, g, keys, scratch);
       trace_.push_back(step);
       const float mu = step.mean_multiplicity;
-      if (previous_mu > 0.0f && mu <= params_.max_multiplicity &&
-          std::fabs(mu - previous_mu) < 0.01f * previous_mu)
-        break;  // M_mu stabilised
+      if (trace_.size() >= 2) {
+        const float previous_mu = trace_[trace_.size() - 2].mean_multiplicity;
+        const bool stable = std::fabs(mu - previous_mu) < 0.01f * previous_mu;
+        if (stable && mu <= params_.max_multiplicity) {
+          stop_ = AdaptiveStop::converged;
+          break;
+        }
+        if (previous_mu > params_.max_multiplicity && refinement_futile(trace_[trace_.size() - 2], step)) {
+          stop_ = AdaptiveStop::refinement_futile;
+          break;
+        }
+      }
       visited.push_back(g);
       const GridSize next = propose(step, fov_aspect);
-      if (std::find(visited.begin(), visited.end(), next) != visited.end()) break;  // fixed point or cycle
-      previous_mu = mu;
-      g = next;
-    }
-    grid_ = trace_.back().grid;
-    for (auto it = trace_.rbegin(); it != trace_.rend(); ++it) {
-      if (it->mean_multiplicity <= params_.max_multiplicity) {
-        grid_ = it->grid;
+      if (std::find(visited.begin(), visited.end(), next) != visited.end()) {
+        stop_ = AdaptiveStop::fixed_point;
         break;
       }
+      g = next;
     }
+    grid_ = choose_result();
     return grid_;
   }
+
+  /// Why the last calibrate() stopped (`not_run` before the first).
+  AdaptiveStop stop_reason() const { return stop_; }
 
   /// The iterations of the last calibrate() (empty before, or after a
   /// calibrate without accepted coordinates).
@@ -249,7 +297,11 @@ class AdaptiveResolution {
     const double mu = s.mean_multiplicity;
     const double t_m = params_.max_multiplicity;
     if (mu > t_m) {
-      const double factor = std::sqrt(mu / t_m);
+      // Cells needed: Poisson occupancy gives M_mu - 1 ~ points / (2 cells),
+      // so the excess over 1 must shrink by (mu - 1) / (T_M - 1); never less
+      // than the plain ratio mu / T_M.
+      const double excess_ratio = (mu - 1.0) / std::max(t_m - 1.0, 1e-3);
+      const double factor = std::sqrt(std::max(mu / t_m, excess_ratio));
       return constrain(std::max(rows + 1.0, std::ceil(rows * factor)), std::max(cols + 1.0, std::ceil(cols * factor)),
                        fov_aspect);
     }
@@ -311,9 +363,42 @@ class AdaptiveResolution {
     if (!ok) throw error(name, v, allowed);
   }
 
+  static std::uint64_t cells(GridSize g) { return std::uint64_t{g.rows} * g.cols; }
+
+  /// True when refining `before` into `after` lowered the excess multiplicity
+  /// M_mu - 1 by less than a tenth of what the added cells give points in
+  /// distinct directions (Poisson occupancy: M_mu - 1 ~ points / (2 cells)):
+  /// the pattern is at its duplicate floor, finer grids only add empty cells.
+  /// Only steps adding >= 10 % of the cells' worth of gain are judged.
+  static bool refinement_futile(const AdaptiveStep& before, const AdaptiveStep& after) {
+    const double ideal_gain = 1.0 - static_cast<double>(cells(before.grid)) / static_cast<double>(cells(after.grid));
+    const double excess_before = static_cast<double>(before.mean_multiplicity) - 1.0;
+    const double excess_after = static_cast<double>(after.mean_multiplicity) - 1.0;
+    const double gain = excess_before > 0.0 ? 1.0 - excess_after / excess_before : 0.0;
+    // Small steps (near T_M) are not judged: cell boundaries shift, M_mu is noisy.
+    return ideal_gain >= 0.1 && gain < 0.1 * ideal_gain;
+  }
+
+  /// The last measured grid with M_mu <= T_M; without one, the coarsest
+  /// grid within 1 % of the lowest M_mu measured. `trace_` is not empty.
+  GridSize choose_result() const {
+    for (auto it = trace_.rbegin(); it != trace_.rend(); ++it) {
+      if (it->mean_multiplicity <= params_.max_multiplicity) return it->grid;
+    }
+    float lowest = trace_.front().mean_multiplicity;
+    for (const AdaptiveStep& s : trace_) lowest = std::min(lowest, s.mean_multiplicity);
+    const AdaptiveStep* best = nullptr;
+    for (const AdaptiveStep& s : trace_) {
+      if (s.mean_multiplicity > 1.01f * lowest) continue;
+      if (best == nullptr || cells(s.grid) < cells(best->grid)) best = &s;
+    }
+    return best->grid;
+  }
+
   Params params_;
   GridSize grid_;
   std::vector<AdaptiveStep> trace_;
+  AdaptiveStop stop_ = AdaptiveStop::not_run;
   bool calibrated_ = false;
 };
 

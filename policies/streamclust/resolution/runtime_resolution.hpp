@@ -33,6 +33,8 @@ class RuntimeResolution {
   bool adaptive() const { return adaptive_; }
   /// The adaptive loop's iterations (empty for a fixed grid).
   const std::vector<AdaptiveStep>& trace() const { return loop_.trace(); }
+  /// Why the adaptive loop stopped (`not_run` for a fixed grid).
+  AdaptiveStop stop_reason() const { return loop_.stop_reason(); }
 
  private:
   bool adaptive_;
