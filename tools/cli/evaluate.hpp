@@ -165,8 +165,11 @@ struct Evaluation {
 };
 
 /// The grid for both methods: --grid if given, else the adaptive loop's
-/// choice on the first window (C-ARC's own calibration, run on a throwaway
-/// engine).
+/// choice on the first window: the accepted points within T_B of the first
+/// one (the points the engine buffers for its own calibration). Computed
+/// here rather than by a calibrating engine, whose calibration only ends on
+/// a point exactly T_B after the first one still in its buffer (a stream with
+/// irregular times, e.g. with the structure dropped, may never give one).
 inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Record>& records) {
   GridChoice g;
   if (o.policy.grid) {
@@ -177,14 +180,28 @@ inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Re
   using Config = ToolConfig<SphericalProjection, BucketGrid>;
   ClusterOptions c = o.policy;
   c.grid.reset();
-  StreamClusterer<Config> engine(make_params<Config>(c));
+  const ClustererParams<Config> params = make_params<Config>(c);
+  const SphericalProjection projection(params.projection);
+  std::vector<Projected> coords;
+  std::optional<double> first;
+  bool complete = false;
   for (const io::Record& r : records) {
-    engine.insert(r, r.t);
-    if (!engine.calibrating()) break;
+    if (!std::isfinite(r.t)) continue;
+    const Projected pr = projection.project(Eigen::Vector3f(r.x, r.y, r.z));
+    if (!pr.accepted()) continue;
+    if (!first) first = r.t;
+    if (r.t - *first > o.policy.window_seconds) {
+      complete = true;
+      break;
+    }
+    coords.push_back(pr);
   }
-  if (engine.calibrating()) throw UsageError("the simulated stream does not fill one window (--window-time, --duration)");
-  g.grid = GridSize{engine.grid().rows, engine.grid().cols};
-  g.trace = engine.resolution().trace();
+  if (!complete || coords.empty()) {
+    throw UsageError("the simulated stream does not fill one window (--window-time, --duration)");
+  }
+  RuntimeResolution resolution(params.resolution);
+  g.grid = resolution.calibrate(coords, projection.fov_aspect());
+  g.trace = resolution.trace();
   for (const AdaptiveStep& s : g.trace) {
     if (s.grid == g.grid) g.mean_multiplicity = s.mean_multiplicity;
   }

@@ -65,7 +65,7 @@ policies (a preset first, then every option below overrides it):
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
   --min-range M                     closer points are rejected (default 0.1)
   --grid auto|HxW                   auto: adaptive resolution on the first window
-  --max-multiplicity T_M            adaptive target (default 2)
+  --max-multiplicity T_M            adaptive target (default 2; alias --multiplicity)
   --mode continuous|frame           frame: each retrieval clusters its window from scratch
 outputs:
   --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)
