@@ -659,3 +659,55 @@ TEST_CASE("sim simulator: invalid params and scenes without returns throw") {
   CHECK_THROWS_AS(empty.next(), std::runtime_error);
   CHECK(empty.stats().no_hit == Sim::kMaxConsecutiveMisses);
 }
+
+TEST_CASE("sim simulator: a piecewise ego-motion profile integrates pose and turns the rays") {
+  sim::Scene wall;
+  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})));
+  sim::Simulator<CyclingSensor>::Params params;
+  params.range_noise = 0.0f;
+  params.velocity = {1.0f, 0.0f, 0.0f};  // before the first segment
+  // rest from 1 s, a turning and driving burst over [2, 2.5), rest again.
+  params.motion_profile = {{1.0, {0.0f, 0.0f, 0.0f}, 0.0f},
+                           {2.0, {2.0f, 0.0f, 0.0f}, 0.4f},
+                           {2.5, {0.0f, 0.0f, 0.0f}, 0.0f}};
+  sim::Simulator<CyclingSensor> simulator(fixed_direction(kX, 100.0), wall, params);
+  // The pose is the integral of the piecewise velocity and yaw rate.
+  CHECK(simulator.sensor_position(0.5).isApprox(Eigen::Vector3f(0.5f, 0, 1)));
+  CHECK(simulator.sensor_position(1.7).isApprox(Eigen::Vector3f(1.0f, 0, 1)));
+  CHECK(simulator.sensor_position(2.25).isApprox(Eigen::Vector3f(1.5f, 0, 1)));
+  CHECK(simulator.sensor_position(3.0).isApprox(Eigen::Vector3f(2.0f, 0, 1)));
+  CHECK(simulator.sensor_yaw(1.9) == 0.0f);
+  CHECK(simulator.sensor_yaw(2.25) == doctest::Approx(0.1));
+  CHECK(simulator.sensor_yaw(2.9) == doctest::Approx(0.2));
+  // The returns follow the same pose: range to the wall along the turned ray.
+  for (int i = 0; i < 300; ++i) {
+    const sim::SimPoint p = simulator.next();
+    const double x = static_cast<double>(simulator.sensor_position(p.t).x());
+    const double yaw = static_cast<double>(simulator.sensor_yaw(p.t));
+    CHECK(p.x == doctest::Approx((20.0 - x) / std::cos(yaw)).epsilon(1e-5));
+  }
+  // An empty profile and a profile repeating the base motion give the same stream.
+  sim::Simulator<CyclingSensor>::Params plain;
+  plain.yaw_rate = 0.2f;
+  plain.velocity = {0.5f, 0.1f, 0.0f};
+  sim::Simulator<CyclingSensor>::Params repeated = plain;
+  repeated.motion_profile = {{0.0, plain.velocity, plain.yaw_rate}};
+  sim::Simulator<CyclingSensor> a(raster(36, 4, -0.3f, 0.3f), sim::office_scene(2), plain);
+  sim::Simulator<CyclingSensor> b(raster(36, 4, -0.3f, 0.3f), sim::office_scene(2), repeated);
+  for (int i = 0; i < 2000; ++i) {
+    const sim::SimPoint pa = a.next();
+    const sim::SimPoint pb = b.next();
+    CHECK(pa.t == pb.t);
+    CHECK(pa.instance == pb.instance);
+    CHECK(Eigen::Vector3f(pa.x - pb.x, pa.y - pb.y, pa.z - pb.z).norm() < 1e-3f);
+  }
+  // Invalid profiles name the field.
+  using Sim = sim::Simulator<CyclingSensor>;
+  Sim::Params bad;
+  bad.motion_profile = {{1.0, {0, 0, 0}, 0.0f}, {0.5, {0, 0, 0}, 0.0f}};
+  CHECK_THROWS_WITH_AS(Sim(fixed_direction(kX), wall, bad), doctest::Contains("motion_profile start"),
+                       std::invalid_argument);
+  bad.motion_profile = {{0.0, {0, 0, 0}, std::nanf("")}};
+  CHECK_THROWS_WITH_AS(Sim(fixed_direction(kX), wall, bad), doctest::Contains("motion_profile yaw_rate"),
+                       std::invalid_argument);
+}

@@ -7,6 +7,7 @@
 /// 4 input error). Callable from tests without spawning a process.
 
 #include "cli/cluster.hpp"
+#include "cli/evaluate.hpp"
 #include "cli/info.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
@@ -30,6 +31,8 @@ commands:
   cluster INPUT   cluster a recorded stream as the sensor delivered it
   info INPUT      format, fields, point count, time span and bounds of an input
   simulate        write a simulated stream with its ground truth
+  evaluate        simulate a scenario, cluster it (C-ARC and/or the frame baseline)
+                  and score every retrieval against the ground truth
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error.
@@ -62,7 +65,7 @@ policies (a preset first, then every option below overrides it):
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
   --min-range M                     closer points are rejected (default 0.1)
   --grid auto|HxW                   auto: adaptive resolution on the first window
-  --max-multiplicity T_M            adaptive target (default 2)
+  --max-multiplicity T_M            adaptive target (default 2; alias --multiplicity)
   --mode continuous|frame           frame: each retrieval clusters its window from scratch
 outputs:
   --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)
@@ -96,6 +99,7 @@ examples:
 inline const char* simulate_help() {
   return R"(usage: streamclust simulate --out FILE [--sensor S] [--scene C] [--seconds S] [--seed N]
                             [--speed M/S] [--yaw-rate RAD/S] [--noise M] [--dropout P] [--max-range M]
+                            [--burst START:LENGTH --burst-speed M/S --burst-yaw-rate RAD/S]
 
 Writes a simulated point stream with its ground truth to FILE (.csv: columns
 x,y,z,intensity,t,label; .pcd: binary with a label field). label is the
@@ -106,13 +110,67 @@ Deterministic for a given seed.
   --sensor mid360|mid40|mid70|avia|spinning32   (default mid360; rates 200/100/100/240/576 kHz)
   --scene office|forest|street                  (default office)
   --sensor synthetic --scene room               the older built-in stand-in (--point-rate HZ)
-  --seconds S (default 1)  --seed N (default 1)
-  --speed M/S  --yaw-rate RAD/S                 ego-motion (default 0)
+  --seconds S | --duration S (default 1)  --seed N (default 1)
+  --speed M/S  --yaw-rate RAD/S                 ego-motion along +x / about +z (default 0)
+  --burst START:LENGTH                          from START for LENGTH seconds the sensor moves with
+  --burst-speed M/S  --burst-yaw-rate RAD/S     these instead (a burst of fast ego-motion)
   --noise M (default 0.02)  --dropout P (default 0)  --max-range M (default 40)
 
 examples:
   streamclust simulate --sensor mid360 --scene office --seconds 2 --out office.csv
   streamclust simulate --sensor avia --scene forest --speed 1.5 --out forest.pcd
+  streamclust simulate --scene forest --burst 1:0.3 --burst-yaw-rate 3 --out burst.csv
+)";
+}
+
+inline const char* evaluate_help() {
+  return R"(usage: streamclust evaluate [scenario options] [method options] [--json FILE] [--series FILE]
+
+Simulates a scenario with ground truth, clusters it with C-ARC (the continuous
+engine) and/or the frame baseline (Bogoslavskyi & Stachniss: overwrite range
+image, re-clustered from scratch on the window), both on the grid the adaptive
+loop chooses from the first window, retrieves at --rate Hz of stream time and
+scores every retrieval after the first window against the ground truth: ARI on
+object points, OSE / USE, panoptic PQ at IoU > 0.5, coverage, object rates
+(docs/evaluation-metrics.md). Prints the means; docs/evaluation.md has the study.
+
+scenario (as for simulate):
+  --sensor mid360|mid40|mid70|avia|spinning32   (default mid360)
+  --scene office|forest|street                  (default office)
+  --duration S | --seconds S (default 2)  --seed N (default 1)
+  --speed M/S  --yaw-rate RAD/S                 constant ego-motion (default 0)
+  --burst START:LENGTH  --burst-speed M/S  --burst-yaw-rate RAD/S
+                                                ego-motion burst, then back to --speed/--yaw-rate;
+                                                adds the recovery time to the output
+  --noise M (default 0.02)  --dropout P (default 0)  --max-range M (default 40)
+methods:
+  --method carc|baseline|both       (default both)
+  --frames sliding|tumbling         baseline: re-cluster the window at every retrieval (default),
+                                    or non-overlapping frames of T_B, the last one held in between
+  --linkage angular|euclidean       --theta DEG (default 10)  --distance M (default 0.5)
+  --min-ray-angle DEG               (default 0.2)
+  --mask W                          odd mask width (default 3, the paper's comparison)
+  --window-time T_B                 sliding window / frame length [s] (default 0.1)
+  --rate HZ                         retrievals per second of stream time (default 20)
+  --multiplicity T_M                adaptive-loop target (default 2; the paper's fine grid: 1.25)
+  --grid auto|HxW                   a given grid instead of the adaptive loop's
+  --index bucket|capped  --cap K    C-ARC's grid (default bucket)
+  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX   (default: the sensor's FOV)
+  --min-range M                     (default 0.1)
+  --structure keep|drop             drop: remove the ground-truth structure points (ground, walls)
+                                    before clustering, an oracle ground/wall removal (default keep)
+  --min-points N                    objects / segments smaller than N points are not
+                                    counted as FN / FP or rated (default 10)
+outputs:
+  --json FILE       scenario, policy, grid, per method the means, the recovery and every retrieval
+  --series FILE     CSV, one row per method and retrieval: method,time,window,<metrics>
+  --quiet, -q       no table
+
+examples:
+  streamclust evaluate --sensor mid360 --scene forest --multiplicity 1.25
+  streamclust evaluate --sensor avia --scene office --theta 80 --json avia.json
+  streamclust evaluate --sensor mid70 --scene street --linkage euclidean --distance 0.3
+  streamclust evaluate --scene forest --duration 2.5 --burst 1:0.3 --burst-yaw-rate 3 --series burst.csv
 )";
 }
 
@@ -148,7 +206,14 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       }
       return run_simulate(parse_simulate_options(rest), out);
     }
-    throw UsageError("unknown command '" + command + "' (expected cluster, info or simulate)");
+    if (command == "evaluate") {
+      if (help) {
+        out << evaluate_help();
+        return kOk;
+      }
+      return run_evaluate(parse_evaluate_options(rest), out);
+    }
+    throw UsageError("unknown command '" + command + "' (expected cluster, info, simulate or evaluate)");
   } catch (const UsageError& e) {
     err << "streamclust: " << e.what() << "\n";
     return kUsage;

@@ -8,10 +8,12 @@
 #include <streamclust/io/record.hpp>
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace streamclust::cli {
@@ -115,6 +117,107 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
   }
 }
 
+/// Walks an argument list: the current option, its value, a value from a
+/// fixed set. Every problem is a UsageError naming the option.
+class ArgCursor {
+ public:
+  explicit ArgCursor(const std::vector<std::string>& args) : args_(args) {}
+  bool done() const { return i_ >= args_.size(); }
+  /// The option under the cursor.
+  const std::string& option() const { return args_[i_]; }
+  /// Moves past the option (and its value, if one was taken).
+  void next() { ++i_; }
+  /// The option's value (the following argument); the cursor moves onto it.
+  const std::string& value() {
+    if (i_ + 1 >= args_.size()) throw UsageError(args_[i_] + ": missing value");
+    return args_[++i_];
+  }
+  /// The option's value, which must be one of `allowed`.
+  std::string choice(std::initializer_list<const char*> allowed) {
+    const std::string& name = args_[i_];
+    const std::string v = value();
+    std::string list;
+    for (const char* c : allowed) {
+      if (v == c) return v;
+      if (!list.empty()) list += '|';
+      list += c;
+    }
+    throw UsageError(name + ": expected " + list + ", got '" + v + "'");
+  }
+
+ private:
+  const std::vector<std::string>& args_;
+  std::size_t i_ = 0;
+};
+
+/// Parses one clustering-policy option shared by `cluster` and `evaluate`
+/// (window time, rate, linkage, theta, min ray angle, distance, mask, index,
+/// cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
+/// under the cursor is not one of them (nothing consumed).
+inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
+  const std::string& a = c.option();
+  if (a == "--window-time") {
+    o.window_seconds = parse_number(a, c.value());
+    if (!(o.window_seconds >= 0.0) || o.window_seconds > 1e6) throw UsageError(a + ": expected seconds >= 0");
+  } else if (a == "--rate") {
+    o.rate_hz = parse_positive(a, c.value());
+  } else if (a == "--linkage") {
+    o.linkage = c.choice({"angular", "euclidean"}) == "angular" ? LinkageKind::angular : LinkageKind::euclidean;
+  } else if (a == "--theta") {
+    o.theta_deg = static_cast<float>(parse_positive(a, c.value()));
+  } else if (a == "--min-ray-angle") {
+    o.min_ray_angle_deg = static_cast<float>(parse_number(a, c.value()));
+  } else if (a == "--distance") {
+    o.distance = static_cast<float>(parse_positive(a, c.value()));
+  } else if (a == "--mask") {
+    o.mask = static_cast<int>(parse_count(a, c.value()));
+  } else if (a == "--index") {
+    const std::string v = c.choice({"bucket", "capped", "overwrite"});
+    o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
+  } else if (a == "--cap") {
+    o.cap = static_cast<std::uint32_t>(parse_count(a, c.value()));
+  } else if (a == "--grid") {
+    const std::string v = c.value();
+    if (v == "auto") {
+      o.grid.reset();
+    } else {
+      const auto x = v.find('x');
+      if (x == std::string::npos) throw UsageError("--grid: expected auto or HxW (e.g. 64x1024), got '" + v + "'");
+      o.grid = std::make_pair(static_cast<std::uint32_t>(parse_count("--grid", v.substr(0, x))),
+                              static_cast<std::uint32_t>(parse_count("--grid", v.substr(x + 1))));
+    }
+  } else if (a == "--max-multiplicity" || a == "--multiplicity") {
+    o.max_multiplicity = static_cast<float>(parse_positive(a, c.value()));
+  } else if (a == "--fov-azimuth" || a == "--fov-elevation" || a == "--fov-z") {
+    const std::string v = c.value();
+    const auto colon = v.find(':');
+    if (colon == std::string::npos) throw UsageError(a + ": expected MIN:MAX, got '" + v + "'");
+    const auto lo = static_cast<float>(parse_number(a, v.substr(0, colon)));
+    const auto hi = static_cast<float>(parse_number(a, v.substr(colon + 1)));
+    if (a == "--fov-azimuth") {
+      o.azimuth_min = lo;
+      o.azimuth_max = hi;
+    } else if (a == "--fov-elevation") {
+      o.elevation_min = lo;
+      o.elevation_max = hi;
+    } else {
+      o.z_min = lo;
+      o.z_max = hi;
+    }
+  } else if (a == "--min-range") {
+    o.min_range = static_cast<float>(parse_number(a, c.value()));
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// The checks on policy values that no single option can make.
+inline void validate_policy_options(const ClusterOptions& o) {
+  if (o.mask % 2 == 0 || o.mask > 255) throw UsageError("--mask: expected an odd number of cells from 1 to 255");
+  if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
+}
+
 /// Parses `streamclust cluster` arguments (argv after the subcommand).
 inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args) {
   ClusterOptions o;
@@ -123,99 +226,37 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
     if (args[i] == "--preset") apply_preset(args[i + 1], o);
   }
   bool window_time_set = false, window_count_set = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
-      return args[++i];
-    };
-    auto choice = [&](std::initializer_list<const char*> allowed) -> std::string {
-      const std::string v = value();
-      std::string list;
-      for (const char* c : allowed) {
-        if (v == c) return v;
-        list += list.empty() ? c : std::string("|") + c;
-      }
-      throw UsageError(a + ": expected " + list + ", got '" + v + "'");
-    };
+  for (ArgCursor c(args); !c.done(); c.next()) {
+    const std::string& a = c.option();
+    if (a == "--window-time") window_time_set = true;
+    if (parse_policy_option(c, o)) continue;
     if (a == "--preset") {
-      value();
+      c.value();
     } else if (a == "--format") {
-      const std::string v = choice({"auto", "csv", "pcd", "ply", "kitti"});
+      const std::string v = c.choice({"auto", "csv", "pcd", "ply", "kitti"});
       if (v != "auto") o.read.format = io::parse_format(v);
     } else if (a == "--time-unit") {
-      o.read.time_unit = io::parse_time_unit(choice({"s", "ms", "us", "ns"}));
+      o.read.time_unit = io::parse_time_unit(c.choice({"s", "ms", "us", "ns"}));
     } else if (a == "--point-rate") {
-      o.read.point_rate = parse_positive(a, value());
-    } else if (a == "--window-time") {
-      o.window_seconds = parse_number(a, value());
-      if (!(o.window_seconds >= 0.0) || o.window_seconds > 1e6) throw UsageError(a + ": expected seconds >= 0");
-      window_time_set = true;
+      o.read.point_rate = parse_positive(a, c.value());
     } else if (a == "--window-count") {
-      o.window_count = parse_count(a, value());
+      o.window_count = parse_count(a, c.value());
       window_count_set = true;
-    } else if (a == "--rate") {
-      o.rate_hz = parse_positive(a, value());
-    } else if (a == "--linkage") {
-      o.linkage = choice({"angular", "euclidean"}) == "angular" ? LinkageKind::angular : LinkageKind::euclidean;
-    } else if (a == "--theta") {
-      o.theta_deg = static_cast<float>(parse_positive(a, value()));
-    } else if (a == "--min-ray-angle") {
-      o.min_ray_angle_deg = static_cast<float>(parse_number(a, value()));
-    } else if (a == "--distance") {
-      o.distance = static_cast<float>(parse_positive(a, value()));
-    } else if (a == "--mask") {
-      o.mask = static_cast<int>(parse_count(a, value()));
-    } else if (a == "--index") {
-      const std::string v = choice({"bucket", "capped", "overwrite"});
-      o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
-    } else if (a == "--cap") {
-      o.cap = static_cast<std::uint32_t>(parse_count(a, value()));
     } else if (a == "--projection") {
-      o.projection = choice({"spherical", "cylindrical"}) == "spherical" ? ProjectionKind::spherical
-                                                                          : ProjectionKind::cylindrical;
-    } else if (a == "--grid") {
-      const std::string v = value();
-      if (v == "auto") {
-        o.grid.reset();
-      } else {
-        const auto x = v.find('x');
-        if (x == std::string::npos) throw UsageError("--grid: expected auto or HxW (e.g. 64x1024), got '" + v + "'");
-        o.grid = std::make_pair(static_cast<std::uint32_t>(parse_count("--grid", v.substr(0, x))),
-                                static_cast<std::uint32_t>(parse_count("--grid", v.substr(x + 1))));
-      }
-    } else if (a == "--max-multiplicity") {
-      o.max_multiplicity = static_cast<float>(parse_positive(a, value()));
+      o.projection = c.choice({"spherical", "cylindrical"}) == "spherical" ? ProjectionKind::spherical
+                                                                            : ProjectionKind::cylindrical;
     } else if (a == "--mode") {
-      o.mode = choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
-    } else if (a == "--fov-azimuth" || a == "--fov-elevation" || a == "--fov-z") {
-      const std::string v = value();
-      const auto colon = v.find(':');
-      if (colon == std::string::npos) throw UsageError(a + ": expected MIN:MAX, got '" + v + "'");
-      const auto lo = static_cast<float>(parse_number(a, v.substr(0, colon)));
-      const auto hi = static_cast<float>(parse_number(a, v.substr(colon + 1)));
-      if (a == "--fov-azimuth") {
-        o.azimuth_min = lo;
-        o.azimuth_max = hi;
-      } else if (a == "--fov-elevation") {
-        o.elevation_min = lo;
-        o.elevation_max = hi;
-      } else {
-        o.z_min = lo;
-        o.z_max = hi;
-      }
-    } else if (a == "--min-range") {
-      o.min_range = static_cast<float>(parse_number(a, value()));
+      o.mode = c.choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
     } else if (a == "--labels") {
-      o.labels_path = value();
+      o.labels_path = c.value();
     } else if (a == "--report") {
-      o.report_path = value();
+      o.report_path = c.value();
     } else if (a == "--ply") {
-      o.ply_path = value();
+      o.ply_path = c.value();
     } else if (a == "--pcd") {
-      o.pcd_path = value();
+      o.pcd_path = c.value();
     } else if (a == "--cycles") {
-      const std::string v = value();
+      const std::string v = c.value();
       o.all_cycles = v == "all";
       o.cycle_list.clear();
       if (v != "all" && v != "last") {
@@ -248,8 +289,7 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   if (o.input.empty()) throw UsageError("missing INPUT file (see streamclust cluster --help)");
   if (window_time_set && window_count_set) throw UsageError("--window-time and --window-count exclude each other");
   o.window_is_count = window_count_set;
-  if (o.mask % 2 == 0 || o.mask > 255) throw UsageError("--mask: expected an odd number of cells from 1 to 255");
-  if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
+  validate_policy_options(o);
   if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
   return o;
 }

@@ -5,17 +5,20 @@
 /// Umbrella header of the clustering-quality metrics (namespace
 /// streamclust::eval): adjusted Rand index, TRAVEL's OSE / USE, panoptic
 /// matching at IoU > 0.5, coverage, object outcome rates, and evaluate()
-/// bundling them into a QualityReport. Definitions: docs/evaluation-metrics.md.
+/// bundling them into a QualityReport, QualityAverage over frames and
+/// recovery_after for a metric's time series. Definitions: docs/evaluation-metrics.md.
 ///
 /// Inputs: per-point ground-truth instance ids (0 = structure, > 0 = object,
 /// < 0 = ignored) and predicted cluster ids (< 0 = unlabelled), same length.
 /// Every function is pure (thread-safe) and O(n log n) at most.
 
+#include <streamclust/eval/average.hpp>
 #include <streamclust/eval/contingency.hpp>
 #include <streamclust/eval/coverage.hpp>
 #include <streamclust/eval/object_rates.hpp>
 #include <streamclust/eval/options.hpp>
 #include <streamclust/eval/panoptic.hpp>
 #include <streamclust/eval/rand_index.hpp>
+#include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>
 #include <streamclust/eval/segmentation_entropy.hpp>

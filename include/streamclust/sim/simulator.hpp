@@ -40,6 +40,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace streamclust::sim {
 
@@ -74,6 +75,17 @@ inline float reflectivity(int instance) {
 
 }  // namespace detail
 
+/// One piece of a piecewise-constant ego-motion profile: from stream time
+/// `start` [s] on, the sensor moves with `velocity` (world frame [m/s]) and
+/// turns with `yaw_rate` (about world +z [rad/s]) until the next segment
+/// starts. Example, rest / 0.3 s of fast turning / rest:
+/// `{{1.0, {1.5f, 0, 0}, 3.0f}, {1.3, {0, 0, 0}, 0.0f}}`.
+struct MotionSegment {
+  double start = 0.0;                           ///< [s], >= 0; segments sorted by start
+  Eigen::Vector3f velocity{0.0f, 0.0f, 0.0f};  ///< [m/s], world frame
+  float yaw_rate = 0.0f;                        ///< [rad/s]
+};
+
 /// True when `S` models the sensor concept (see the file comment).
 template <class S>
 inline constexpr bool is_sim_sensor_v = detail::is_sim_sensor<S>::value;
@@ -84,7 +96,8 @@ inline constexpr bool is_sim_sensor_v = detail::is_sim_sensor<S>::value;
 /// 1. `ray = sensor.next()`; the direction is normalized.
 /// 2. Sensor pose at `ray.time`: position `start_position + velocity * t`
 ///    (world frame, constant velocity), yaw `yaw_rate * t` about world +z
-///    (no roll, no pitch). The ray is rotated into the world and cast into
+///    (no roll, no pitch). With a `motion_profile`, velocity and yaw rate
+///    are piecewise constant instead and the pose is their integral. The ray is rotated into the world and cast into
 ///    the scene at `ray.time` (moving objects are where they are then).
 /// 3. Measured range = true range + N(0, range_noise) along the ray.
 /// 4. No return when nothing is hit, when the measured range is outside
@@ -116,6 +129,10 @@ class Simulator {
     Eigen::Vector3f velocity{0.0f, 0.0f, 0.0f};        ///< ego-motion, world frame [m/s]
     float yaw_rate = 0.0f;                             ///< ego-rotation about world +z [rad/s]
     std::uint64_t seed = 1;                            ///< noise and dropout stream
+    /// Optional time-varying ego-motion: before the first segment's start the
+    /// sensor moves with `velocity` and `yaw_rate`, from each segment's start
+    /// on with the segment's. Starts finite, >= 0, non-decreasing.
+    std::vector<MotionSegment> motion_profile;
   };
 
   /// What happened to the firings so far.
@@ -136,6 +153,7 @@ class Simulator {
   Simulator(Sensor sensor, Scene scene, const Params& params)
       : sensor_(std::move(sensor)), scene_(std::move(scene)), params_(params), rng_(detail::make_rng(params.seed, 0x5115)) {
     validate(params_);
+    build_knots();
     pending_ = sensor_.next();
   }
 
@@ -163,12 +181,14 @@ class Simulator {
   /// Stream time of the next firing [s] (it may produce no return).
   double time() const { return pending_.time; }
 
-  /// Sensor position in the world at time t [m].
+  /// Sensor position in the world at time t [m]. O(segments of the motion profile).
   Eigen::Vector3f sensor_position(double t) const {
-    return params_.start_position + static_cast<float>(t) * params_.velocity;
+    const Knot* k = knot_at(t);
+    if (!k) return params_.start_position + static_cast<float>(t) * params_.velocity;
+    return k->position + static_cast<float>(t - k->start) * k->velocity;
   }
-  /// Sensor yaw about world +z at time t [rad].
-  float sensor_yaw(double t) const { return static_cast<float>(static_cast<double>(params_.yaw_rate) * t); }
+  /// Sensor yaw about world +z at time t [rad]. O(segments of the motion profile).
+  float sensor_yaw(double t) const { return static_cast<float>(yaw_at(t)); }
 
   const Stats& stats() const { return stats_; }
   const Params& params() const { return params_; }
@@ -189,6 +209,55 @@ class Simulator {
     detail::require_param(p.velocity.allFinite(), "velocity (a component)", static_cast<double>(p.velocity.sum()),
                           "finite components [m/s]");
     detail::require_param(std::isfinite(p.yaw_rate), "yaw_rate", p.yaw_rate, "a finite value [rad/s]");
+    double previous = 0.0;
+    for (const MotionSegment& m : p.motion_profile) {
+      detail::require_param(std::isfinite(m.start) && m.start >= previous, "motion_profile start", m.start,
+                            "a finite time >= 0 and >= the previous segment's start [s]");
+      detail::require_param(m.velocity.allFinite(), "motion_profile velocity (a component)",
+                            static_cast<double>(m.velocity.sum()), "finite components [m/s]");
+      detail::require_param(std::isfinite(m.yaw_rate), "motion_profile yaw_rate", m.yaw_rate, "a finite value [rad/s]");
+      previous = m.start;
+    }
+  }
+
+  /// The pose at the start of every motion segment, integrated once.
+  struct Knot {
+    double start;
+    Eigen::Vector3f position;
+    double yaw;
+    Eigen::Vector3f velocity;
+    double yaw_rate;
+  };
+
+  void build_knots() {
+    Eigen::Vector3f position = params_.start_position;
+    Eigen::Vector3f velocity = params_.velocity;
+    double yaw = 0.0, yaw_rate = static_cast<double>(params_.yaw_rate), from = 0.0;
+    for (const MotionSegment& m : params_.motion_profile) {
+      position += static_cast<float>(m.start - from) * velocity;
+      yaw += (m.start - from) * yaw_rate;
+      from = m.start;
+      velocity = m.velocity;
+      yaw_rate = static_cast<double>(m.yaw_rate);
+      knots_.push_back(Knot{m.start, position, yaw, velocity, yaw_rate});
+    }
+  }
+
+  /// The last knot starting at or before t; null before the first one
+  /// (then the constant-motion formulas apply, bit for bit as without a profile).
+  const Knot* knot_at(double t) const {
+    const Knot* found = nullptr;
+    for (const Knot& k : knots_) {
+      if (k.start > t) break;
+      found = &k;
+    }
+    return found;
+  }
+
+  double yaw_at(double t) const {
+    const Knot* k = knot_at(t);
+    if (!k) return static_cast<double>(params_.yaw_rate) * t;
+    return k->yaw + (t - k->start) * k->yaw_rate;
   }
 
   std::optional<SimPoint> fire(const Ray& ray) {
@@ -199,7 +268,7 @@ class Simulator {
     }
     const Eigen::Vector3f d = ray.direction / std::sqrt(n2);
     const double t = ray.time;
-    const double yaw = static_cast<double>(params_.yaw_rate) * t;
+    const double yaw = yaw_at(t);
     const float c = static_cast<float>(std::cos(yaw));
     const float s = static_cast<float>(std::sin(yaw));
     const Eigen::Vector3f world(c * d.x() - s * d.y(), s * d.x() + c * d.y(), d.z());
@@ -228,6 +297,7 @@ class Simulator {
   detail::SplitMix64 rng_;
   Ray pending_;
   Stats stats_;
+  std::vector<Knot> knots_;
 };
 
 }  // namespace streamclust::sim

@@ -1,0 +1,617 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// `streamclust evaluate`: simulates a scenario with ground truth, clusters
+/// it with C-ARC (the continuous engine on a bucket or capped grid) and/or the
+/// frame baseline (Bogoslavskyi & Stachniss' overwrite range image, the batch
+/// clusterer in range-image mode on each window), both on the grid the
+/// adaptive loop chooses from the first window, and scores every retrieval
+/// against the ground truth (streamclust::eval). Definitions and results:
+/// docs/evaluation.md.
+
+#include "cli/cluster.hpp"
+#include "cli/options.hpp"
+#include "cli/report.hpp"
+#include "cli/simulate.hpp"
+
+#include <streamclust/eval/average.hpp>
+#include <streamclust/eval/recovery.hpp>
+#include <streamclust/eval/report.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace streamclust::cli {
+
+/// How the baseline publishes: re-clustering the current window at every
+/// retrieval (sliding: the same windows as C-ARC, isolating the index), or
+/// clustering non-overlapping frames of T_B and holding the last result in
+/// between (tumbling: what a frame-based driver publishes).
+enum class FrameSchedule { sliding, tumbling };
+
+/// Everything `streamclust evaluate` needs.
+struct EvaluateOptions {
+  SimulateOptions scenario;  ///< sensor, scene, duration, seed, ego-motion, burst, noise, dropout
+  ClusterOptions policy;     ///< linkage, theta, distance, mask, window, rate, index, grid, T_M, FOV
+  bool run_carc = true;
+  bool run_baseline = true;
+  FrameSchedule frames = FrameSchedule::sliding;
+  std::size_t min_points = 10;  ///< eval::MetricOptions::min_points
+  /// Oracle structure removal: drop the ground-truth structure points
+  /// (ground, walls, ceiling, facades: instance 0) before clustering, as a
+  /// pipeline with a perfect ground/wall segmentation would.
+  bool drop_structure = false;
+  std::string json_path, series_path;
+  bool quiet = false;
+};
+
+/// The field of view of each simulated sensor (degrees), used unless
+/// --fov-azimuth / --fov-elevation override it; a margin of about 0.5 deg
+/// keeps every simulated ray inside.
+inline void apply_sensor_fov(const std::string& sensor, ClusterOptions& o) {
+  struct Fov {
+    const char* name;
+    float az, el_min, el_max;
+  };
+  static constexpr Fov kFov[] = {{"mid360", 180.0f, -7.5f, 52.5f}, {"mid40", 20.0f, -20.0f, 20.0f},
+                                 {"mid70", 36.0f, -36.0f, 36.0f},  {"avia", 35.5f, -39.0f, 39.0f},
+                                 {"spinning32", 180.0f, -25.5f, 15.5f}};
+  for (const Fov& f : kFov) {
+    if (sensor == f.name) {
+      o.azimuth_min = -f.az;
+      o.azimuth_max = f.az;
+      o.elevation_min = f.el_min;
+      o.elevation_max = f.el_max;
+    }
+  }
+}
+
+inline EvaluateOptions parse_evaluate_options(const std::vector<std::string>& args) {
+  EvaluateOptions o;
+  o.scenario.seconds = 2.0;
+  o.policy.mask = 3;  // the paper's comparison: w = 3 for both methods
+  // The sensor's FOV applies first, wherever --sensor stands; --fov-* override it.
+  for (std::size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] == "--sensor") o.scenario.sensor = args[i + 1];
+  }
+  apply_sensor_fov(o.scenario.sensor, o.policy);
+  for (ArgCursor c(args); !c.done(); c.next()) {
+    const std::string& a = c.option();
+    if (parse_simulation_option(c, o.scenario) || parse_policy_option(c, o.policy)) continue;
+    if (a == "--method") {
+      const std::string v = c.choice({"carc", "baseline", "both"});
+      o.run_carc = v != "baseline";
+      o.run_baseline = v != "carc";
+    } else if (a == "--frames") {
+      o.frames = c.choice({"sliding", "tumbling"}) == "sliding" ? FrameSchedule::sliding : FrameSchedule::tumbling;
+    } else if (a == "--structure") {
+      o.drop_structure = c.choice({"keep", "drop"}) == "drop";
+    } else if (a == "--min-points") {
+      o.min_points = static_cast<std::size_t>(parse_count(a, c.value()));
+    } else if (a == "--json") {
+      o.json_path = c.value();
+    } else if (a == "--series") {
+      o.series_path = c.value();
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else {
+      throw UsageError("unknown option '" + a + "' (see streamclust evaluate --help)");
+    }
+  }
+  validate_simulation_options(o.scenario);
+  validate_policy_options(o.policy);
+  if (o.scenario.sensor == "synthetic") {
+    throw UsageError("--sensor: evaluate needs a simulated sensor (mid360|mid40|mid70|avia|spinning32)");
+  }
+  if (o.policy.index == IndexKind::overwrite) {
+    throw UsageError("--index: C-ARC runs on bucket|capped; the overwrite grid is the baseline (--method baseline)");
+  }
+  if (!(o.policy.window_seconds > 0.0)) throw UsageError("--window-time: expected a window T_B > 0 s");
+  const double period = 1.0 / o.policy.rate_hz;
+  if (o.scenario.seconds < o.policy.window_seconds + period) {
+    throw UsageError("--duration: at least one retrieval after the first window is needed: expected >= T_B + 1/rate = " +
+                     std::to_string(o.policy.window_seconds + period) + " s, got " +
+                     std::to_string(o.scenario.seconds) + " s");
+  }
+  return o;
+}
+
+/// One scored retrieval.
+struct CycleQuality {
+  double time = 0.0;        ///< scheduled stream time of the retrieval [s]
+  std::size_t window = 0;   ///< points in the window (clustered or lost)
+  double cost_us = 0.0;     ///< clustering work for this retrieval [us] (C-ARC: inserts, evictions and retrieval since the previous one; baseline: the batch run, 0 for a held frame)
+  eval::MeanQuality quality;
+};
+
+/// The recovery of the methods' metrics after an ego-motion burst.
+struct BurstRecovery {
+  eval::Recovery use;    ///< under-segmentation entropy (TRAVEL's sum over clusters)
+  eval::Recovery under;  ///< fraction of objects under-segmented
+  eval::Recovery ari;    ///< 1 - ARI (an error, higher = worse)
+};
+
+struct MethodResult {
+  std::string name;  ///< "carc" or "baseline"
+  std::vector<CycleQuality> cycles;
+  eval::MeanQuality mean;
+  double cost_median_us = 0.0;
+  std::optional<BurstRecovery> recovery;
+};
+
+struct GridChoice {
+  GridSize grid{};
+  bool adaptive = true;
+  float mean_multiplicity = 0.0f;  ///< of the chosen grid on the first window (adaptive only)
+  std::vector<AdaptiveStep> trace;
+};
+
+struct Evaluation {
+  std::size_t records = 0;
+  GridChoice grid;
+  std::vector<MethodResult> methods;
+};
+
+/// The grid for both methods: --grid if given, else the adaptive loop's
+/// choice on the first window: the accepted points within T_B of the first
+/// one (the points the engine buffers for its own calibration). Computed
+/// here rather than by a calibrating engine, whose calibration only ends on
+/// a point exactly T_B after the first one still in its buffer (a stream with
+/// irregular times, e.g. with the structure dropped, may never give one).
+inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Record>& records) {
+  GridChoice g;
+  if (o.policy.grid) {
+    g.adaptive = false;
+    g.grid = GridSize{o.policy.grid->first, o.policy.grid->second};
+    return g;
+  }
+  using Config = ToolConfig<SphericalProjection, BucketGrid>;
+  ClusterOptions c = o.policy;
+  c.grid.reset();
+  const ClustererParams<Config> params = make_params<Config>(c);
+  const SphericalProjection projection(params.projection);
+  std::vector<Projected> coords;
+  std::optional<double> first;
+  bool complete = false;
+  for (const io::Record& r : records) {
+    if (!std::isfinite(r.t)) continue;
+    const Projected pr = projection.project(Eigen::Vector3f(r.x, r.y, r.z));
+    if (!pr.accepted()) continue;
+    if (!first) first = r.t;
+    if (r.t - *first > o.policy.window_seconds) {
+      complete = true;
+      break;
+    }
+    coords.push_back(pr);
+  }
+  if (!complete || coords.empty()) {
+    throw UsageError("the simulated stream does not fill one window (--window-time, --duration)");
+  }
+  RuntimeResolution resolution(params.resolution);
+  g.grid = resolution.calibrate(coords, projection.fov_aspect());
+  g.trace = resolution.trace();
+  for (const AdaptiveStep& s : g.trace) {
+    if (s.grid == g.grid) g.mean_multiplicity = s.mean_multiplicity;
+  }
+  return g;
+}
+
+/// Drives the retrieval schedule of `cluster` (t0 + k / rate) over the
+/// records: `insert(record, index)` for each, `retrieve(time)` before the
+/// first record at or after each scheduled time.
+template <class Insert, class Retrieve>
+void run_schedule(const std::vector<io::Record>& records, double rate_hz, Insert&& insert, Retrieve&& retrieve) {
+  if (records.empty()) return;
+  const double period = 1.0 / rate_hz;
+  const double first = records.front().t;
+  double k = 1.0;  // the next retrieval is the k-th, at first + k period
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const io::Record& r = records[i];
+    if (r.t >= first + k * period) {
+      retrieve(first + k * period);
+      // Skip the empty cycles of a pause; strictly later even when rounding
+      // puts r.t a hair below a multiple of the period.
+      k = std::max(k + 1.0, std::floor((r.t - first) / period) + 1.0);
+    }
+    insert(r, i);
+  }
+}
+
+/// Scores one window: `truth` from the records' labels, `predicted` as given.
+inline eval::MeanQuality score_window(const std::vector<std::int64_t>& truth, const std::vector<std::int64_t>& predicted,
+                                      std::size_t min_points) {
+  eval::MetricOptions m;
+  m.min_points = min_points;
+  return eval::to_mean_quality(eval::evaluate(truth, predicted, m));
+}
+
+/// True when a retrieval at `time` sees a full window (the first window is skipped).
+inline bool window_is_full(double time, double first_time, double window_seconds) {
+  return time - first_time >= window_seconds - 1e-9;
+}
+
+template <class Index>
+MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Record>& records, GridSize grid) {
+  using Config = ToolConfig<SphericalProjection, Index>;
+  ClusterOptions c = o.policy;
+  c.grid = std::make_pair(grid.rows, grid.cols);
+  StreamClusterer<Config> engine(make_params<Config>(c));
+  MethodResult m;
+  m.name = "carc";
+  std::vector<std::int64_t> truth, predicted;
+  const double first = records.empty() ? 0.0 : records.front().t;
+  run_schedule(
+      records, o.policy.rate_hz, [&](const io::Record& r, std::size_t) { engine.insert(r, r.t); },
+      [&](double time) {
+        engine.advance_to(time);
+        const Clustering& result = engine.retrieve();
+        const PhaseTimes& p = engine.last_stats().phase_us;
+        if (!window_is_full(time, first, o.policy.window_seconds)) return;
+        truth.clear();
+        predicted.clear();
+        for (const PointLabel& pl : result.points) {
+          truth.push_back(records[pl.stream_index].label);
+          predicted.push_back(static_cast<std::int64_t>(pl.label));
+        }
+        CycleQuality q;
+        q.time = time;
+        q.window = result.points.size();
+        q.cost_us = p.insertion + p.eviction + p.validation + p.component_update + p.labelling;
+        q.quality = score_window(truth, predicted, o.min_points);
+        m.cycles.push_back(q);
+      });
+  return m;
+}
+
+inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vector<io::Record>& records,
+                                        GridSize grid) {
+  using Config = ToolConfig<SphericalProjection, OverwriteGrid>;
+  ClusterOptions c = o.policy;
+  c.grid = std::make_pair(grid.rows, grid.cols);
+  const ClustererParams<Config> params = make_params<Config>(c);
+  FrameWindow<Config> frame(params);
+  BatchClusterer<Config> batch(params, BatchMode::range_image);
+  batch.set_grid(grid);
+  MethodResult m;
+  m.name = "baseline";
+  std::vector<Sample> samples;
+  std::vector<std::int64_t> truth;
+  const double first = records.empty() ? 0.0 : records.front().t;
+  std::optional<double> last_frame;
+  run_schedule(
+      records, o.policy.rate_hz, [&](const io::Record& r, std::size_t i) { frame.offer(r, i); },
+      [&](double time) {
+        frame.advance_to(time);
+        if (!window_is_full(time, first, o.policy.window_seconds)) return;
+        CycleQuality q;
+        q.time = time;
+        if (o.frames == FrameSchedule::tumbling && last_frame && time - *last_frame < o.policy.window_seconds - 1e-9) {
+          // A frame-based driver still shows the last frame it published.
+          q.window = m.cycles.back().window;
+          q.quality = m.cycles.back().quality;
+          m.cycles.push_back(q);
+          return;
+        }
+        last_frame = time;
+        samples.clear();
+        truth.clear();
+        for (const auto& e : frame.points()) {
+          samples.push_back(e.sample);
+          truth.push_back(records[e.index].label);
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        const BatchResult& r = batch.cluster(samples);
+        q.cost_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+        q.window = samples.size();
+        q.quality = score_window(truth, r.labels, o.min_points);
+        m.cycles.push_back(q);
+      });
+  return m;
+}
+
+/// Mean, median cost and (with a burst) the recovery of one method's cycles.
+inline void summarize(const EvaluateOptions& o, MethodResult& m) {
+  eval::QualityAverage average;
+  std::vector<double> costs;
+  for (const CycleQuality& q : m.cycles) {
+    average.add(q.quality);
+    if (q.cost_us > 0.0) costs.push_back(q.cost_us);
+  }
+  m.mean = average.mean();
+  m.cost_median_us = percentile(costs, 0.5);
+  const SimulateOptions& s = o.scenario;
+  if (s.burst_length <= 0.0 || m.cycles.empty()) return;
+  const double event_start = s.burst_start;
+  const double event_end = s.burst_start + s.burst_length;
+  const double settle_from = event_end + 3.0 * o.policy.window_seconds;
+  std::vector<double> times, use, under, ari_error;
+  std::size_t settled = 0;
+  for (const CycleQuality& q : m.cycles) {
+    times.push_back(q.time);
+    use.push_back(q.quality.use);
+    under.push_back(q.quality.under_segmented);
+    ari_error.push_back(1.0 - q.quality.ari);
+    settled += q.time >= settle_from ? 1u : 0u;
+  }
+  if (settled < 3) return;  // too short to know the settled level
+  m.recovery = BurstRecovery{eval::recovery_after(times, use, event_start, event_end, settle_from),
+                             eval::recovery_after(times, under, event_start, event_end, settle_from),
+                             eval::recovery_after(times, ari_error, event_start, event_end, settle_from)};
+}
+
+/// Runs the whole evaluation of a scenario on its simulated records.
+inline Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<io::Record>& records) {
+  Evaluation e;
+  e.records = records.size();
+  try {
+    e.grid = choose_grid(o, records);
+    if (o.run_carc) {
+      e.methods.push_back(o.policy.index == IndexKind::capped
+                              ? run_carc_method<CappedGrid>(o, records, e.grid.grid)
+                              : run_carc_method<BucketGrid>(o, records, e.grid.grid));
+    }
+    if (o.run_baseline) e.methods.push_back(run_baseline_method(o, records, e.grid.grid));
+  } catch (const std::invalid_argument& ex) {
+    throw UsageError(ex.what());
+  }
+  for (MethodResult& m : e.methods) summarize(o, m);
+  return e;
+}
+
+/// A finite number as JSON, else null.
+inline std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+/// The metric names of MeanQuality, in kMeanQualityFields order.
+inline const char* const* mean_quality_names() {
+  static const char* const kNames[] = {"points",   "object_points",   "objects",        "ari",
+                                       "ose",      "use",             "ose_mean",       "use_mean",
+                                       "precision", "recall",         "sq",             "rq",
+                                       "pq",       "coverage",        "object_coverage", "correct",
+                                       "over_segmented", "under_segmented", "missed"};
+  static_assert(sizeof(kNames) / sizeof(kNames[0]) == sizeof(eval::kMeanQualityFields) / sizeof(eval::kMeanQualityFields[0]),
+                "one name per MeanQuality field");
+  return kNames;
+}
+
+inline std::string json_quality(const eval::MeanQuality& q) {
+  std::string s = "{";
+  const char* const* names = mean_quality_names();
+  std::size_t k = 0;
+  for (const auto field : eval::kMeanQualityFields) {
+    if (k) s.append(", ");
+    s.append("\"").append(names[k++]).append("\": ").append(json_number(q.*field));
+  }
+  return s.append("}");
+}
+
+inline std::string json_recovery(const eval::Recovery& r) {
+  std::string s = "{\"before\": ";
+  s.append(json_number(r.before)).append(", \"peak\": ").append(json_number(r.peak));
+  s.append(", \"settled\": ").append(json_number(r.settled)).append(", \"threshold\": ").append(json_number(r.threshold));
+  s.append(", \"time\": ").append(r.time ? json_number(*r.time) : std::string("null")).append("}");
+  return s;
+}
+
+inline void write_evaluation_json(std::ostream& out, const EvaluateOptions& o, const Evaluation& e) {
+  const SimulateOptions& s = o.scenario;
+  const ClusterOptions& p = o.policy;
+  out << "{\n  \"scenario\": {\"sensor\": " << json_string(s.sensor) << ", \"scene\": " << json_string(s.scene)
+      << ", \"seconds\": " << json_number(s.seconds) << ", \"seed\": " << s.seed
+      << ", \"speed\": " << json_number(static_cast<double>(s.speed))
+      << ", \"yaw_rate\": " << json_number(static_cast<double>(s.yaw_rate))
+      << ", \"noise\": " << json_number(static_cast<double>(s.noise))
+      << ", \"dropout\": " << json_number(static_cast<double>(s.dropout))
+      << ", \"max_range\": " << json_number(static_cast<double>(s.max_range)) << ", \"burst\": ";
+  if (s.burst_length > 0.0) {
+    out << "{\"start\": " << json_number(s.burst_start) << ", \"length\": " << json_number(s.burst_length)
+        << ", \"speed\": " << json_number(static_cast<double>(s.burst_speed))
+        << ", \"yaw_rate\": " << json_number(static_cast<double>(s.burst_yaw_rate)) << "}";
+  } else {
+    out << "null";
+  }
+  out << "},\n  \"policy\": {\"linkage\": " << json_string(p.linkage == LinkageKind::angular ? "angular" : "euclidean")
+      << ", \"theta_deg\": " << json_number(static_cast<double>(p.theta_deg))
+      << ", \"min_ray_angle_deg\": " << json_number(static_cast<double>(p.min_ray_angle_deg))
+      << ", \"distance\": " << json_number(static_cast<double>(p.distance)) << ", \"mask\": " << p.mask
+      << ", \"window_time\": " << json_number(p.window_seconds) << ", \"rate\": " << json_number(p.rate_hz)
+      << ", \"index\": " << json_string(p.index == IndexKind::capped ? "capped" : "bucket") << ", \"cap\": " << p.cap
+      << ", \"multiplicity\": " << json_number(static_cast<double>(p.max_multiplicity))
+      << ", \"frames\": " << json_string(o.frames == FrameSchedule::sliding ? "sliding" : "tumbling")
+      << ", \"min_points\": " << o.min_points
+      << ", \"structure\": " << json_string(o.drop_structure ? "drop" : "keep") << "},\n";
+  out << "  \"records\": " << e.records << ",\n  \"grid\": {\"rows\": " << e.grid.grid.rows
+      << ", \"cols\": " << e.grid.grid.cols << ", \"adaptive\": " << (e.grid.adaptive ? "true" : "false")
+      << ", \"mean_multiplicity\": " << json_number(static_cast<double>(e.grid.mean_multiplicity))
+      << ", \"iterations\": " << e.grid.trace.size() << "},\n  \"methods\": [\n";
+  for (std::size_t k = 0; k < e.methods.size(); ++k) {
+    const MethodResult& m = e.methods[k];
+    out << "    {\"name\": " << json_string(m.name) << ", \"cycles_evaluated\": " << m.cycles.size()
+        << ", \"cycle_cost_median_us\": " << json_number(m.cost_median_us) << ",\n     \"mean\": " << json_quality(m.mean)
+        << ",\n     \"recovery\": ";
+    if (m.recovery) {
+      out << "{\"use\": " << json_recovery(m.recovery->use)
+          << ", \"under_segmented\": " << json_recovery(m.recovery->under)
+          << ", \"ari_error\": " << json_recovery(m.recovery->ari) << "}";
+    } else {
+      out << "null";
+    }
+    out << ",\n     \"cycles\": [\n";
+    for (std::size_t i = 0; i < m.cycles.size(); ++i) {
+      const CycleQuality& q = m.cycles[i];
+      out << "      {\"time\": " << json_number(q.time) << ", \"window\": " << q.window
+          << ", \"cost_us\": " << json_number(q.cost_us) << ", \"quality\": " << json_quality(q.quality) << "}"
+          << (i + 1 < m.cycles.size() ? "," : "") << "\n";
+    }
+    out << "     ]}" << (k + 1 < e.methods.size() ? "," : "") << "\n";
+  }
+  out << "  ]\n}\n";
+}
+
+/// Per-retrieval metrics as CSV (one row per method and retrieval).
+inline void write_series_csv(std::ostream& out, const Evaluation& e) {
+  out << "method,time,window";
+  const char* const* names = mean_quality_names();
+  for (std::size_t k = 0; k < sizeof(eval::kMeanQualityFields) / sizeof(eval::kMeanQualityFields[0]); ++k) {
+    out << ',' << names[k];
+  }
+  out << '\n';
+  out.precision(6);
+  for (const MethodResult& m : e.methods) {
+    for (const CycleQuality& q : m.cycles) {
+      out << m.name << ',' << q.time << ',' << q.window;
+      for (const auto field : eval::kMeanQualityFields) out << ',' << q.quality.*field;
+      out << '\n';
+    }
+  }
+}
+
+inline void write_text_file(const std::string& option, const std::string& path,
+                            const std::function<void(std::ostream&)>& write) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(option + ": cannot write '" + path + "'");
+  write(f);
+  f.flush();
+  if (!f) throw std::runtime_error(option + ": writing '" + path + "' failed");
+}
+
+/// The human-readable table.
+inline void print_evaluation(std::ostream& out, const EvaluateOptions& o, const Evaluation& e) {
+  const SimulateOptions& s = o.scenario;
+  const ClusterOptions& p = o.policy;
+  char line[160];
+  out << "streamclust evaluate: sensor " << s.sensor << ", scene " << s.scene << ", " << s.seconds << " s, seed "
+      << s.seed << ", " << e.records << " points" << (o.drop_structure ? " (structure dropped)" : "") << "\n";
+  if (e.grid.adaptive) {
+    std::snprintf(line, sizeof line, "grid %ux%u (adaptive loop, T_M %.3g: mean multiplicity %.2f after %zu iterations)",
+                  e.grid.grid.rows, e.grid.grid.cols, static_cast<double>(p.max_multiplicity),
+                  static_cast<double>(e.grid.mean_multiplicity), e.grid.trace.size());
+  } else {
+    std::snprintf(line, sizeof line, "grid %ux%u (given)", e.grid.grid.rows, e.grid.grid.cols);
+  }
+  out << line << "\n";
+  if (p.linkage == LinkageKind::angular) {
+    std::snprintf(line, sizeof line, "linkage angular theta %.3g deg, mask %d, window %.3g s, retrievals %.3g Hz",
+                  static_cast<double>(p.theta_deg), p.mask, p.window_seconds, p.rate_hz);
+  } else {
+    std::snprintf(line, sizeof line, "linkage euclidean %.3g m, mask %d, window %.3g s, retrievals %.3g Hz",
+                  static_cast<double>(p.distance), p.mask, p.window_seconds, p.rate_hz);
+  }
+  out << line << "\n";
+  if (s.burst_length > 0.0) {
+    std::snprintf(line, sizeof line, "ego-motion burst at %.3g s for %.3g s: %.3g m/s, %.3g rad/s", s.burst_start,
+                  s.burst_length, static_cast<double>(s.burst_speed), static_cast<double>(s.burst_yaw_rate));
+    out << line << "\n";
+  }
+  out << "\n";
+  std::snprintf(line, sizeof line, "%-28s", "mean over retrievals");
+  out << line;
+  for (const MethodResult& m : e.methods) {
+    std::snprintf(line, sizeof line, "%12s", m.name == "baseline" && o.frames == FrameSchedule::tumbling
+                                                 ? "baseline(t)"
+                                                 : m.name.c_str());
+    out << line;
+  }
+  out << "\n";
+  struct Row {
+    const char* label;
+    double eval::MeanQuality::*field;
+  };
+  static const Row kRows[] = {{"ARI (object points)", &eval::MeanQuality::ari},
+                              {"OSE per object", &eval::MeanQuality::ose_mean},
+                              {"USE per cluster", &eval::MeanQuality::use_mean},
+                              {"PQ", &eval::MeanQuality::pq},
+                              {"precision", &eval::MeanQuality::precision},
+                              {"recall", &eval::MeanQuality::recall},
+                              {"coverage (all points)", &eval::MeanQuality::coverage},
+                              {"coverage (object points)", &eval::MeanQuality::object_coverage},
+                              {"objects correct", &eval::MeanQuality::correct},
+                              {"objects over-segmented", &eval::MeanQuality::over_segmented},
+                              {"objects under-segmented", &eval::MeanQuality::under_segmented},
+                              {"objects missed", &eval::MeanQuality::missed},
+                              {"objects rated", &eval::MeanQuality::objects},
+                              {"points per window", &eval::MeanQuality::points}};
+  for (const Row& r : kRows) {
+    std::snprintf(line, sizeof line, "%-28s", r.label);
+    out << line;
+    for (const MethodResult& m : e.methods) {
+      std::snprintf(line, sizeof line, "%12.3f", m.mean.*(r.field));
+      out << line;
+    }
+    out << "\n";
+  }
+  std::snprintf(line, sizeof line, "%-28s", "retrievals evaluated");
+  out << line;
+  for (const MethodResult& m : e.methods) {
+    std::snprintf(line, sizeof line, "%12zu", m.cycles.size());
+    out << line;
+  }
+  out << "\n";
+  std::snprintf(line, sizeof line, "%-28s", "cycle cost median [ms]");
+  out << line;
+  for (const MethodResult& m : e.methods) {
+    std::snprintf(line, sizeof line, "%12.2f", m.cost_median_us / 1000.0);
+    out << line;
+  }
+  out << "\n";
+  bool any = false;
+  for (const MethodResult& m : e.methods) any = any || m.recovery.has_value();
+  if (!any) return;
+  out << "\nrecovery after the burst (first retrieval from which the metric stays within 20 % of\n"
+         "the way from its settled level to its peak; settled = mean from burst end + 3 T_B on)\n";
+  for (const MethodResult& m : e.methods) {
+    if (!m.recovery) continue;
+    const auto row = [&](const char* what, const eval::Recovery& r) {
+      std::snprintf(line, sizeof line, "  %-9s %-16s before %7.3f  peak %7.3f  settled %7.3f  recovery ", m.name.c_str(),
+                    what, r.before, r.peak, r.settled);
+      out << line;
+      if (r.time) {
+        std::snprintf(line, sizeof line, "%.3f s (%.2f T_B)", *r.time, *r.time / p.window_seconds);
+        out << line << "\n";
+      } else {
+        out << "not within the run\n";
+      }
+    };
+    row("USE", m.recovery->use);
+    row("under-segmented", m.recovery->under);
+    row("1 - ARI", m.recovery->ari);
+  }
+}
+
+/// Runs `streamclust evaluate`. Returns the exit code; throws UsageError
+/// (exit 2) and std::runtime_error for unwritable outputs (exit 4).
+inline int run_evaluate(const EvaluateOptions& o, std::ostream& out) {
+  std::vector<io::Record> records = simulate_records(o.scenario);
+  if (o.drop_structure) {
+    records.erase(std::remove_if(records.begin(), records.end(), [](const io::Record& r) { return r.label == 0; }),
+                  records.end());
+  }
+  const Evaluation e = evaluate_records(o, records);
+  if (!o.json_path.empty()) {
+    write_text_file("--json", o.json_path, [&](std::ostream& f) { write_evaluation_json(f, o, e); });
+  }
+  if (!o.series_path.empty()) {
+    write_text_file("--series", o.series_path, [&](std::ostream& f) { write_series_csv(f, e); });
+  }
+  if (!o.quiet) print_evaluation(out, o, e);
+  return kOk;
+}
+
+}  // namespace streamclust::cli
