@@ -22,7 +22,8 @@
 // Memory (alloc_counter.hpp: a counting global operator new/delete, only the
 // engine's calls attributed): live engine heap bytes per windowed point,
 // heap allocations per cycle after warm-up, and the process's peak RSS
-// (getrusage; reset per scenario through /proc/self/clear_refs when allowed).
+// (VmHWM, reset per scenario through /proc/self/clear_refs; getrusage's
+// ru_maxrss, never reset, when /proc is unavailable).
 // The phase split (RetrievalStats::phase_us) comes from a second, shorter
 // pass with a timed copy of the configuration (T_B = 0.5 s scenarios only),
 // so that the totals are measured without the timer overhead.
@@ -288,7 +289,14 @@ bool reset_peak_rss() {
   return static_cast<bool>(f);
 }
 
+/// Peak RSS [MiB]: VmHWM of /proc/self/status (which clear_refs resets),
+/// else getrusage's ru_maxrss (the peak over the process's whole life).
 double peak_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // in kB
+  }
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
@@ -336,6 +344,9 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
   const auto params = engine_params<Config>(s);
   SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
   std::optional<Engine> engine;
+  // The counters are process-wide: the engine's live bytes are the growth
+  // from here on (construction included).
+  const std::int64_t live_base = sc::bench::alloc_counters().live_bytes;
   {
     sc::bench::AllocScope scope;
     engine.emplace(params);
@@ -388,7 +399,8 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     r.steady_allocations += allocs;
     if (allocs > 0) ++r.cycles_with_allocations;
     if (engine->size() > 0) {
-      r.bytes_per_point.push_back(static_cast<double>(after.live_bytes) / static_cast<double>(engine->size()));
+      r.bytes_per_point.push_back(static_cast<double>(after.live_bytes - live_base) /
+                                  static_cast<double>(engine->size()));
     }
     if (m == 0) r.grid = sc::GridSize{engine->grid().rows, engine->grid().cols};
 
@@ -440,7 +452,8 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
       r.pcl.engine_us.push_back(us);
     }
   }
-  (void)total;
+  sc::bench::AllocScope scope;  // the engine's frees balance its allocations
+  engine.reset();
 }
 
 /// The timed pass: phase split averaged over `cycles` cycles after warm-up.
