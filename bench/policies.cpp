@@ -1,138 +1,359 @@
 // SPDX-License-Identifier: MIT
-// Microbenchmarks per policy and per configuration, on the built-in synthetic
-// Livox-like stream (200 kHz). Each reports points per second
-// (items_per_second). Measure with:
-//   build/gcc/bench/bench_policies --benchmark_min_time=1 --benchmark_repetitions=5
-// CTest only smoke-runs it.
+// Microbenchmarks of the policies, one family at a time, each reporting
+// points (or pairs) per second through SetItemsProcessed (items_per_second).
+// Engine-level benchmarks (insertion per preset, retrieval) live in
+// bench/engine.cpp; the end-to-end latency is bench/latency/.
+//
+// Adding a policy of your own is ONE line at the bottom of this file, in its
+// family's block, with the policy's default Params:
+//
+//   BENCHMARK_TEMPLATE(BM_Project, MyProjection);
+//   BENCHMARK_TEMPLATE(BM_Index, MyGrid)->Apply(index_cases);
+//   BENCHMARK_TEMPLATE(BM_Linkage, MyLinkage);
+//   BENCHMARK_TEMPLATE(BM_Window, MyWindow);
+//   BENCHMARK_TEMPLATE(BM_Calibrate, MyResolution, Mid360FirstWindow);
+//
+// Inputs are sensor ray patterns (no ray casting, so the set-up stays cheap
+// for CTest's --benchmark_min_time=0.01 smoke run), built once and shared:
+//   - realistic occupancy: 0.1 s of the analytic Mid-360 (20,000 rays) on the
+//     grid the adaptive loop chooses for it (T_M = 2);
+//   - pathological occupancy: the rays of 0.5 s of the Avia model (120,000)
+//     that fall within 5 degrees of its axis, the dense centre of the
+//     rosette, on the grid the adaptive loop chooses for the whole 0.5 s
+//     window (what the engine uses at T_B = 0.5 s).
+// Counters: `occupancy` is the mean number of points per occupied cell,
+// `max_occupancy` the fullest cell's.
+//
+// Measure with (numbers: docs/benchmarks.md):
+//   build/bench-run/bench/bench_policies --benchmark_min_time=0.5 --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
-#include <streamclust/sim/synthetic_stream.hpp>
-#include <streamclust/streamclust.hpp>
+#include <streamclust/detail/mask.hpp>
+#include <streamclust/index/bucket_grid.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/combinators.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/runtime_linkage.hpp>
+#include <streamclust/projection/cylindrical.hpp>
+#include <streamclust/projection/spherical.hpp>
+#include <streamclust/resolution/adaptive.hpp>
+#include <streamclust/sim/scenes.hpp>
+#include <streamclust/sim/sensors/avia_model.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
+#include <streamclust/sim/simulator.hpp>
+#include <streamclust/types.hpp>
+#include <streamclust/window/count_window.hpp>
+#include <streamclust/window/time_window.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace sc = streamclust;
 
 namespace {
 
-// One second of stream, generated once.
-const std::vector<sc::SyntheticPoint>& stream_points() {
-  static const std::vector<sc::SyntheticPoint> points = [] {
-    std::vector<sc::SyntheticPoint> out;
-    sc::SyntheticStream stream;
-    while (stream.time() < 1.0) out.push_back(stream.next());
+// ----------------------------------------------------------------- inputs
+
+sc::SphericalProjection::Params mid360_fov() {
+  sc::SphericalProjection::Params f;
+  f.elevation_min_deg = -7.5f;
+  f.elevation_max_deg = 52.5f;
+  return f;
+}
+
+sc::SphericalProjection::Params avia_fov() {
+  sc::SphericalProjection::Params f;
+  f.azimuth_min_deg = -35.2f;
+  f.azimuth_max_deg = 35.2f;
+  f.elevation_min_deg = -38.6f;
+  f.elevation_max_deg = 38.6f;
+  return f;
+}
+
+/// The firings of `seconds` of a sensor model, projected at a 10 m range
+/// (only the direction matters for the grid), accepted points only.
+template <class Sensor>
+std::vector<sc::Projected> project_rays(Sensor sensor, double seconds, const sc::SphericalProjection::Params& fov) {
+  const sc::SphericalProjection projection(fov);
+  std::vector<sc::Projected> out;
+  for (;;) {
+    const sc::sim::Ray r = sensor.next();
+    if (r.time >= seconds) break;
+    const sc::Projected q = projection.project(r.direction * 10.0f);
+    if (q.accepted()) out.push_back(q);
+  }
+  return out;
+}
+
+/// A first window for the adaptive loop (calibrate's input).
+struct Mid360FirstWindow {
+  static const std::vector<sc::Projected>& coords() {
+    static const auto c = project_rays(sc::sim::Mid360Model(sc::sim::Mid360Model::Params{}), 0.1, mid360_fov());
+    return c;
+  }
+  static float fov_aspect() { return sc::SphericalProjection(mid360_fov()).fov_aspect(); }
+};
+
+struct AviaFirstWindow {
+  static const std::vector<sc::Projected>& coords() {
+    static const auto c = project_rays(sc::sim::AviaModel(sc::sim::AviaModel::Params{}), 0.1, avia_fov());
+    return c;
+  }
+  static float fov_aspect() { return sc::SphericalProjection(avia_fov()).fov_aspect(); }
+};
+
+/// A sequence of cells (in firing order) on a grid, for the index benchmarks.
+struct CellSequence {
+  sc::GridShape grid;
+  std::vector<sc::CellIndex> cells;
+  double occupancy = 0.0;      ///< mean points per occupied cell
+  std::uint32_t max_occupancy = 0;  ///< points in the fullest cell
+};
+
+CellSequence make_cells(const std::vector<sc::Projected>& calibration, float fov_aspect, bool wraps,
+                        const std::vector<sc::Projected>& points) {
+  sc::AdaptiveResolution resolution{sc::AdaptiveResolution::Params{}};
+  const sc::GridSize size = resolution.calibrate(calibration, fov_aspect);
+  CellSequence s;
+  s.grid = sc::GridShape{size.rows, size.cols, wraps};
+  std::vector<std::uint32_t> count(s.grid.cell_count(), 0);
+  std::size_t occupied = 0;
+  for (const sc::Projected& p : points) {
+    const sc::CellIndex c = s.grid.cell_of(p.u, p.v);
+    s.cells.push_back(c);
+    if (count[c]++ == 0) ++occupied;
+    s.max_occupancy = std::max(s.max_occupancy, count[c]);
+  }
+  s.occupancy = occupied == 0 ? 0.0 : static_cast<double>(points.size()) / static_cast<double>(occupied);
+  return s;
+}
+
+/// Occupancy 0: the Mid-360's 0.1 s window on its own calibrated grid.
+const CellSequence& realistic_cells() {
+  static const CellSequence s = [] {
+    const auto& c = Mid360FirstWindow::coords();
+    return make_cells(c, Mid360FirstWindow::fov_aspect(), true, c);
+  }();
+  return s;
+}
+
+/// Occupancy 1: the Avia's dense centre (off-axis < 5 degrees) over 0.5 s,
+/// on the grid calibrated from the whole 0.5 s window.
+const CellSequence& pathological_cells() {
+  static const CellSequence s = [] {
+    const sc::SphericalProjection projection(avia_fov());
+    sc::sim::AviaModel avia(sc::sim::AviaModel::Params{});
+    std::vector<sc::Projected> all;
+    std::vector<sc::Projected> centre;
+    const float cos_5deg = std::cos(5.0f * 3.14159265f / 180.0f);
+    for (;;) {
+      const sc::sim::Ray r = avia.next();
+      if (r.time >= 0.5) break;
+      const sc::Projected q = projection.project(r.direction * 10.0f);
+      if (!q.accepted()) continue;
+      all.push_back(q);
+      if (r.direction.x() >= cos_5deg * r.direction.norm()) centre.push_back(q);
+    }
+    return make_cells(all, projection.fov_aspect(), false, centre);
+  }();
+  return s;
+}
+
+const CellSequence& cells_for(std::int64_t occupancy) {
+  return occupancy == 0 ? realistic_cells() : pathological_cells();
+}
+
+/// 0.1 s of the Mid-360 in the simulated office: realistic positions and
+/// ranges (for projections and linkages).
+const std::vector<sc::sim::SimPoint>& office_points() {
+  static const std::vector<sc::sim::SimPoint> points = [] {
+    sc::sim::Simulator<sc::sim::Mid360Model> simulator(sc::sim::Mid360Model(sc::sim::Mid360Model::Params{}),
+                                                       sc::sim::office_scene(1),
+                                                       sc::sim::Simulator<sc::sim::Mid360Model>::Params{});
+    std::vector<sc::sim::SimPoint> out;
+    while (simulator.time() < 0.1) out.push_back(simulator.next());
     return out;
   }();
   return points;
 }
 
-template <class Index, class Linkage>
-struct BenchConfig {
-  using projection = sc::SphericalProjection;
-  using spatial_index = Index;
-  using linkage = Linkage;
-  using window = sc::TimeWindow;
-  using resolution = sc::FixedResolution;
-};
+// -------------------------------------------------------------- projection
 
-template <class Config>
-sc::ClustererParams<Config> bench_params() {
-  sc::ClustererParams<Config> p;
-  p.resolution = {64, 512};
-  p.window.duration = 0.1;
-  if constexpr (std::is_same_v<typename Config::linkage, sc::AngularLinkage>) p.linkage.theta_deg = 30.0f;
-  return p;
-}
-
-// Sustained insertion (with eviction) at the sensor's pace.
-template <class Config>
-void BM_Insert(benchmark::State& state) {
-  const auto& points = stream_points();
-  const auto params = bench_params<Config>();
-  std::size_t processed = 0;
+/// Projects every position of 0.1 s of a simulated Mid-360 stream.
+template <class Projection>
+void BM_Project(benchmark::State& state) {
+  const auto& points = office_points();
+  std::vector<Eigen::Vector3f> positions;
+  positions.reserve(points.size());
+  for (const auto& p : points) positions.emplace_back(p.x, p.y, p.z);
+  const Projection projection{typename Projection::Params{}};
   for (auto _ : state) {
-    state.PauseTiming();
-    sc::StreamClusterer<Config> engine(params);
-    state.ResumeTiming();
-    for (const auto& p : points) engine.insert(p);
-    processed += points.size();
-    benchmark::DoNotOptimize(engine.size());
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(processed));
-}
-
-// A 20 Hz retrieval cycle: 10,000 insertions plus one retrieve().
-template <class Config>
-void BM_Cycle(benchmark::State& state) {
-  const auto& points = stream_points();
-  const auto params = bench_params<Config>();
-  sc::StreamClusterer<Config> engine(params);
-  std::size_t i = 0;
-  for (; i < 40000; ++i) engine.insert(points[i]);  // fill the window first
-  std::size_t processed = 0;
-  for (auto _ : state) {
-    for (int k = 0; k < 10000; ++k, ++i) {
-      if (i == points.size()) {
-        state.PauseTiming();
-        engine = sc::StreamClusterer<Config>(params);
-        for (i = 0; i < 40000; ++i) engine.insert(points[i]);
-        state.ResumeTiming();
-      }
-      engine.insert(points[i]);
+    float sum = 0.0f;
+    for (const Eigen::Vector3f& x : positions) {
+      const sc::Projected q = projection.project(x);
+      sum += q.u + q.v;
     }
-    benchmark::DoNotOptimize(engine.retrieve().components.size());
-    processed += 10000;
+    benchmark::DoNotOptimize(sum);
   }
-  state.SetItemsProcessed(static_cast<std::int64_t>(processed));
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(positions.size()));
 }
 
-// The batch clusterer on one 0.1 s window.
-template <class Config>
-void BM_Batch(benchmark::State& state) {
-  const auto& points = stream_points();
-  const std::vector<sc::SyntheticPoint> window(points.begin(), points.begin() + 20000);
-  sc::BatchClusterer<Config> batch(bench_params<Config>());
-  for (auto _ : state) benchmark::DoNotOptimize(batch.cluster(window).components);
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(window.size()));
+// ------------------------------------------------------------ spatial index
+
+/// Index operations. Arguments: op (0 insert, 1 remove, 2 mask query) and
+/// occupancy (0 realistic Mid-360, 1 Avia dense centre); see the file comment.
+/// - insert: all points in firing order into an empty index;
+/// - remove: all points in insertion order (FIFO, as the engine evicts) from
+///   a full index;
+/// - mask query: for each point, visit every handle in its 5 x 5 mask in a
+///   full index (what one insertion searches).
+template <class Index>
+void BM_Index(benchmark::State& state) {
+  const std::int64_t op = state.range(0);
+  const CellSequence& seq = cells_for(state.range(1));
+  Index index{typename Index::Params{}};
+  index.reset(seq.grid);
+  const auto n = static_cast<sc::PointHandle>(seq.cells.size());
+  auto fill = [&] {
+    for (sc::PointHandle h = 0; h < n; ++h) benchmark::DoNotOptimize(index.insert(seq.cells[h], h));
+  };
+  std::size_t visited = 0;
+  if (op == 2) fill();
+  for (auto _ : state) {
+    if (op == 0) {
+      fill();
+      state.PauseTiming();
+      index.clear();
+      state.ResumeTiming();
+    } else if (op == 1) {
+      state.PauseTiming();
+      fill();
+      state.ResumeTiming();
+      for (sc::PointHandle h = 0; h < n; ++h) index.remove(seq.cells[h], h);
+    } else {
+      for (sc::PointHandle h = 0; h < n; ++h) {
+        sc::detail::for_each_mask_cell(seq.grid, seq.cells[h], 2, [&](sc::CellIndex c) {
+          index.for_each(c, [&](sc::PointHandle g) { visited += g; });
+        });
+      }
+    }
+  }
+  benchmark::DoNotOptimize(visited);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(n));
+  state.counters["occupancy"] = seq.occupancy;
+  state.counters["max_occupancy"] = seq.max_occupancy;
+  state.counters["cells"] = static_cast<double>(seq.grid.cell_count());
 }
 
-// One linkage predicate over neighbouring pairs of the stream.
+void index_cases(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"op", "occupancy"});
+  b->ArgsProduct({{0, 1, 2}, {0, 1}});
+  b->Unit(benchmark::kMicrosecond);
+}
+
+// ----------------------------------------------------------------- linkage
+
+/// The linkage predicate over the pairs an insertion evaluates: each point
+/// of 0.1 s of the simulated Mid-360 office stream against the 16 points
+/// fired before it (neighbours on the same laser's recent sweep and the
+/// adjacent lasers), both links and rejections.
 template <class Linkage>
 void BM_Linkage(benchmark::State& state) {
-  const auto& points = stream_points();
+  const auto& points = office_points();
   std::vector<sc::Sample> samples;
-  for (std::size_t i = 0; i < 4096; ++i) {
-    const auto& p = points[i];
+  samples.reserve(points.size());
+  for (const auto& p : points) {
     const Eigen::Vector3f pos(p.x, p.y, p.z);
     samples.push_back(sc::make_sample(pos, pos.norm(), p.intensity, p.t));
   }
+  constexpr std::size_t kBack = 16;
   const Linkage linkage{typename Linkage::Params{}};
   std::size_t linked = 0;
   for (auto _ : state) {
-    for (std::size_t i = 1; i < samples.size(); ++i) linked += linkage(samples[i - 1], samples[i]);
+    for (std::size_t i = kBack; i < samples.size(); ++i) {
+      for (std::size_t j = i - kBack; j < i; ++j) linked += linkage(samples[i], samples[j]) ? 1u : 0u;
+    }
   }
   benchmark::DoNotOptimize(linked);
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 4095);
+  const auto pairs = static_cast<std::int64_t>((samples.size() - kBack) * kBack);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * pairs);
+  state.counters["linked_share"] =
+      static_cast<double>(linked) / (static_cast<double>(pairs) * static_cast<double>(state.iterations()));
 }
 
-using BucketAngular = BenchConfig<sc::BucketGrid, sc::AngularLinkage>;
-using CappedAngular = BenchConfig<sc::CappedGrid, sc::AngularLinkage>;
-using OverwriteAngular = BenchConfig<sc::OverwriteGrid, sc::AngularLinkage>;
-using BucketEuclidean = BenchConfig<sc::BucketGrid, sc::EuclideanLinkage>;
+// ------------------------------------------------------------------ window
+
+/// Window bookkeeping as the engine does it: before each push, the oldest
+/// points are popped while `expired(oldest, newest, size)` holds. One second
+/// of a 200 kHz stream (timestamps every 5 us) through a FIFO of times.
+template <class Window>
+void BM_Window(benchmark::State& state) {
+  constexpr std::size_t kPoints = 200000;
+  const Window window{typename Window::Params{}};
+  std::vector<double> fifo(kPoints);
+  std::size_t evicted = 0;
+  for (auto _ : state) {
+    std::size_t oldest = 0;
+    for (std::size_t i = 0; i < kPoints; ++i) {
+      const double t = static_cast<double>(i) * 5e-6;
+      while (oldest < i && window.expired(fifo[oldest], t, i - oldest + 1)) ++oldest;
+      fifo[i] = t;
+    }
+    evicted += oldest;
+  }
+  benchmark::DoNotOptimize(evicted);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kPoints));
+}
+
+// -------------------------------------------------------------- resolution
+
+/// One calibration (the whole adaptive control loop) on a sensor's first
+/// 0.1 s window; items are the window's points. Counters: the grid chosen.
+template <class Resolution, class FirstWindow>
+void BM_Calibrate(benchmark::State& state) {
+  const auto& coords = FirstWindow::coords();
+  const float aspect = FirstWindow::fov_aspect();
+  sc::GridSize grid{};
+  for (auto _ : state) {
+    Resolution resolution{typename Resolution::Params{}};
+    grid = resolution.calibrate(coords, aspect);
+    benchmark::DoNotOptimize(grid);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(coords.size()));
+  state.counters["rows"] = grid.rows;
+  state.counters["cols"] = grid.cols;
+}
+
+using AllOfAngularEuclidean = sc::AllOf<sc::AngularLinkage, sc::EuclideanLinkage>;
+using AnyOfAngularEuclidean = sc::AnyOf<sc::AngularLinkage, sc::EuclideanLinkage>;
 
 }  // namespace
 
-BENCHMARK_TEMPLATE(BM_Insert, BucketAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Insert, CappedAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Insert, OverwriteAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Insert, BucketEuclidean)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Cycle, BucketAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Cycle, CappedAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Batch, BucketAngular)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Batch, CappedAngular)->Unit(benchmark::kMillisecond);
+// One line per policy (see the file comment).
+BENCHMARK_TEMPLATE(BM_Project, sc::SphericalProjection);
+BENCHMARK_TEMPLATE(BM_Project, sc::CylindricalProjection);
+
+BENCHMARK_TEMPLATE(BM_Index, sc::BucketGrid)->Apply(index_cases);
+BENCHMARK_TEMPLATE(BM_Index, sc::CappedGrid)->Apply(index_cases);
+BENCHMARK_TEMPLATE(BM_Index, sc::OverwriteGrid)->Apply(index_cases);
+
 BENCHMARK_TEMPLATE(BM_Linkage, sc::EuclideanLinkage);
 BENCHMARK_TEMPLATE(BM_Linkage, sc::AngularLinkage);
-BENCHMARK_TEMPLATE(BM_Linkage, sc::AngularOrEuclidean);
+BENCHMARK_TEMPLATE(BM_Linkage, AllOfAngularEuclidean);
+BENCHMARK_TEMPLATE(BM_Linkage, AnyOfAngularEuclidean);
+BENCHMARK_TEMPLATE(BM_Linkage, sc::RuntimeLinkage);
+
+BENCHMARK_TEMPLATE(BM_Window, sc::TimeWindow);
+BENCHMARK_TEMPLATE(BM_Window, sc::CountWindow);
+
+BENCHMARK_TEMPLATE(BM_Calibrate, sc::AdaptiveResolution, Mid360FirstWindow)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Calibrate, sc::AdaptiveResolution, AviaFirstWindow)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

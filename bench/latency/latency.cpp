@@ -1,0 +1,800 @@
+// SPDX-License-Identifier: MIT
+// bench_latency: the paper's end-to-end metric, with peers in the same run.
+//
+// For each scenario (sensor x scene x configuration x T_B) a raw stream is
+// simulated on the fly (no ground removal, no downsampling) and drives the
+// continuous engine single-threaded, with a retrieval every 50 ms of stream
+// time (20 Hz). The cycle latency is the wall time around the inserts of
+// everything that arrived in the 50 ms slice plus the retrieve() (insertion
+// + eviction + validation + component update + labelling); the simulation of
+// the slice is not timed. On every k-th cycle the peers cluster the same
+// window (the engine's window at that cycle, read back from the engine):
+//   batch  BatchClusterer<Config> in insertion_order (from scratch, same grid)
+//   frame  the overwrite-grid frame baseline: BatchClusterer<Config with
+//          OverwriteGrid> in range_image mode on the same grid
+//   pcl    pcl::EuclideanClusterExtraction (kd-tree), tolerance = the
+//          Euclidean linkage distance; Euclidean configurations only, built
+//          only when PCL is found
+// and the adjusted Rand index of the engine (and of the frame baseline)
+// against the simulator's ground truth is computed (streamclust::eval,
+// object points only).
+//
+// Memory (alloc_counter.hpp: a counting global operator new/delete, only the
+// engine's calls attributed): live engine heap bytes per windowed point,
+// heap allocations per cycle after warm-up, and the process's peak RSS
+// (VmHWM, reset per scenario through /proc/self/clear_refs; getrusage's
+// ru_maxrss, never reset, when /proc is unavailable).
+// The phase split (RetrievalStats::phase_us) comes from a second, shorter
+// pass with a timed copy of the configuration (T_B = 0.5 s scenarios only),
+// so that the totals are measured without the timer overhead.
+//
+// Usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K]
+//                      [--timed-cycles N] [--filter TEXT] [--out DIR]
+//                      [--data DIR] [--smoke] [--list]
+// Output in DIR (default latency-results):
+//   cycles.csv    every measured cycle: scenario, cycle, latency_us, inserted, window
+//   summary.json  per scenario: percentiles, peers, ratios, ARI, memory, phases
+//   summary.md    the same as markdown tables
+//   cdf/<scenario>.dat, pct/<scenario>.dat  sorted latencies (ms, fraction)
+//                 and the percentile points, for bench/latency/plot_cdf.gp
+//
+// Adding a configuration is one line in kConfigs below.
+
+#include "alloc_counter.hpp"
+#include "pcl_peer.hpp"
+#include "percentiles.hpp"
+
+#include <streamclust/eval/rand_index.hpp>
+#include <streamclust/sim/scenes.hpp>
+#include <streamclust/sim/sensors/avia_model.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
+#include <streamclust/sim/sensors/table_replay.hpp>
+#include <streamclust/sim/simulator.hpp>
+#include <streamclust/streamclust.hpp>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <iterator>
+#include <time.h>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace sc = streamclust;
+namespace sim = streamclust::sim;
+namespace fs = std::filesystem;
+using sc::bench::summarize;
+using sc::bench::LatencySummary;
+
+namespace {
+
+constexpr double kCyclePeriod = 0.05;  // 20 Hz retrieval [s]
+
+// ------------------------------------------------------------- configuration
+
+enum class Sensor { mid360, avia };
+const char* to_string(Sensor s) { return s == Sensor::mid360 ? "mid360" : "avia"; }
+
+/// A configuration with a timed copy (phase split) and its overwrite-grid
+/// frame baseline.
+template <class Config>
+struct Timed : Config {
+  static constexpr bool timed = true;
+};
+template <class Config>
+struct WithOverwrite : Config {
+  using spatial_index = sc::OverwriteGrid;
+};
+
+struct Options;
+struct Scenario;
+struct ScenarioResult;
+using Runner = ScenarioResult (*)(const Scenario&, const Options&);
+
+/// One configuration under test: a name, on which sensors it runs, and the
+/// runner instantiated for it.
+struct ConfigEntry {
+  const char* name;         ///< short id used in scenario names
+  const char* description;  ///< for the report
+  bool mid360;              ///< run on the Mid-360
+  bool avia;                ///< run on the Avia
+  unsigned windows;         ///< bit i: run at kWindows[i]
+  Runner run;
+};
+
+constexpr unsigned kAllWindows = 0x1Fu;     // T_B = 0.1 ... 0.5 s
+constexpr unsigned kLongestWindow = 0x10u;  // T_B = 0.5 s only
+
+template <class Config>
+ScenarioResult run_scenario(const Scenario& s, const Options& o);
+
+// Adding a configuration (e.g. a new preset of the perf work) is one line:
+const ConfigEntry kConfigs[] = {
+    {"carc", "C-ARC preset (bucket grid, angular)", true, true, kAllWindows, &run_scenario<sc::CArcConfig>},
+    {"capped", "CArcCappedConfig (capped grid K = 4, angular)", false, true, kAllWindows,
+     &run_scenario<sc::CArcCappedConfig>},
+    {"euclid", "EuclideanConfig (bucket grid, Euclidean 0.5 m)", true, true, kLongestWindow,
+     &run_scenario<sc::EuclideanConfig>},
+};
+
+const double kWindows[] = {0.1, 0.2, 0.3, 0.4, 0.5};
+const char* const kScenes[] = {"office", "forest"};
+
+struct Scenario {
+  Sensor sensor = Sensor::mid360;
+  std::string scene;
+  const ConfigEntry* config = nullptr;
+  double window = 0.1;  ///< T_B [s]
+
+  std::string name() const {
+    std::ostringstream os;
+    os << to_string(sensor) << '-' << scene << '-' << config->name << "-tb" << std::fixed << std::setprecision(1)
+       << window;
+    return os.str();
+  }
+};
+
+struct Options {
+  std::size_t cycles = 1000;       ///< measured cycles per scenario
+  std::size_t peer_every = 20;     ///< batch and frame peers (and ARI) on every k-th measured cycle
+  std::size_t pcl_every = 100;     ///< PCL peer on every k-th measured cycle
+  std::size_t timed_cycles = 200;  ///< cycles of the timed (phase split) pass, 0 = none
+  std::string filter;              ///< run scenarios whose name contains this
+  std::string out = "latency-results";
+  std::string data;                ///< ../shared/data/livox (Mid-360 table); empty = default lookup
+  bool smoke = false;
+  bool list = false;
+};
+
+// ------------------------------------------------------------------- inputs
+
+/// <repo>/../shared/data/livox, or $STREAMCLUST_LIVOX_DATA, or --data.
+fs::path livox_dir(const Options& o) {
+  if (!o.data.empty()) return fs::path(o.data);
+  if (const char* env = std::getenv("STREAMCLUST_LIVOX_DATA")) return fs::path(env);
+  return fs::path(STREAMCLUST_SOURCE_DIR) / ".." / "shared" / "data" / "livox";
+}
+
+sc::CArcParams sensor_params(Sensor s, double window) {
+  sc::CArcParams p = s == Sensor::mid360 ? sc::carc_mid360_params() : sc::carc_avia_params();
+  p.window_seconds = window;
+  return p;
+}
+
+/// Engine parameters: the paper's (w = 5, T_M = 2, theta 30 / 80 degrees,
+/// adaptive grid) for angular configurations; the same FOV, window, mask and
+/// calibration with the linkage's default Params otherwise.
+template <class Config>
+sc::ClustererParams<Config> engine_params(const Scenario& s) {
+  const sc::CArcParams p = sensor_params(s.sensor, s.window);
+  if constexpr (std::is_same_v<typename sc::config_traits<Config>::linkage, sc::AngularLinkage>) {
+    return sc::to_clusterer_params<Config>(p);
+  } else {
+    sc::ClustererParams<Config> out;
+    out.projection = p.field_of_view;
+    out.window.duration = p.window_seconds;
+    out.resolution.max_multiplicity = p.max_multiplicity;
+    out.resolution.target_gap = p.target_gap;
+    out.resolution.target_density = p.target_density;
+    out.resolution.gain_gap = p.gain_gap;
+    out.resolution.gain_density = p.gain_density;
+    out.mask_size = p.mask_size;
+    return out;
+  }
+}
+
+/// The same parameters for a configuration derived from another: every slot
+/// is copied, the index's only when both use the same index policy.
+template <class To, class From>
+sc::ClustererParams<To> rebind_params(const sc::ClustererParams<From>& from) {
+  sc::ClustererParams<To> to;
+  to.projection = from.projection;
+  to.linkage = from.linkage;
+  to.window = from.window;
+  to.resolution = from.resolution;
+  to.mask_size = from.mask_size;
+  if constexpr (std::is_same_v<decltype(to.spatial_index), decltype(from.spatial_index)>) {
+    to.spatial_index = from.spatial_index;
+  }
+  return to;
+}
+
+/// Slices of a simulated stream: every point with time < t_end not yet given.
+template <class SensorModel>
+class SliceSource {
+ public:
+  SliceSource(SensorModel sensor, sim::Scene scene)
+      : sim_(std::move(sensor), std::move(scene), typename sim::Simulator<SensorModel>::Params{}),
+        pending_(sim_.next()) {}
+
+  void fill(double t_end, std::vector<sim::SimPoint>& out) {
+    out.clear();
+    while (pending_.t < t_end) {
+      out.push_back(pending_);
+      pending_ = sim_.next();
+    }
+  }
+
+ private:
+  sim::Simulator<SensorModel> sim_;
+  sim::SimPoint pending_;
+};
+
+sim::Scene make_scene(const std::string& name) {
+  return name == "forest" ? sim::forest_scene(1) : sim::office_scene(1);
+}
+
+// ------------------------------------------------------------------ results
+
+struct PeerResult {
+  std::vector<double> us;          ///< peer wall time per evaluated cycle
+  std::vector<double> engine_us;   ///< the engine's cycle latency on those cycles
+  LatencySummary summary() const { return summarize(us); }
+};
+
+struct ScenarioResult {
+  std::string name;
+  std::string sensor_source;  ///< which Mid-360 pattern (table or analytic) or Avia model
+  sc::GridSize grid{};
+  std::vector<double> latency_us;
+  std::vector<double> cpu_us;  ///< thread CPU time of the same cycles
+  std::vector<std::uint32_t> inserted;
+  std::vector<std::uint32_t> window;
+  PeerResult batch, frame, pcl;
+  std::vector<double> ari_engine, ari_frame;
+  std::vector<double> bytes_per_point;
+  std::uint64_t steady_allocations = 0;
+  std::size_t cycles_with_allocations = 0;
+  double peak_rss_mb = 0.0;
+  bool rss_reset = false;
+  // timed pass
+  std::size_t timed_cycles = 0;
+  sc::PhaseTimes phase_mean{};
+  double timed_median_us = 0.0;
+  double wall_seconds = 0.0;
+};
+
+double mean(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  double s = 0.0;
+  for (const double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+// -------------------------------------------------------------------- memory
+
+/// Resets the process's peak RSS (VmHWM) so that getrusage reports this
+/// scenario's peak; false when the kernel refuses.
+bool reset_peak_rss() {
+  std::ofstream f("/proc/self/clear_refs");
+  if (!f) return false;
+  f << "5";
+  f.flush();
+  return static_cast<bool>(f);
+}
+
+/// Peak RSS [MiB]: VmHWM of /proc/self/status (which clear_refs resets),
+/// else getrusage's ru_maxrss (the peak over the process's whole life).
+double peak_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // in kB
+  }
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// -------------------------------------------------------------------- runner
+
+using Clock = std::chrono::steady_clock;
+double micros(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::micro>(b - a).count(); }
+
+/// CPU time of this thread [us]: unlike the wall clock, not inflated when
+/// other processes take the core (a noise check on a shared machine).
+double thread_cpu_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
+}
+
+std::size_t warmup_cycles(double window) { return static_cast<std::size_t>(std::ceil(2.0 * window / kCyclePeriod)) + 10; }
+
+/// Ground truth of the offered stream, by stream index (rejected points included).
+class TruthLog {
+ public:
+  void push(int instance) { ids_.push_back(instance); }
+  /// Forget everything older than stream index `first_kept`.
+  void trim(std::uint64_t first_kept) {
+    while (base_ < first_kept && !ids_.empty()) {
+      ids_.pop_front();
+      ++base_;
+    }
+  }
+  int at(std::uint64_t stream_index) const { return ids_.at(static_cast<std::size_t>(stream_index - base_)); }
+
+ private:
+  std::deque<int> ids_;
+  std::uint64_t base_ = 0;
+};
+
+/// Drives one configuration over one scenario's stream. The engine calibrates
+/// its grid on the first complete window (T_B), as in the paper; retrievals
+/// start once it has.
+template <class Config, class SensorModel>
+void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResult& r) {
+  using Engine = sc::StreamClusterer<Config>;
+  const auto params = engine_params<Config>(s);
+  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
+  std::optional<Engine> engine;
+  // The counters are process-wide: the engine's live bytes are the growth
+  // from here on (construction included).
+  const std::int64_t live_base = sc::bench::alloc_counters().live_bytes;
+  {
+    sc::bench::AllocScope scope;
+    engine.emplace(params);
+  }
+  sc::BatchClusterer<Config> batch(params, sc::BatchMode::insertion_order);
+  using Frame = WithOverwrite<Config>;
+  sc::BatchClusterer<Frame> frame(rebind_params<Frame>(params), sc::BatchMode::range_image);
+  constexpr bool euclidean = std::is_same_v<typename sc::config_traits<Config>::linkage, sc::EuclideanLinkage>;
+
+  TruthLog truth_log;
+  std::vector<sim::SimPoint> slice;
+  std::vector<sc::Sample> window_samples;
+  std::vector<std::int64_t> truth, predicted;
+  std::vector<float> xyz;
+  const std::size_t warmup = warmup_cycles(s.window);
+  const std::size_t total = warmup + o.cycles;
+  r.latency_us.reserve(o.cycles);
+  r.inserted.reserve(o.cycles);
+  r.window.reserve(o.cycles);
+
+  for (std::size_t cycle = 0; cycle < total; ++cycle) {
+    source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
+    for (const auto& p : slice) truth_log.push(p.instance);
+    const bool measured = cycle >= warmup;
+    const sc::bench::AllocCounters before = sc::bench::alloc_counters();
+
+    const double c0 = thread_cpu_us();
+    const auto t0 = Clock::now();
+    const sc::Clustering* result = nullptr;
+    {
+      sc::bench::AllocScope scope;
+      for (const auto& p : slice) engine->insert(p);
+      // No retrieval while the first window is buffered: retrieve() would end
+      // the calibration early, on the first 50 ms instead of the first T_B.
+      if (!engine->calibrating()) result = &engine->retrieve();
+    }
+    const auto t1 = Clock::now();
+    const double cpu = thread_cpu_us() - c0;
+    const double us = micros(t0, t1);
+    const sc::bench::AllocCounters after = sc::bench::alloc_counters();
+    if (!measured) continue;
+    if (result == nullptr) throw std::runtime_error(r.name + ": still calibrating after the warm-up");
+
+    const std::size_t m = cycle - warmup;
+    r.latency_us.push_back(us);
+    r.cpu_us.push_back(cpu);
+    r.inserted.push_back(static_cast<std::uint32_t>(slice.size()));
+    r.window.push_back(static_cast<std::uint32_t>(engine->size()));
+    const std::uint64_t allocs = after.allocations - before.allocations;
+    r.steady_allocations += allocs;
+    if (allocs > 0) ++r.cycles_with_allocations;
+    if (engine->size() > 0) {
+      r.bytes_per_point.push_back(static_cast<double>(after.live_bytes - live_base) /
+                                  static_cast<double>(engine->size()));
+    }
+    if (m == 0) r.grid = sc::GridSize{engine->grid().rows, engine->grid().cols};
+
+    const bool peers = m % o.peer_every == 0;
+    const bool pcl = euclidean && sc::bench::pcl_peer_available() && m % o.pcl_every == 0;
+    if (!peers && !pcl) continue;
+
+    // The engine's window, oldest first, and its ground truth.
+    window_samples.clear();
+    truth.clear();
+    engine->for_each_point([&](const sc::Sample& sample, std::uint64_t stream_index) {
+      window_samples.push_back(sample);
+      truth.push_back(truth_log.at(stream_index));
+    });
+    if (!result->points.empty()) truth_log.trim(result->points.front().stream_index);
+
+    if (peers) {
+      predicted.clear();
+      for (const sc::PointLabel& pl : result->points) predicted.push_back(static_cast<std::int64_t>(pl.label));
+      r.ari_engine.push_back(sc::eval::adjusted_rand_index(truth, predicted));
+
+      batch.set_grid(r.grid);
+      const auto b0 = Clock::now();
+      const sc::BatchResult& br = batch.cluster(window_samples);
+      const auto b1 = Clock::now();
+      r.batch.us.push_back(micros(b0, b1));
+      r.batch.engine_us.push_back(us);
+      if (br.components == 0 && !window_samples.empty()) throw std::runtime_error("batch peer labelled nothing");
+
+      frame.set_grid(r.grid);
+      const auto f0 = Clock::now();
+      const sc::BatchResult& fr = frame.cluster(window_samples);
+      const auto f1 = Clock::now();
+      r.frame.us.push_back(micros(f0, f1));
+      r.frame.engine_us.push_back(us);
+      r.ari_frame.push_back(sc::eval::adjusted_rand_index(truth, fr.labels));
+    }
+    if (pcl) {
+      xyz.clear();
+      for (const sc::Sample& smp : window_samples) {
+        xyz.push_back(smp.position.x());
+        xyz.push_back(smp.position.y());
+        xyz.push_back(smp.position.z());
+      }
+      std::size_t clusters = 0;
+      float tolerance = 0.0f;
+      if constexpr (euclidean) tolerance = params.linkage.max_distance;
+      r.pcl.us.push_back(sc::bench::pcl_euclidean_us(xyz, tolerance, clusters));
+      r.pcl.engine_us.push_back(us);
+    }
+  }
+  sc::bench::AllocScope scope;  // the engine's frees balance its allocations
+  engine.reset();
+}
+
+/// The timed pass: phase split averaged over `cycles` cycles after warm-up.
+template <class Config, class SensorModel>
+void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, ScenarioResult& r) {
+  using T = Timed<Config>;
+  sc::StreamClusterer<T> engine(rebind_params<T>(engine_params<Config>(s)));
+  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
+  std::vector<sim::SimPoint> slice;
+  std::vector<double> lat;
+  sc::PhaseTimes sum{};
+  const std::size_t warmup = warmup_cycles(s.window);
+  for (std::size_t cycle = 0; cycle < warmup + cycles; ++cycle) {
+    source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
+    const auto t0 = Clock::now();
+    for (const auto& p : slice) engine.insert(p);
+    if (!engine.calibrating()) engine.retrieve();
+    const auto t1 = Clock::now();
+    if (cycle < warmup) continue;
+    lat.push_back(micros(t0, t1));
+    const sc::PhaseTimes& ph = engine.last_stats().phase_us;
+    sum.insertion += ph.insertion;
+    sum.eviction += ph.eviction;
+    sum.validation += ph.validation;
+    sum.component_update += ph.component_update;
+    sum.labelling += ph.labelling;
+  }
+  const auto n = static_cast<double>(cycles);
+  r.timed_cycles = cycles;
+  r.phase_mean = sc::PhaseTimes{sum.insertion / n, sum.eviction / n, sum.validation / n, sum.component_update / n,
+                                sum.labelling / n};
+  r.timed_median_us = summarize(lat).median;
+}
+
+/// Calls f(sensor model, description) with this scenario's sensor.
+template <class F>
+void with_sensor(const Scenario& s, const Options& o, F&& f) {
+  if (s.sensor == Sensor::avia) {
+    f(sim::AviaModel(sim::AviaModel::Params{}), std::string("AviaModel (analytic, 240 kHz)"));
+    return;
+  }
+  const fs::path table = livox_dir(o) / "patterns" / "mid360_u16le.bin";
+  std::error_code ec;
+  if (fs::is_regular_file(table, ec)) {
+    f(sim::TableReplay::mid360(table.string()), "TableReplay of the real table " + table.lexically_normal().string());
+  } else {
+    f(sim::Mid360Model(sim::Mid360Model::Params{}), std::string("Mid360Model (analytic; real table not found)"));
+  }
+}
+
+template <class Config>
+ScenarioResult run_scenario(const Scenario& s, const Options& o) {
+  ScenarioResult r;
+  r.name = s.name();
+  r.rss_reset = reset_peak_rss();
+  const auto w0 = Clock::now();
+  with_sensor(s, o, [&](auto sensor, const std::string& source) {
+    r.sensor_source = source;
+    drive<Config>(s, o, sensor, r);
+    r.peak_rss_mb = peak_rss_mb();
+    if (o.timed_cycles > 0 && (s.window > 0.45 || o.smoke)) drive_timed<Config>(s, o.timed_cycles, sensor, r);
+  });
+  r.wall_seconds = std::chrono::duration<double>(Clock::now() - w0).count();
+  return r;
+}
+
+// ------------------------------------------------------------------- output
+
+std::string fmt(double v, int precision = 2) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(precision) << v;
+  return os.str();
+}
+
+void write_json_summary(std::ostream& os, const LatencySummary& s, double scale) {
+  os << "{\"count\": " << s.count << ", \"p1\": " << s.p1 * scale << ", \"q1\": " << s.q1 * scale
+     << ", \"median\": " << s.median * scale << ", \"q3\": " << s.q3 * scale << ", \"p95\": " << s.p95 * scale
+     << ", \"p99\": " << s.p99 * scale << ", \"p999\": " << s.p999 * scale << ", \"max\": " << s.max * scale
+     << ", \"mean\": " << s.mean * scale << "}";
+}
+
+void write_peer_json(std::ostream& os, const char* name, const PeerResult& p, const LatencySummary& engine) {
+  const LatencySummary ps = p.summary();
+  os << "    \"" << name << "\": ";
+  if (ps.count == 0) {
+    os << "null";
+    return;
+  }
+  os << "{\"ms\": ";
+  write_json_summary(os, ps, 1e-3);
+  os << ", \"engine_same_cycles_ms\": ";
+  write_json_summary(os, summarize(p.engine_us), 1e-3);
+  os << ", \"median_ratio\": " << ps.median / engine.median << ", \"p99_ratio\": " << ps.p99 / engine.p99 << "}";
+}
+
+struct Written {
+  std::vector<std::pair<Scenario, ScenarioResult>> all;
+};
+
+void write_outputs(const Options& o, const Written& w) {
+  const fs::path out(o.out);
+  fs::create_directories(out / "cdf");
+  fs::create_directories(out / "pct");
+
+  std::ofstream csv(out / "cycles.csv");
+  csv << "scenario,cycle,latency_us,cpu_us,inserted,window\n";
+  for (const auto& [s, r] : w.all) {
+    for (std::size_t i = 0; i < r.latency_us.size(); ++i) {
+      csv << r.name << ',' << i << ',' << fmt(r.latency_us[i], 1) << ',' << fmt(r.cpu_us[i], 1) << ',' << r.inserted[i]
+          << ',' << r.window[i]
+          << '\n';
+    }
+    std::vector<double> sorted = r.latency_us;
+    std::sort(sorted.begin(), sorted.end());
+    std::ofstream cdf(out / "cdf" / (r.name + ".dat"));
+    cdf << "# latency_ms fraction\n";
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      cdf << sorted[i] * 1e-3 << ' ' << static_cast<double>(i + 1) / static_cast<double>(sorted.size()) << '\n';
+    }
+    const LatencySummary ls = summarize(r.latency_us);
+    std::ofstream pct(out / "pct" / (r.name + ".dat"));
+    pct << "# latency_ms fraction label\n";
+    const std::pair<const char*, std::pair<double, double>> marks[] = {
+        {"P1", {ls.p1, 0.01}},     {"Q1", {ls.q1, 0.25}},   {"median", {ls.median, 0.5}}, {"Q3", {ls.q3, 0.75}},
+        {"P95", {ls.p95, 0.95}}, {"P99", {ls.p99, 0.99}}, {"P999", {ls.p999, 0.999}}};
+    for (const auto& mk : marks) pct << mk.second.first * 1e-3 << ' ' << mk.second.second << ' ' << mk.first << '\n';
+  }
+
+  std::ofstream json(out / "summary.json");
+  json << "{\n  \"cycle_period_ms\": " << kCyclePeriod * 1e3 << ", \"cycles\": " << o.cycles
+       << ", \"peer_every\": " << o.peer_every << ", \"pcl_every\": " << o.pcl_every
+       << ", \"pcl_available\": " << (sc::bench::pcl_peer_available() ? "true" : "false")
+       << ", \"timed_cycles\": " << o.timed_cycles << ",\n  \"scenarios\": [\n";
+  for (std::size_t k = 0; k < w.all.size(); ++k) {
+    const auto& [s, r] = w.all[k];
+    const LatencySummary ls = summarize(r.latency_us);
+    json << "  {\n    \"name\": \"" << r.name << "\", \"sensor\": \"" << to_string(s.sensor) << "\", \"scene\": \""
+         << s.scene << "\", \"config\": \"" << s.config->name << "\", \"window_s\": " << s.window
+         << ", \"sensor_source\": \"" << r.sensor_source << "\", \"grid\": [" << r.grid.rows << ", " << r.grid.cols
+         << "],\n    \"latency_ms\": ";
+    write_json_summary(json, ls, 1e-3);
+    json << ",\n    \"cpu_ms\": ";
+    write_json_summary(json, summarize(r.cpu_us), 1e-3);
+    json << ",\n    \"points_per_cycle_mean\": " << mean(std::vector<double>(r.inserted.begin(), r.inserted.end()))
+         << ", \"window_points_mean\": " << mean(std::vector<double>(r.window.begin(), r.window.end())) << ",\n";
+    write_peer_json(json, "batch", r.batch, ls);
+    json << ",\n";
+    write_peer_json(json, "frame", r.frame, ls);
+    json << ",\n";
+    write_peer_json(json, "pcl", r.pcl, ls);
+    json << ",\n    \"ari_engine_mean\": " << mean(r.ari_engine) << ", \"ari_frame_mean\": " << mean(r.ari_frame)
+         << ", \"ari_samples\": " << r.ari_engine.size() << ",\n    \"bytes_per_point\": ";
+    write_json_summary(json, summarize(r.bytes_per_point), 1.0);
+    json << ",\n    \"steady_allocations\": " << r.steady_allocations
+         << ", \"cycles_with_allocations\": " << r.cycles_with_allocations << ", \"peak_rss_mb\": " << r.peak_rss_mb
+         << ", \"peak_rss_reset\": " << (r.rss_reset ? "true" : "false") << ",\n    \"timed_cycles\": " << r.timed_cycles
+         << ", \"phase_mean_ms\": {\"insertion\": " << r.phase_mean.insertion * 1e-3
+         << ", \"eviction\": " << r.phase_mean.eviction * 1e-3 << ", \"validation\": " << r.phase_mean.validation * 1e-3
+         << ", \"component_update\": " << r.phase_mean.component_update * 1e-3
+         << ", \"labelling\": " << r.phase_mean.labelling * 1e-3 << "}, \"timed_median_ms\": " << r.timed_median_us * 1e-3
+         << ", \"wall_seconds\": " << r.wall_seconds << "\n  }" << (k + 1 < w.all.size() ? "," : "") << '\n';
+  }
+  json << "  ]\n}\n";
+
+  std::ofstream md(out / "summary.md");
+  md << "# bench_latency summary\n\n";
+  md << "Cycle = inserts of one 50 ms slice + retrieve() (20 Hz), single thread; " << o.cycles
+     << " measured cycles per scenario after a warm-up of 2 T_B + 0.5 s (wall clock; CPU = the thread's CPU time of the same cycles). Peers (batch, frame) and ARI on every "
+     << o.peer_every << "-th cycle, PCL on every " << o.pcl_every << "-th ("
+     << (sc::bench::pcl_peer_available() ? "PCL found" : "PCL not built") << "). Times in ms.\n\n";
+  if (!w.all.empty()) md << "Mid-360 pattern: " << [&] {
+      for (const auto& e : w.all) {
+        if (e.first.sensor == Sensor::mid360) return e.second.sensor_source;
+      }
+      return std::string("(not run)");
+    }() << ".\n\n";
+  md << "## Continuous engine: cycle latency [ms]\n\n";
+  md << "| scenario | grid | pts/cycle | window pts | P1 | Q1 | median | Q3 | P95 | P99 | P999 | P99 / 50 ms | CPU median "
+        "| CPU P99 |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [s, r] : w.all) {
+    const LatencySummary ls = summarize(r.latency_us);
+    md << "| " << r.name << " | " << r.grid.rows << "x" << r.grid.cols << " | "
+       << fmt(mean(std::vector<double>(r.inserted.begin(), r.inserted.end())), 0) << " | "
+       << fmt(mean(std::vector<double>(r.window.begin(), r.window.end())), 0) << " | " << fmt(ls.p1 * 1e-3) << " | "
+       << fmt(ls.q1 * 1e-3) << " | " << fmt(ls.median * 1e-3) << " | " << fmt(ls.q3 * 1e-3) << " | "
+       << fmt(ls.p95 * 1e-3) << " | " << fmt(ls.p99 * 1e-3) << " | " << fmt(ls.p999 * 1e-3) << " | "
+       << fmt(100.0 * ls.p99 * 1e-3 / 50.0, 0) << " % | " << fmt(summarize(r.cpu_us).median * 1e-3) << " | "
+       << fmt(summarize(r.cpu_us).p99 * 1e-3) << " |\n";
+  }
+  md << "\n## Peers on the same windows [ms] (ratio = peer / engine, engine over all measured cycles)\n\n";
+  md << "| scenario | engine median | batch median | batch P99 | batch/engine median | frame median | frame P99 | "
+        "frame/engine median | PCL median | PCL P99 | PCL/engine median |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [s, r] : w.all) {
+    const LatencySummary ls = summarize(r.latency_us);
+    const LatencySummary b = r.batch.summary(), f = r.frame.summary(), p = r.pcl.summary();
+    auto cell = [&](const LatencySummary& x, double v) { return x.count == 0 ? std::string("-") : fmt(v * 1e-3); };
+    auto ratio = [&](const LatencySummary& x) {
+      return x.count == 0 ? std::string("-") : fmt(x.median / ls.median, 2) + "x";
+    };
+    md << "| " << r.name << " | " << fmt(ls.median * 1e-3) << " | " << cell(b, b.median) << " | " << cell(b, b.p99)
+       << " | " << ratio(b) << " | " << cell(f, f.median) << " | " << cell(f, f.p99) << " | " << ratio(f) << " | "
+       << cell(p, p.median) << " | " << cell(p, p.p99) << " | " << ratio(p) << " |\n";
+  }
+  md << "\n## Quality and memory\n\n";
+  md << "| scenario | ARI engine | ARI frame baseline | bytes / window point (median) | steady allocations "
+        "(cycles with any) | peak RSS [MB] |\n";
+  md << "|---|---|---|---|---|---|\n";
+  for (const auto& [s, r] : w.all) {
+    md << "| " << r.name << " | " << fmt(mean(r.ari_engine), 4) << " | " << fmt(mean(r.ari_frame), 4) << " | "
+       << fmt(summarize(r.bytes_per_point).median, 1) << " | " << r.steady_allocations << " ("
+       << r.cycles_with_allocations << ") | " << fmt(r.peak_rss_mb, 0) << " |\n";
+  }
+  md << "\n## Phase split (timed configuration, mean per cycle) [ms]\n\n";
+  md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median |\n";
+  md << "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [s, r] : w.all) {
+    if (r.timed_cycles == 0) continue;
+    const sc::PhaseTimes& ph = r.phase_mean;
+    md << "| " << r.name << " | " << r.timed_cycles << " | " << fmt(ph.insertion * 1e-3) << " | "
+       << fmt(ph.eviction * 1e-3) << " | " << fmt(ph.validation * 1e-3) << " | " << fmt(ph.component_update * 1e-3)
+       << " | " << fmt(ph.labelling * 1e-3) << " | " << fmt(r.timed_median_us * 1e-3) << " |\n";
+  }
+}
+
+// -------------------------------------------------------------------- main
+
+std::vector<Scenario> all_scenarios() {
+  std::vector<Scenario> out;
+  for (const Sensor sensor : {Sensor::mid360, Sensor::avia}) {
+    for (const ConfigEntry& c : kConfigs) {
+      if (!(sensor == Sensor::mid360 ? c.mid360 : c.avia)) continue;
+      for (const char* scene : kScenes) {
+        for (std::size_t i = 0; i < std::size(kWindows); ++i) {
+          if ((c.windows >> i) & 1u) out.push_back(Scenario{sensor, scene, &c, kWindows[i]});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::size_t parse_count(const std::string& flag, const std::string& value, std::size_t min) {
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(value.c_str(), &end, 10);
+  if (value.empty() || *end != '\0' || v < min) {
+    throw std::invalid_argument(flag + " = '" + value + "' is invalid: expected an integer >= " + std::to_string(min));
+  }
+  return static_cast<std::size_t>(v);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  bool cycles_given = false, timed_given = false, peer_given = false, pcl_given = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--cycles") {
+      o.cycles = parse_count(a, value(), 1);
+      cycles_given = true;
+    } else if (a == "--peer-every") {
+      o.peer_every = parse_count(a, value(), 1);
+      peer_given = true;
+    } else if (a == "--pcl-every") {
+      o.pcl_every = parse_count(a, value(), 1);
+      pcl_given = true;
+    } else if (a == "--timed-cycles") {
+      o.timed_cycles = parse_count(a, value(), 0);
+      timed_given = true;
+    } else if (a == "--filter") {
+      o.filter = value();
+    } else if (a == "--out") {
+      o.out = value();
+    } else if (a == "--data") {
+      o.data = value();
+    } else if (a == "--smoke") {
+      o.smoke = true;
+    } else if (a == "--list") {
+      o.list = true;
+    } else if (a == "--help" || a == "-h") {
+      std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
+                   "                     [--filter TEXT] [--out DIR] [--data DIR] [--smoke] [--list]\n";
+      std::exit(0);
+    } else {
+      throw std::invalid_argument("unknown option '" + a + "' (try --help)");
+    }
+  }
+  if (o.smoke) {  // a few cycles of one scenario, every peer on every cycle
+    if (!cycles_given) o.cycles = 6;
+    if (!timed_given) o.timed_cycles = 3;
+    if (!peer_given) o.peer_every = 2;
+    if (!pcl_given) o.pcl_every = 3;
+  }
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    std::vector<Scenario> scenarios;
+    if (o.smoke && o.filter.empty()) {
+      // Smoke: the Euclidean configuration (all three peers) at T_B = 0.1 s.
+      const auto euclid = std::find_if(std::begin(kConfigs), std::end(kConfigs),
+                                       [](const ConfigEntry& c) { return std::string(c.name) == "euclid"; });
+      scenarios.push_back(Scenario{Sensor::mid360, "office", euclid, 0.1});
+    } else {
+      for (const Scenario& s : all_scenarios()) {
+        if (o.filter.empty() || s.name().find(o.filter) != std::string::npos) scenarios.push_back(s);
+      }
+    }
+    if (o.list) {
+      for (const Scenario& s : scenarios) std::cout << s.name() << '\n';
+      return 0;
+    }
+    if (scenarios.empty()) throw std::invalid_argument("--filter '" + o.filter + "' matches no scenario (see --list)");
+    std::cout << "bench_latency: " << scenarios.size() << " scenario(s), " << o.cycles << " cycles each, peers every "
+              << o.peer_every << ", PCL every " << o.pcl_every << " ("
+              << (sc::bench::pcl_peer_available() ? "available" : "not built") << ")\n";
+    Written w;
+    for (const Scenario& s : scenarios) {
+      ScenarioResult r = s.config->run(s, o);
+      const LatencySummary ls = summarize(r.latency_us);
+      std::cout << std::left << std::setw(30) << r.name << " grid " << r.grid.rows << "x" << r.grid.cols << "  median "
+                << fmt(ls.median * 1e-3) << " ms  P99 " << fmt(ls.p99 * 1e-3) << " ms  P999 " << fmt(ls.p999 * 1e-3)
+                << " ms  batch " << fmt(r.batch.summary().median * 1e-3) << "  frame "
+                << fmt(r.frame.summary().median * 1e-3) << "  pcl " << fmt(r.pcl.summary().median * 1e-3)
+                << "  ARI " << fmt(mean(r.ari_engine), 3) << "  allocs " << r.steady_allocations << "  ("
+                << fmt(r.wall_seconds, 0) << " s)  [" << r.sensor_source << "]" << std::endl;
+      w.all.emplace_back(s, std::move(r));
+    }
+    write_outputs(o, w);
+    std::cout << "results: " << fs::absolute(o.out).lexically_normal().string() << "/{summary.md,summary.json,cycles.csv}\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_latency: " << e.what() << '\n';
+    return 1;
+  }
+}
