@@ -41,6 +41,7 @@ struct RetrievalStats {
   std::uint64_t inserted = 0;           ///< points inserted into the graph
   std::uint64_t evicted = 0;            ///< points that left the window
   std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
+  std::uint64_t points_validated = 0;   ///< points of the clusters checked (validation work)
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits
   PhaseTimes phase_us{};                ///< timed configs only
 };
@@ -108,7 +109,10 @@ class StreamClusterer {
   using window_type = typename traits::window;
   using resolution_type = typename traits::resolution;
   using visitor_type = typename traits::visitor;
+  using connectivity_type = typename traits::connectivity;
   using Params = ClustererParams<Config>;
+  /// True for ConnectivityStrategy::union_find_rebuild (no local-cluster bookkeeping).
+  static constexpr bool rebuilds_components = connectivity_type::strategy == ConnectivityStrategy::union_find_rebuild;
 
   /// Throws std::invalid_argument when a parameter is out of range.
   explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
@@ -119,6 +123,7 @@ class StreamClusterer {
         window_(params.window),
         resolution_(params.resolution),
         visitor_(std::move(visitor)),
+        connectivity_(params.connectivity),
         half_(detail::checked_mask_half_width(params.mask_size)) {
     if (!resolution_.needs_calibration()) set_grid(resolution_.grid());
   }
@@ -162,9 +167,14 @@ class StreamClusterer {
   const Clustering& retrieve() {
     if (calibrating_ && size() > 0) finish_calibration();
     const auto t0 = clock_now();
-    validate_pending();
-    add_elapsed(stats_.phase_us.validation, t0);
-    label_components();
+    if constexpr (rebuilds_components) {
+      rebuild_components();
+      add_elapsed(stats_.phase_us.component_update, t0);
+    } else {
+      validate_pending();
+      add_elapsed(stats_.phase_us.validation, t0);
+      label_components();
+    }
     last_stats_ = stats_;
     stats_ = RetrievalStats{};
     return result_;
@@ -194,6 +204,7 @@ class StreamClusterer {
   const resolution_type& resolution() const { return resolution_; }
   visitor_type& visitor() { return visitor_; }
   const visitor_type& visitor() const { return visitor_; }
+  const connectivity_type& connectivity() const { return connectivity_; }
 
   /// Calls `f(const Sample&, std::uint64_t stream_index)` for every point in
   /// the window, oldest first. O(N).
@@ -239,7 +250,13 @@ class StreamClusterer {
   std::size_t cluster_slots() const { return clusters_.size(); }
   bool cluster_alive(ClusterId c) const { return c < clusters_.size() && clusters_[c].alive; }
   /// Live clusters.
-  std::size_t cluster_count() const { return clusters_.size() - free_clusters_.size(); }
+  std::size_t cluster_count() const {
+    if constexpr (rebuilds_components) {
+      return static_cast<std::size_t>(std::count_if(clusters_.begin(), clusters_.end(), [](const Cluster& c) { return c.alive; }));
+    } else {
+      return clusters_.size() - free_clusters_.size();
+    }
+  }
   /// Points of a live cluster.
   std::size_t cluster_size(ClusterId c) const { return clusters_[c].size; }
   bool cluster_pending(ClusterId c) const { return clusters_[c].pending; }
@@ -278,6 +295,9 @@ class StreamClusterer {
     bool pending = false;
     std::vector<Bridge> bridges;
   };
+
+  /// Cluster of a point linked since the last retrieval (union_find_rebuild only).
+  static constexpr ClusterId kUnlabelled = kNoCluster - 1;
 
   PointRecord& point(PointHandle h) { return points_[h & point_mask_]; }
   const PointRecord& point(PointHandle h) const { return points_[h & point_mask_]; }
@@ -363,6 +383,17 @@ class StreamClusterer {
     PointRecord& r = point(h);
     r.back_begin = next_edge_;
     r.back_count = static_cast<std::uint32_t>(neighbours_.size());
+    if constexpr (rebuilds_components) {
+      for (const PointHandle n : neighbours_) {
+        const EdgeHandle e = next_edge_++;
+        PointRecord& nr = point(n);
+        edge(e) = EdgeRecord{n, h, nr.fwd_head};
+        nr.fwd_head = e;
+      }
+      r.cluster = kUnlabelled;  // labelled by the next retrieval
+      index_.insert(r.cell, h);
+      return;
+    }
     touched_.clear();
     for (const PointHandle n : neighbours_) {
       const EdgeHandle e = next_edge_++;
@@ -466,7 +497,16 @@ class StreamClusterer {
   void evict_oldest() {
     const PointHandle h = oldest_;
     PointRecord& r = point(h);
-    if (r.cluster != kNoCluster) {
+    if constexpr (rebuilds_components) {
+      if (r.cluster != kNoCluster) {
+        ++stats_.evicted;
+        index_.remove(r.cell, h);
+        if (r.cluster < clusters_.size()) {
+          Cluster& cl = clusters_[r.cluster];
+          if (--cl.size == 0) cl.alive = false;
+        }
+      }
+    } else if (r.cluster != kNoCluster) {
       ++stats_.evicted;
       index_.remove(r.cell, h);
       const ClusterId c = r.cluster;
@@ -504,6 +544,7 @@ class StreamClusterer {
       if (!clusters_[c].alive || !clusters_[c].pending) continue;
       clusters_[c].pending = false;
       ++stats_.clusters_validated;
+      stats_.points_validated += clusters_[c].size;
       validate(c);
     }
     pending_.clear();
@@ -605,8 +646,13 @@ class StreamClusterer {
     }
     assign_stable_ids(components);
     add_elapsed(stats_.phase_us.component_update, t0);
-    const auto t1 = clock_now();
+    write_result(components);
+  }
 
+  /// Labels and summaries of every window point from `component_of_` and
+  /// `component_ids_`. O(N + components log components).
+  void write_result(std::uint32_t components) {
+    const auto t1 = clock_now();
     result_.time = last_time_;
     ++result_.cycle;
     result_.points.clear();
@@ -665,6 +711,12 @@ class StreamClusterer {
     ComponentId id;
     std::uint64_t weight;
   };
+  struct Vote {
+    std::uint32_t component;
+    ClusterId old;
+    std::uint64_t weight;
+    std::uint32_t next;  ///< next vote of the same old cluster
+  };
 
   void assign_stable_ids(std::uint32_t components) {
     claims_.clear();
@@ -672,6 +724,17 @@ class StreamClusterer {
       const Cluster& cl = clusters_[c];
       if (cl.alive && cl.stable_id != kNoComponent) claims_.push_back(Claim{component_of_[c], cl.stable_id, cl.size});
     }
+    resolve_claims(components);
+    for (ClusterId c = 0; c < clusters_.size(); ++c) {
+      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+    }
+  }
+
+  /// From `claims_` (component, old id, weight), possibly with repeated
+  /// pairs: each old id goes to its heaviest claimant, each component keeps
+  /// its heaviest old id, the others get fresh ids. Fills `component_ids_`.
+  /// O(claims log claims).
+  void resolve_claims(std::uint32_t components) {
     // Sum the weight of each (component, old id) pair.
     std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
       return a.id != b.id ? a.id < b.id : a.component < b.component;
@@ -707,9 +770,95 @@ class StreamClusterer {
     for (auto& id : component_ids_) {
       if (id == kNoComponent) id = next_component_id_++;
     }
-    for (ClusterId c = 0; c < clusters_.size(); ++c) {
-      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+  }
+
+  // ------------------------------------------------ union_find_rebuild
+
+  std::uint32_t find_root(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
     }
+    return x;
+  }
+
+  /// union_find_rebuild: one union-find pass over the live edges (window
+  /// order, so the edge ring is read sequentially; the root of a set is its
+  /// oldest point), stable ids by per-point votes, then the local clusters
+  /// become the components. O(N + E) plus the claims.
+  void rebuild_components() {
+    const auto n = static_cast<std::uint32_t>(size());
+    stats_.points_validated += n;
+    parent_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const PointRecord& r = point(oldest_ + i);
+      std::uint32_t root = i;
+      parent_[i] = i;
+      for (std::uint32_t k = 0; k < r.back_count; ++k) {
+        const auto j = static_cast<std::uint32_t>(edge(r.back_begin + k).older - oldest_);
+        if (j >= n) continue;  // the older endpoint has left the window
+        const std::uint32_t rj = find_root(j);
+        if (rj == root) continue;
+        if (rj < root) {
+          parent_[root] = rj;
+          root = rj;
+        } else {
+          parent_[rj] = root;
+        }
+      }
+    }
+    // Dense component numbers in order of each component's oldest point.
+    // Every parent has a smaller index than its child (unions hang the newer
+    // root under the older), so in increasing order a non-root's parent
+    // already holds its component number: no find needed.
+    std::uint32_t components = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t p = parent_[i];
+      parent_[i] = p == i ? components++ : parent_[p];
+    }
+    // parent_[i] is now the component of point i. Votes: (component, old cluster).
+    const auto old_clusters = static_cast<std::uint32_t>(clusters_.size());
+    claim_head_.assign(old_clusters, kNoCluster);
+    votes_.clear();
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const ClusterId old = point(oldest_ + i).cluster;
+      if (old >= old_clusters) continue;  // inserted since the last retrieval
+      const std::uint32_t k = parent_[i];
+      std::uint32_t v = claim_head_[old];
+      while (v != kNoCluster && votes_[v].component != k) v = votes_[v].next;
+      if (v != kNoCluster) {
+        ++votes_[v].weight;
+      } else {
+        votes_.push_back(Vote{k, old, 1, claim_head_[old]});
+        claim_head_[old] = static_cast<std::uint32_t>(votes_.size() - 1);
+      }
+    }
+    claims_.clear();
+    for (const Vote& v : votes_) {
+      const ComponentId id = clusters_[v.old].stable_id;
+      if (id != kNoComponent) claims_.push_back(Claim{v.component, id, v.weight});
+    }
+    resolve_claims(components);
+    // The components become the local clusters.
+    clusters_.resize(components);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      Cluster& c = clusters_[k];
+      c.size = 0;
+      c.head = c.tail = kNoPoint;
+      c.created = k;
+      c.stable_id = component_ids_[k];
+      c.alive = true;
+      c.pending = false;
+      c.bridges.clear();
+    }
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t k = parent_[i];
+      point(oldest_ + i).cluster = k;
+      ++clusters_[k].size;
+    }
+    component_of_.resize(components);
+    for (std::uint32_t k = 0; k < components; ++k) component_of_[k] = k;
+    write_result(components);
   }
 
   /// Grows the point ring (doubling) so it can hold `needed` points.
@@ -744,6 +893,7 @@ class StreamClusterer {
   window_type window_;
   resolution_type resolution_;
   visitor_type visitor_;
+  connectivity_type connectivity_;
   int half_;
   GridShape grid_{};
   bool calibrating_ = true;
@@ -782,6 +932,9 @@ class StreamClusterer {
   std::vector<ClusterId> queue_;
   std::vector<ComponentId> component_ids_;
   std::vector<Claim> claims_;
+  std::vector<std::uint32_t> parent_;      // union_find_rebuild: union-find, then component per point
+  std::vector<std::uint32_t> claim_head_;  // union_find_rebuild: first vote per old cluster
+  std::vector<Vote> votes_;
   std::vector<Eigen::Vector3d> sums_;
   Clustering result_;
 };
