@@ -232,7 +232,7 @@ class StreamClusterer {
   void for_each_neighbor(PointHandle h, F&& f) const {
     const PointRecord& r = point(h);
     for (std::uint32_t i = 0; i < r.back_count; ++i) {
-      const PointHandle older = edge(r.back_begin + i).older;
+      const PointHandle older = edge_older_at(r.back_begin + i);
       if (is_live(older)) f(older);
     }
     for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
@@ -242,7 +242,7 @@ class StreamClusterer {
   EdgeHandle back_edges_begin(PointHandle h) const { return point(h).back_begin; }
   std::uint32_t back_edges_count(PointHandle h) const { return point(h).back_count; }
   EdgeHandle forward_edges_head(PointHandle h) const { return point(h).fwd_head; }
-  PointHandle edge_older(EdgeHandle e) const { return edge(e).older; }
+  PointHandle edge_older(EdgeHandle e) const { return edge_older_at(e); }
   PointHandle edge_newer(EdgeHandle e) const { return edge(e).newer; }
   EdgeHandle edge_next_forward(EdgeHandle e) const { return edge(e).next_fwd; }
 
@@ -280,8 +280,7 @@ class StreamClusterer {
     EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
     std::uint32_t mark = 0;         ///< BFS epoch
   };
-  struct EdgeRecord {
-    PointHandle older = kNoPoint;
+  struct EdgeRecord {  // the older endpoint is in edge_older_
     PointHandle newer = kNoPoint;
     EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
   };
@@ -303,6 +302,16 @@ class StreamClusterer {
   const PointRecord& point(PointHandle h) const { return points_[h & point_mask_]; }
   EdgeRecord& edge(EdgeHandle e) { return edges_[e & edge_mask_]; }
   const EdgeRecord& edge(EdgeHandle e) const { return edges_[e & edge_mask_]; }
+  PointHandle& edge_older_at(EdgeHandle e) { return edge_older_[e & edge_mask_]; }
+  PointHandle edge_older_at(EdgeHandle e) const { return edge_older_[e & edge_mask_]; }
+  /// Records edge `e` from freshly linked point `h` to older neighbour `n`
+  /// and threads it into `n`'s forward list.
+  void store_edge(EdgeHandle e, PointHandle n, PointHandle h) {
+    PointRecord& nr = point(n);
+    edge_older_at(e) = n;
+    edge(e) = EdgeRecord{h, nr.fwd_head};
+    nr.fwd_head = e;
+  }
 
   void set_grid(GridSize size) {
     if (size.rows == 0 || size.cols == 0) size = GridSize{1, 1};
@@ -372,12 +381,20 @@ class StreamClusterer {
     ++stats_.inserted;
     neighbours_.clear();
     {
+      // Two passes: gather the mask's candidates and prefetch their samples
+      // (scattered in the ring: each is a likely cache miss), then test the
+      // linkage, so the misses overlap instead of stalling one by one.
       const PointRecord& r = point(h);
+      candidates_.clear();
       detail::for_each_mask_cell(grid_, r.cell, half_, [&](CellIndex c) {
         index_.for_each(c, [&](PointHandle n) {
-          if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+          candidates_.push_back(n);
+          detail::prefetch(&point(n).sample);
         });
       });
+      for (const PointHandle n : candidates_) {
+        if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+      }
     }
     reserve_edges(neighbours_.size());
     PointRecord& r = point(h);
@@ -385,10 +402,7 @@ class StreamClusterer {
     r.back_count = static_cast<std::uint32_t>(neighbours_.size());
     if constexpr (rebuilds_components) {
       for (const PointHandle n : neighbours_) {
-        const EdgeHandle e = next_edge_++;
-        PointRecord& nr = point(n);
-        edge(e) = EdgeRecord{n, h, nr.fwd_head};
-        nr.fwd_head = e;
+        store_edge(next_edge_++, n, h);
       }
       r.cluster = kUnlabelled;  // labelled by the next retrieval
       index_.insert(r.cell, h);
@@ -396,10 +410,8 @@ class StreamClusterer {
     }
     touched_.clear();
     for (const PointHandle n : neighbours_) {
-      const EdgeHandle e = next_edge_++;
-      PointRecord& nr = point(n);
-      edge(e) = EdgeRecord{n, h, nr.fwd_head};
-      nr.fwd_head = e;
+      store_edge(next_edge_++, n, h);
+      const PointRecord& nr = point(n);
       auto it = std::find_if(touched_.begin(), touched_.end(),
                              [&](const Bridge& b) { return b.other == nr.cluster; });
       if (it == touched_.end()) {
@@ -790,21 +802,24 @@ class StreamClusterer {
     const auto n = static_cast<std::uint32_t>(size());
     stats_.points_validated += n;
     parent_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const PointRecord& r = point(oldest_ + i);
-      std::uint32_t root = i;
-      parent_[i] = i;
-      for (std::uint32_t k = 0; k < r.back_count; ++k) {
-        const auto j = static_cast<std::uint32_t>(edge(r.back_begin + k).older - oldest_);
-        if (j >= n) continue;  // the older endpoint has left the window
-        const std::uint32_t rj = find_root(j);
-        if (rj == root) continue;
-        if (rj < root) {
-          parent_[root] = rj;
-          root = rj;
-        } else {
-          parent_[rj] = root;
-        }
+    for (std::uint32_t i = 0; i < n; ++i) parent_[i] = i;
+    // The window's edges are [oldest_edge_, next_edge_), grouped by newer
+    // endpoint in insertion order: stream them. When the newer endpoint
+    // changes it is still a singleton (no earlier edge touches it).
+    std::uint32_t current = n;
+    std::uint32_t root = n;
+    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) {
+      const auto j = static_cast<std::uint32_t>(edge_older_at(e) - oldest_);
+      if (j >= n) continue;  // the older endpoint has left the window
+      const auto i = static_cast<std::uint32_t>(edge(e).newer - oldest_);
+      if (i != current) current = root = i;
+      const std::uint32_t rj = find_root(j);
+      if (rj == root) continue;
+      if (rj < root) {
+        parent_[root] = rj;
+        root = rj;
+      } else {
+        parent_[rj] = root;
       }
     }
     // Dense component numbers in order of each component's oldest point.
@@ -821,9 +836,11 @@ class StreamClusterer {
     claim_head_.assign(old_clusters, kNoCluster);
     votes_.clear();
     for (std::uint32_t i = 0; i < n; ++i) {
-      const ClusterId old = point(oldest_ + i).cluster;
-      if (old >= old_clusters) continue;  // inserted since the last retrieval
+      ClusterId& cluster = point(oldest_ + i).cluster;
+      const ClusterId old = cluster;
       const std::uint32_t k = parent_[i];
+      cluster = k;
+      if (old >= old_clusters) continue;  // inserted since the last retrieval
       std::uint32_t v = claim_head_[old];
       while (v != kNoCluster && votes_[v].component != k) v = votes_[v].next;
       if (v != kNoCluster) {
@@ -851,11 +868,7 @@ class StreamClusterer {
       c.pending = false;
       c.bridges.clear();
     }
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint32_t k = parent_[i];
-      point(oldest_ + i).cluster = k;
-      ++clusters_[k].size;
-    }
+    for (std::uint32_t i = 0; i < n; ++i) ++clusters_[parent_[i]].size;
     component_of_.resize(components);
     for (std::uint32_t k = 0; k < components; ++k) component_of_[k] = k;
     write_result(components);
@@ -880,9 +893,14 @@ class StreamClusterer {
     std::size_t capacity = std::max<std::size_t>(edges_.size() * 2, 4096);
     while (capacity < needed) capacity *= 2;
     std::vector<EdgeRecord> grown(capacity);
+    std::vector<PointHandle> grown_older(capacity);
     const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
-    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) grown[e & new_mask] = edge(e);
+    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) {
+      grown[e & new_mask] = edge(e);
+      grown_older[e & new_mask] = edge_older_at(e);
+    }
     edges_.swap(grown);
+    edge_older_.swap(grown_older);
     edge_mask_ = new_mask;
   }
 
@@ -904,7 +922,8 @@ class StreamClusterer {
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;
   // Ring buffer of edges, freed in the same FIFO order: live handles are [oldest_edge_, next_edge_).
-  std::vector<EdgeRecord> edges_;
+  std::vector<EdgeRecord> edges_;        // newer endpoint and forward-list link
+  std::vector<PointHandle> edge_older_;  // older endpoint, apart: the rebuild streams it alone
   std::uint32_t edge_mask_ = 0;
   EdgeHandle oldest_edge_ = 0;
   EdgeHandle next_edge_ = 0;
@@ -925,6 +944,7 @@ class StreamClusterer {
 
   // Scratch buffers, reused so the steady state does not allocate.
   std::vector<PointHandle> neighbours_;
+  std::vector<PointHandle> candidates_;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;
   std::vector<std::size_t> fragment_begin_;
