@@ -224,8 +224,12 @@ class StreamClusterer {
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
   const Sample& sample(PointHandle h) const { return point(h).sample; }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
-  /// Local cluster of a live point (kNoCluster while calibrating).
-  ClusterId cluster_of(PointHandle h) const { return point(h).cluster; }
+  /// Local cluster of a live point (kNoCluster while calibrating; with
+  /// union_find_rebuild, also for a point inserted after the last retrieval).
+  ClusterId cluster_of(PointHandle h) const {
+    const ClusterId c = point(h).cluster;
+    return c == kUnlabelled ? kNoCluster : c;
+  }
   /// Calls `f(PointHandle)` for every live neighbour of live point `h`.
   /// O(degree).
   template <class F>
