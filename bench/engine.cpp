@@ -22,7 +22,7 @@
 //
 // Measure with (min_time in seconds, a plain number on Google Benchmark 1.7):
 //   build/perf/bench/bench_engine --benchmark_min_time=2
-// Streams: STREAMCLUST_BENCH_SECONDS seconds of each scenario (default 3;
+// Streams: STREAMCLUST_BENCH_SECONDS seconds of each scenario (default 2;
 // cycles wrap around the stream). CTest smoke-runs it with min_time 0.01.
 
 #include <benchmark/benchmark.h>
@@ -47,7 +47,7 @@ namespace {
 
 double stream_seconds() {
   const char* env = std::getenv("STREAMCLUST_BENCH_SECONDS");
-  const double s = env != nullptr ? std::atof(env) : 3.0;
+  const double s = env != nullptr ? std::atof(env) : 2.0;
   return s > 0.6 ? s : 0.6;
 }
 
