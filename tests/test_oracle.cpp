@@ -7,6 +7,8 @@
 #include <doctest/doctest.h>
 
 #include <streamclust/batch_clusterer.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>
@@ -34,13 +36,15 @@ namespace st = streamclust::test;
 
 namespace {
 
-template <class Projection, class Index, class Linkage, class Window>
+template <class Projection, class Index, class Linkage, class Window,
+          class Connectivity = sc::LazyBfsConnectivity>
 struct Combo {
   using projection = Projection;
   using spatial_index = Index;
   using linkage = Linkage;
   using window = Window;
   using resolution = sc::FixedResolution;
+  using connectivity = Connectivity;
 };
 
 // Random parameters for one seed. Small grids and wide masks on purpose:
@@ -177,14 +181,44 @@ TEST_CASE_TEMPLATE_APPLY(
                Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow>,
                Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow>>);
 
-TEST_CASE("the C-ARC preset with adaptive resolution agrees with the batch clusterer on its calibrated grid") {
+// Every combination again with the union-find rebuild connectivity.
+using UF = sc::UnionFindRebuildConnectivity;
+TEST_CASE_TEMPLATE_APPLY(
+    oracle_id,
+    std::tuple<Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow, UF>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow, UF>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow, UF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, UF>>);
+
+TEST_CASE_TEMPLATE("the C-ARC presets with adaptive resolution agree with the batch clusterer on their calibrated grid",
+                   Preset, sc::CArcConfig, sc::CArcFastConfig, sc::CArcCappedFastConfig) {
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
-    auto params = sc::to_clusterer_params<sc::CArcConfig>(sc::CArcParams{});
+    auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
     params.window.duration = 0.05;
     params.resolution.initial_rows = 8;
     params.resolution.initial_cols = 32;
-    sc::StreamClusterer<sc::CArcConfig> engine(params);
-    sc::BatchClusterer<sc::CArcConfig> batch(params);
+    sc::StreamClusterer<Preset> engine(params);
+    sc::BatchClusterer<Preset> batch(params);
     const auto stream = st::make_stream(st::StreamKind::blobs, 600, seed, 4000.0);
     CHECK(engine.calibrating());
     for (std::size_t i = 0; i < stream.size(); ++i) {

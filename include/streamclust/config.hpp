@@ -15,12 +15,14 @@
 ///   using window = TimeWindow;
 ///   using resolution = FixedResolution;
 ///   using visitor = NullVisitor;  // optional
+///   using connectivity = LazyBfsConnectivity;  // optional (the paper's, the default)
 ///   static constexpr bool timed = false;  // optional: measure phase latencies
 /// };
 /// \endcode
 /// Presets are such structs; derive from one and override a slot.
 
 #include <streamclust/concepts.hpp>
+#include <streamclust/concepts/connectivity.hpp>
 
 #include <stdexcept>
 #include <string>
@@ -59,6 +61,15 @@ struct slot_visitor<C, std::void_t<typename C::visitor>> {
 };
 
 template <class C, class = void>
+struct slot_connectivity {
+  using type = DefaultConnectivity;
+};
+template <class C>
+struct slot_connectivity<C, std::void_t<typename C::connectivity>> {
+  using type = typename C::connectivity;
+};
+
+template <class C, class = void>
 struct config_timed : std::false_type {};
 template <class C>
 struct config_timed<C, std::void_t<decltype(C::timed)>> : std::bool_constant<C::timed> {};
@@ -85,6 +96,8 @@ struct config_traits {
   using window = typename detail::slot_window<Config>::type;
   using resolution = typename detail::slot_resolution<Config>::type;
   using visitor = typename detail::slot_visitor<Config>::type;
+  /// Optional slot; absent => the paper's lazy BFS (ConnectivityStrategy::lazy_bfs).
+  using connectivity = typename detail::slot_connectivity<Config>::type;
   /// `static constexpr bool timed = true;` in a config makes the engine
   /// measure its phases (RetrievalStats::phase_us); off by default, free when off.
   static constexpr bool timed = detail::config_timed<Config>::value;
@@ -102,6 +115,7 @@ struct ClustererParams {
   typename detail::params_of<typename config_traits<Config>::resolution>::type resolution{};
   /// Width w of the w x w neighbourhood mask in cells; odd, 1 to 255.
   int mask_size = 5;
+  typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
 };
 
 namespace detail {
@@ -123,4 +137,5 @@ inline int checked_mask_half_width(int mask_size) {
   STREAMCLUST_CHECK_LINKAGE_POLICY(typename ::streamclust::config_traits<Config>::linkage);             \
   STREAMCLUST_CHECK_WINDOW_POLICY(typename ::streamclust::config_traits<Config>::window);               \
   STREAMCLUST_CHECK_RESOLUTION_POLICY(typename ::streamclust::config_traits<Config>::resolution);       \
-  STREAMCLUST_CHECK_VISITOR_POLICY(typename ::streamclust::config_traits<Config>::visitor)
+  STREAMCLUST_CHECK_VISITOR_POLICY(typename ::streamclust::config_traits<Config>::visitor);             \
+  STREAMCLUST_CHECK_CONNECTIVITY_POLICY(typename ::streamclust::config_traits<Config>::connectivity)

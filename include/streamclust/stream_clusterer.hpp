@@ -41,6 +41,7 @@ struct RetrievalStats {
   std::uint64_t inserted = 0;           ///< points inserted into the graph
   std::uint64_t evicted = 0;            ///< points that left the window
   std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
+  std::uint64_t points_validated = 0;   ///< points of the clusters checked (validation work)
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits
   PhaseTimes phase_us{};                ///< timed configs only
 };
@@ -70,9 +71,21 @@ struct RetrievalStats {
 /// the largest part keeps the id); ties go to the older id. Components left
 /// without an id get a fresh one; ids are never reused.
 ///
+/// Connectivity (the optional `connectivity` slot): the above is the paper's
+/// strategy (LazyBfsConnectivity, the default). With
+/// UnionFindRebuildConnectivity insertion only stores edges, eviction only
+/// drops the point, and `retrieve()` rebuilds the components by one
+/// union-find pass over the live edges (O(N + E), whatever is pending).
+/// Same partition; what differs: local clusters are the last retrieval's
+/// components (no bridges; `cluster_of` is kNoCluster for points inserted
+/// since), visitor hooks are not called, and in the stable-id rule each
+/// point present at the previous retrieval votes with weight 1 (new points
+/// do not vote) instead of clusters voting with their current size.
+///
 /// Time: monotone stream time in seconds. A point earlier than the previous
-/// accepted one is rejected (`time_backwards`). Memory: about 80 bytes per
-/// windowed point plus 12 bytes per edge; the ring buffers grow by doubling
+/// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
+/// windowed point plus 12 bytes per edge (about 14 edges per point on a
+/// simulated Mid-360 at w = 5, T_M = 2), plus the index; the ring buffers grow by doubling
 /// and never shrink, so the steady state allocates nothing per point.
 ///
 /// Resolution: a policy that needs calibration (adaptive) makes the engine
@@ -108,7 +121,10 @@ class StreamClusterer {
   using window_type = typename traits::window;
   using resolution_type = typename traits::resolution;
   using visitor_type = typename traits::visitor;
+  using connectivity_type = typename traits::connectivity;
   using Params = ClustererParams<Config>;
+  /// True for ConnectivityStrategy::union_find_rebuild (no local-cluster bookkeeping).
+  static constexpr bool rebuilds_components = connectivity_type::strategy == ConnectivityStrategy::union_find_rebuild;
 
   /// Throws std::invalid_argument when a parameter is out of range.
   explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
@@ -119,6 +135,7 @@ class StreamClusterer {
         window_(params.window),
         resolution_(params.resolution),
         visitor_(std::move(visitor)),
+        connectivity_(params.connectivity),
         half_(detail::checked_mask_half_width(params.mask_size)) {
     if (!resolution_.needs_calibration()) set_grid(resolution_.grid());
   }
@@ -162,9 +179,14 @@ class StreamClusterer {
   const Clustering& retrieve() {
     if (calibrating_ && size() > 0) finish_calibration();
     const auto t0 = clock_now();
-    validate_pending();
-    add_elapsed(stats_.phase_us.validation, t0);
-    label_components();
+    if constexpr (rebuilds_components) {
+      rebuild_components();
+      add_elapsed(stats_.phase_us.component_update, t0);
+    } else {
+      validate_pending();
+      add_elapsed(stats_.phase_us.validation, t0);
+      label_components();
+    }
     last_stats_ = stats_;
     stats_ = RetrievalStats{};
     return result_;
@@ -194,6 +216,7 @@ class StreamClusterer {
   const resolution_type& resolution() const { return resolution_; }
   visitor_type& visitor() { return visitor_; }
   const visitor_type& visitor() const { return visitor_; }
+  const connectivity_type& connectivity() const { return connectivity_; }
 
   /// Calls `f(const Sample&, std::uint64_t stream_index)` for every point in
   /// the window, oldest first. O(N).
@@ -213,15 +236,19 @@ class StreamClusterer {
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
   const Sample& sample(PointHandle h) const { return point(h).sample; }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
-  /// Local cluster of a live point (kNoCluster while calibrating).
-  ClusterId cluster_of(PointHandle h) const { return point(h).cluster; }
+  /// Local cluster of a live point (kNoCluster while calibrating; with
+  /// union_find_rebuild, also for a point inserted after the last retrieval).
+  ClusterId cluster_of(PointHandle h) const {
+    const ClusterId c = point(h).cluster;
+    return c == kUnlabelled ? kNoCluster : c;
+  }
   /// Calls `f(PointHandle)` for every live neighbour of live point `h`.
   /// O(degree).
   template <class F>
   void for_each_neighbor(PointHandle h, F&& f) const {
     const PointRecord& r = point(h);
     for (std::uint32_t i = 0; i < r.back_count; ++i) {
-      const PointHandle older = edge(r.back_begin + i).older;
+      const PointHandle older = edge_older_at(r.back_begin + i);
       if (is_live(older)) f(older);
     }
     for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
@@ -231,7 +258,7 @@ class StreamClusterer {
   EdgeHandle back_edges_begin(PointHandle h) const { return point(h).back_begin; }
   std::uint32_t back_edges_count(PointHandle h) const { return point(h).back_count; }
   EdgeHandle forward_edges_head(PointHandle h) const { return point(h).fwd_head; }
-  PointHandle edge_older(EdgeHandle e) const { return edge(e).older; }
+  PointHandle edge_older(EdgeHandle e) const { return edge_older_at(e); }
   PointHandle edge_newer(EdgeHandle e) const { return edge(e).newer; }
   EdgeHandle edge_next_forward(EdgeHandle e) const { return edge(e).next_fwd; }
 
@@ -239,7 +266,13 @@ class StreamClusterer {
   std::size_t cluster_slots() const { return clusters_.size(); }
   bool cluster_alive(ClusterId c) const { return c < clusters_.size() && clusters_[c].alive; }
   /// Live clusters.
-  std::size_t cluster_count() const { return clusters_.size() - free_clusters_.size(); }
+  std::size_t cluster_count() const {
+    if constexpr (rebuilds_components) {
+      return static_cast<std::size_t>(std::count_if(clusters_.begin(), clusters_.end(), [](const Cluster& c) { return c.alive; }));
+    } else {
+      return clusters_.size() - free_clusters_.size();
+    }
+  }
   /// Points of a live cluster.
   std::size_t cluster_size(ClusterId c) const { return clusters_[c].size; }
   bool cluster_pending(ClusterId c) const { return clusters_[c].pending; }
@@ -263,8 +296,7 @@ class StreamClusterer {
     EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
     std::uint32_t mark = 0;         ///< BFS epoch
   };
-  struct EdgeRecord {
-    PointHandle older = kNoPoint;
+  struct EdgeRecord {  // the older endpoint is in edge_older_
     PointHandle newer = kNoPoint;
     EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
   };
@@ -279,10 +311,23 @@ class StreamClusterer {
     std::vector<Bridge> bridges;
   };
 
+  /// Cluster of a point linked since the last retrieval (union_find_rebuild only).
+  static constexpr ClusterId kUnlabelled = kNoCluster - 1;
+
   PointRecord& point(PointHandle h) { return points_[h & point_mask_]; }
   const PointRecord& point(PointHandle h) const { return points_[h & point_mask_]; }
   EdgeRecord& edge(EdgeHandle e) { return edges_[e & edge_mask_]; }
   const EdgeRecord& edge(EdgeHandle e) const { return edges_[e & edge_mask_]; }
+  PointHandle& edge_older_at(EdgeHandle e) { return edge_older_[e & edge_mask_]; }
+  PointHandle edge_older_at(EdgeHandle e) const { return edge_older_[e & edge_mask_]; }
+  /// Records edge `e` from freshly linked point `h` to older neighbour `n`
+  /// and threads it into `n`'s forward list.
+  void store_edge(EdgeHandle e, PointHandle n, PointHandle h) {
+    PointRecord& nr = point(n);
+    edge_older_at(e) = n;
+    edge(e) = EdgeRecord{h, nr.fwd_head};
+    nr.fwd_head = e;
+  }
 
   void set_grid(GridSize size) {
     if (size.rows == 0 || size.cols == 0) size = GridSize{1, 1};
@@ -352,23 +397,37 @@ class StreamClusterer {
     ++stats_.inserted;
     neighbours_.clear();
     {
+      // Two passes: gather the mask's candidates and prefetch their samples
+      // (scattered in the ring: each is a likely cache miss), then test the
+      // linkage, so the misses overlap instead of stalling one by one.
       const PointRecord& r = point(h);
+      candidates_.clear();
       detail::for_each_mask_cell(grid_, r.cell, half_, [&](CellIndex c) {
         index_.for_each(c, [&](PointHandle n) {
-          if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+          candidates_.push_back(n);
+          detail::prefetch(&point(n).sample);
         });
       });
+      for (const PointHandle n : candidates_) {
+        if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+      }
     }
     reserve_edges(neighbours_.size());
     PointRecord& r = point(h);
     r.back_begin = next_edge_;
     r.back_count = static_cast<std::uint32_t>(neighbours_.size());
+    if constexpr (rebuilds_components) {
+      for (const PointHandle n : neighbours_) {
+        store_edge(next_edge_++, n, h);
+      }
+      r.cluster = kUnlabelled;  // labelled by the next retrieval
+      index_.insert(r.cell, h);
+      return;
+    }
     touched_.clear();
     for (const PointHandle n : neighbours_) {
-      const EdgeHandle e = next_edge_++;
-      PointRecord& nr = point(n);
-      edge(e) = EdgeRecord{n, h, nr.fwd_head};
-      nr.fwd_head = e;
+      store_edge(next_edge_++, n, h);
+      const PointRecord& nr = point(n);
       auto it = std::find_if(touched_.begin(), touched_.end(),
                              [&](const Bridge& b) { return b.other == nr.cluster; });
       if (it == touched_.end()) {
@@ -466,7 +525,16 @@ class StreamClusterer {
   void evict_oldest() {
     const PointHandle h = oldest_;
     PointRecord& r = point(h);
-    if (r.cluster != kNoCluster) {
+    if constexpr (rebuilds_components) {
+      if (r.cluster != kNoCluster) {
+        ++stats_.evicted;
+        index_.remove(r.cell, h);
+        if (r.cluster < clusters_.size()) {
+          Cluster& cl = clusters_[r.cluster];
+          if (--cl.size == 0) cl.alive = false;
+        }
+      }
+    } else if (r.cluster != kNoCluster) {
       ++stats_.evicted;
       index_.remove(r.cell, h);
       const ClusterId c = r.cluster;
@@ -504,6 +572,7 @@ class StreamClusterer {
       if (!clusters_[c].alive || !clusters_[c].pending) continue;
       clusters_[c].pending = false;
       ++stats_.clusters_validated;
+      stats_.points_validated += clusters_[c].size;
       validate(c);
     }
     pending_.clear();
@@ -605,8 +674,13 @@ class StreamClusterer {
     }
     assign_stable_ids(components);
     add_elapsed(stats_.phase_us.component_update, t0);
-    const auto t1 = clock_now();
+    write_result(components);
+  }
 
+  /// Labels and summaries of every window point from `component_of_` and
+  /// `component_ids_`. O(N + components log components).
+  void write_result(std::uint32_t components) {
+    const auto t1 = clock_now();
     result_.time = last_time_;
     ++result_.cycle;
     result_.points.clear();
@@ -665,6 +739,12 @@ class StreamClusterer {
     ComponentId id;
     std::uint64_t weight;
   };
+  struct Vote {
+    std::uint32_t component;
+    ClusterId old;
+    std::uint64_t weight;
+    std::uint32_t next;  ///< next vote of the same old cluster
+  };
 
   void assign_stable_ids(std::uint32_t components) {
     claims_.clear();
@@ -672,6 +752,17 @@ class StreamClusterer {
       const Cluster& cl = clusters_[c];
       if (cl.alive && cl.stable_id != kNoComponent) claims_.push_back(Claim{component_of_[c], cl.stable_id, cl.size});
     }
+    resolve_claims(components);
+    for (ClusterId c = 0; c < clusters_.size(); ++c) {
+      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+    }
+  }
+
+  /// From `claims_` (component, old id, weight), possibly with repeated
+  /// pairs: each old id goes to its heaviest claimant, each component keeps
+  /// its heaviest old id, the others get fresh ids. Fills `component_ids_`.
+  /// O(claims log claims).
+  void resolve_claims(std::uint32_t components) {
     // Sum the weight of each (component, old id) pair.
     std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
       return a.id != b.id ? a.id < b.id : a.component < b.component;
@@ -707,9 +798,96 @@ class StreamClusterer {
     for (auto& id : component_ids_) {
       if (id == kNoComponent) id = next_component_id_++;
     }
-    for (ClusterId c = 0; c < clusters_.size(); ++c) {
-      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+  }
+
+  // ------------------------------------------------ union_find_rebuild
+
+  std::uint32_t find_root(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
     }
+    return x;
+  }
+
+  /// union_find_rebuild: one union-find pass over the live edges (window
+  /// order, so the edge ring is read sequentially; the root of a set is its
+  /// oldest point), stable ids by per-point votes, then the local clusters
+  /// become the components. O(N + E) plus the claims.
+  void rebuild_components() {
+    const auto n = static_cast<std::uint32_t>(size());
+    stats_.points_validated += n;
+    parent_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) parent_[i] = i;
+    // The window's edges are [oldest_edge_, next_edge_), grouped by newer
+    // endpoint in insertion order: stream them. When the newer endpoint
+    // changes it is still a singleton (no earlier edge touches it).
+    std::uint32_t current = n;
+    std::uint32_t root = n;
+    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) {
+      const auto j = static_cast<std::uint32_t>(edge_older_at(e) - oldest_);
+      if (j >= n) continue;  // the older endpoint has left the window
+      const auto i = static_cast<std::uint32_t>(edge(e).newer - oldest_);
+      if (i != current) current = root = i;
+      const std::uint32_t rj = find_root(j);
+      if (rj == root) continue;
+      if (rj < root) {
+        parent_[root] = rj;
+        root = rj;
+      } else {
+        parent_[rj] = root;
+      }
+    }
+    // Dense component numbers in order of each component's oldest point.
+    // Every parent has a smaller index than its child (unions hang the newer
+    // root under the older), so in increasing order a non-root's parent
+    // already holds its component number: no find needed.
+    std::uint32_t components = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t p = parent_[i];
+      parent_[i] = p == i ? components++ : parent_[p];
+    }
+    // parent_[i] is now the component of point i. Votes: (component, old cluster).
+    const auto old_clusters = static_cast<std::uint32_t>(clusters_.size());
+    claim_head_.assign(old_clusters, kNoCluster);
+    votes_.clear();
+    for (std::uint32_t i = 0; i < n; ++i) {
+      ClusterId& cluster = point(oldest_ + i).cluster;
+      const ClusterId old = cluster;
+      const std::uint32_t k = parent_[i];
+      cluster = k;
+      if (old >= old_clusters) continue;  // inserted since the last retrieval
+      std::uint32_t v = claim_head_[old];
+      while (v != kNoCluster && votes_[v].component != k) v = votes_[v].next;
+      if (v != kNoCluster) {
+        ++votes_[v].weight;
+      } else {
+        votes_.push_back(Vote{k, old, 1, claim_head_[old]});
+        claim_head_[old] = static_cast<std::uint32_t>(votes_.size() - 1);
+      }
+    }
+    claims_.clear();
+    for (const Vote& v : votes_) {
+      const ComponentId id = clusters_[v.old].stable_id;
+      if (id != kNoComponent) claims_.push_back(Claim{v.component, id, v.weight});
+    }
+    resolve_claims(components);
+    // The components become the local clusters.
+    clusters_.resize(components);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      Cluster& c = clusters_[k];
+      c.size = 0;
+      c.head = c.tail = kNoPoint;
+      c.created = k;
+      c.stable_id = component_ids_[k];
+      c.alive = true;
+      c.pending = false;
+      c.bridges.clear();
+    }
+    for (std::uint32_t i = 0; i < n; ++i) ++clusters_[parent_[i]].size;
+    component_of_.resize(components);
+    for (std::uint32_t k = 0; k < components; ++k) component_of_[k] = k;
+    write_result(components);
   }
 
   /// Grows the point ring (doubling) so it can hold `needed` points.
@@ -731,9 +909,14 @@ class StreamClusterer {
     std::size_t capacity = std::max<std::size_t>(edges_.size() * 2, 4096);
     while (capacity < needed) capacity *= 2;
     std::vector<EdgeRecord> grown(capacity);
+    std::vector<PointHandle> grown_older(capacity);
     const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
-    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) grown[e & new_mask] = edge(e);
+    for (EdgeHandle e = oldest_edge_; e != next_edge_; ++e) {
+      grown[e & new_mask] = edge(e);
+      grown_older[e & new_mask] = edge_older_at(e);
+    }
     edges_.swap(grown);
+    edge_older_.swap(grown_older);
     edge_mask_ = new_mask;
   }
 
@@ -744,6 +927,7 @@ class StreamClusterer {
   window_type window_;
   resolution_type resolution_;
   visitor_type visitor_;
+  connectivity_type connectivity_;
   int half_;
   GridShape grid_{};
   bool calibrating_ = true;
@@ -754,7 +938,8 @@ class StreamClusterer {
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;
   // Ring buffer of edges, freed in the same FIFO order: live handles are [oldest_edge_, next_edge_).
-  std::vector<EdgeRecord> edges_;
+  std::vector<EdgeRecord> edges_;        // newer endpoint and forward-list link
+  std::vector<PointHandle> edge_older_;  // older endpoint, apart: the rebuild streams it alone
   std::uint32_t edge_mask_ = 0;
   EdgeHandle oldest_edge_ = 0;
   EdgeHandle next_edge_ = 0;
@@ -775,6 +960,7 @@ class StreamClusterer {
 
   // Scratch buffers, reused so the steady state does not allocate.
   std::vector<PointHandle> neighbours_;
+  std::vector<PointHandle> candidates_;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;
   std::vector<std::size_t> fragment_begin_;
@@ -782,6 +968,9 @@ class StreamClusterer {
   std::vector<ClusterId> queue_;
   std::vector<ComponentId> component_ids_;
   std::vector<Claim> claims_;
+  std::vector<std::uint32_t> parent_;      // union_find_rebuild: union-find, then component per point
+  std::vector<std::uint32_t> claim_head_;  // union_find_rebuild: first vote per old cluster
+  std::vector<Vote> votes_;
   std::vector<Eigen::Vector3d> sums_;
   Clustering result_;
 };

@@ -6,16 +6,28 @@
 /// touch templates. A preset is a struct of policy slots: derive from one and
 /// override a slot to make your own.
 ///
-/// | preset               | projection | index     | linkage  | window | resolution |
-/// |----------------------|------------|-----------|----------|--------|------------|
-/// | CArcConfig           | spherical  | bucket    | angular  | time   | adaptive   |
-/// | CArcFixedConfig      | spherical  | bucket    | angular  | time   | fixed      |
-/// | CArcCappedConfig     | spherical  | capped    | angular  | time   | adaptive   |
-/// | FrameBaselineConfig  | spherical  | overwrite | angular  | time   | adaptive   |
-/// | EuclideanConfig      | spherical  | bucket    | euclidean| time   | adaptive   |
+/// | preset                | projection | index     | linkage  | window | resolution | connectivity        |
+/// |-----------------------|------------|-----------|----------|--------|------------|---------------------|
+/// | CArcConfig            | spherical  | bucket    | angular  | time   | adaptive   | lazy BFS (paper)    |
+/// | CArcFixedConfig       | spherical  | bucket    | angular  | time   | fixed      | lazy BFS (paper)    |
+/// | CArcCappedConfig      | spherical  | capped    | angular  | time   | adaptive   | lazy BFS (paper)    |
+/// | FrameBaselineConfig   | spherical  | overwrite | angular  | time   | adaptive   | lazy BFS (paper)    |
+/// | EuclideanConfig       | spherical  | bucket    | euclidean| time   | adaptive   | lazy BFS (paper)    |
+/// | CArcFastConfig        | spherical  | bucket    | angular  | time   | adaptive   | union-find rebuild  |
+/// | CArcCappedFastConfig  | spherical  | capped    | angular  | time   | adaptive   | union-find rebuild  |
+///
+/// Which to pick: all give exactly the same partition for the same index
+/// (the batch oracle). CArcConfig is the paper's algorithm, with visitor
+/// hooks and a component graph of local clusters and bridges at all times.
+/// CArcFastConfig is the one to deploy when only the labels/components of
+/// each retrieval matter: its cost per retrieval does not depend on how much
+/// of the window is pending (docs/optimization-log.md). The capped variants
+/// bound the work per point on scan patterns that revisit cells (Avia).
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/concepts/visitor.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>
@@ -40,6 +52,7 @@ struct CArcConfig {
   using window = TimeWindow;
   using resolution = AdaptiveResolution;
   using visitor = NullVisitor;
+  using connectivity = LazyBfsConnectivity;
 };
 
 /// C-ARC with a grid given by the user (no calibration window).
@@ -61,6 +74,19 @@ struct FrameBaselineConfig : CArcConfig {
 /// C-ARC's engine with plain Euclidean single linkage.
 struct EuclideanConfig : CArcConfig {
   using linkage = EuclideanLinkage;
+};
+
+/// C-ARC's policies with the union-find rebuild at each retrieval instead
+/// of the paper's lazy BFS: same partition, cost per retrieval O(N + E)
+/// whatever is pending; no visitor events, no bridges (see
+/// UnionFindRebuildConnectivity).
+struct CArcFastConfig : CArcConfig {
+  using connectivity = UnionFindRebuildConnectivity;
+};
+
+/// CArcFastConfig with at most K points per cell.
+struct CArcCappedFastConfig : CArcFastConfig {
+  using spatial_index = CappedGrid;
 };
 
 using CArcClusterer = StreamClusterer<CArcConfig>;

@@ -9,6 +9,8 @@
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/clustering.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>

@@ -12,6 +12,15 @@
 
 namespace streamclust::detail {
 
+/// Hint that `p` will be read soon (no effect on correctness). O(1).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// Calls `f(CellIndex)` once for every distinct cell within `half` rows and
 /// columns of `center` (the centre included). Rows are clamped at the grid
 /// border; columns wrap around when `grid.wrap_columns`, and a mask wider

@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: MIT
+// Engine-level benchmarks on simulated Livox streams (sim::Simulator with the
+// Mid-360 and Avia models, office = indoor and forest scenes):
+//
+//   BM_Insert<Config, Scenario>/T_B      sustained insertion with eviction
+//                                        (points/s); calibration included
+//   BM_CycleVsBatch<Config, Scenario>/T_B one 20 Hz cycle (50 ms of stream
+//                                        inserted + evictions + retrieve), and
+//                                        in the same iteration the batch
+//                                        clusterer re-clustering the same
+//                                        window from scratch; reports the
+//                                        median / P99 / P999 of both and
+//                                        batch_over_cycle = batch median /
+//                                        cycle median (target >= 5)
+//   BM_Retrieve<Config>/T_B/slice        retrieve() alone after `slice` ms of
+//                                        insertion: its cost against window
+//                                        size and against the pending share
+//                                        (pending_share counter)
+//
+// One BENCHMARK_TEMPLATE line per configuration: a new preset gets a
+// benchmark by adding a line at the bottom.
+//
+// Measure with (min_time in seconds, a plain number on Google Benchmark 1.7):
+//   build/perf/bench/bench_engine --benchmark_min_time=2
+// Streams: STREAMCLUST_BENCH_SECONDS seconds of each scenario (default 2;
+// cycles wrap around the stream). CTest smoke-runs it with min_time 0.01.
+
+#include <benchmark/benchmark.h>
+
+#include <streamclust/sim/scenes.hpp>
+#include <streamclust/sim/sensors/avia_model.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
+#include <streamclust/sim/simulator.hpp>
+#include <streamclust/streamclust.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace sc = streamclust;
+namespace sim = streamclust::sim;
+
+namespace {
+
+double stream_seconds() {
+  const char* env = std::getenv("STREAMCLUST_BENCH_SECONDS");
+  const double s = env != nullptr ? std::atof(env) : 2.0;
+  return s > 0.6 ? s : 0.6;
+}
+
+template <class Sensor>
+std::vector<sim::SimPoint> simulate(Sensor sensor, sc::sim::Scene scene) {
+  typename sim::Simulator<Sensor>::Params p;
+  p.velocity = Eigen::Vector3f(0.5f, 0.0f, 0.0f);  // slow ego-motion, as a hand-held sensor
+  p.seed = 7;
+  sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), p);
+  std::vector<sim::SimPoint> out;
+  const double seconds = stream_seconds();
+  out.reserve(static_cast<std::size_t>(seconds * 250000.0));
+  while (simulator.time() < seconds) out.push_back(simulator.next());
+  return out;
+}
+
+// ------------------------------------------------------------ scenarios
+
+struct Mid360Office {
+  static const char* name() { return "mid360_office"; }
+  static const std::vector<sim::SimPoint>& points() {
+    static const auto pts = simulate(sim::Mid360Model{}, sim::office_scene(3));
+    return pts;
+  }
+  static sc::CArcParams carc() { return sc::carc_mid360_params(); }
+};
+struct Mid360Forest {
+  static const char* name() { return "mid360_forest"; }
+  static const std::vector<sim::SimPoint>& points() {
+    static const auto pts = simulate(sim::Mid360Model{}, sim::forest_scene(3));
+    return pts;
+  }
+  static sc::CArcParams carc() { return sc::carc_mid360_params(); }
+};
+struct AviaOffice {
+  static const char* name() { return "avia_office"; }
+  static const std::vector<sim::SimPoint>& points() {
+    static const auto pts = simulate(sim::AviaModel{}, sim::office_scene(3));
+    return pts;
+  }
+  static sc::CArcParams carc() { return sc::carc_avia_params(); }
+};
+struct AviaForest {
+  static const char* name() { return "avia_forest"; }
+  static const std::vector<sim::SimPoint>& points() {
+    static const auto pts = simulate(sim::AviaModel{}, sim::forest_scene(3));
+    return pts;
+  }
+  static sc::CArcParams carc() { return sc::carc_avia_params(); }
+};
+
+/// Engine parameters of `Config` for a scenario: the paper's C-ARC values
+/// (w 5, T_M 2, theta 30 deg Mid-360 / 80 deg Avia), Euclidean 0.3 m for a
+/// Euclidean linkage, T_B = `window_ms`.
+template <class Config, class Scenario>
+sc::ClustererParams<Config> params_for(long window_ms) {
+  sc::CArcParams carc = Scenario::carc();
+  carc.window_seconds = static_cast<double>(window_ms) / 1000.0;
+  using Linkage = typename sc::config_traits<Config>::linkage;
+  if constexpr (std::is_same_v<Linkage, sc::AngularLinkage>) {
+    return sc::to_clusterer_params<Config>(carc);
+  } else {
+    sc::ClustererParams<Config> p;
+    p.projection = carc.field_of_view;
+    p.linkage.max_distance = 0.3f;
+    p.window.duration = carc.window_seconds;
+    p.resolution.max_multiplicity = carc.max_multiplicity;
+    p.mask_size = carc.mask_size;
+    return p;
+  }
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  return v[std::min(i, v.size() - 1)];
+}
+
+// ------------------------------------------------------------ insertion
+
+template <class Config, class Scenario>
+void BM_Insert(benchmark::State& state) {
+  const auto& points = Scenario::points();
+  const auto params = params_for<Config, Scenario>(state.range(0));
+  std::size_t processed = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    sc::StreamClusterer<Config> engine(params);
+    state.ResumeTiming();
+    for (const auto& p : points) engine.insert(p);
+    processed += points.size();
+    benchmark::DoNotOptimize(engine.size());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(processed));
+  state.SetLabel(Scenario::name());
+}
+
+// ---------------------------------------------- 20 Hz cycle vs batch
+
+/// Drives an engine over a stream in 50 ms slices, wrapping around.
+template <class Config>
+class CycleDriver {
+ public:
+  CycleDriver(const std::vector<sim::SimPoint>& points, const sc::ClustererParams<Config>& params)
+      : points_(points), params_(params), engine_(params) {
+    restart();
+  }
+
+  /// Inserts the next 50 ms slice and retrieves; returns the slice's points.
+  std::size_t cycle() {
+    const double end = slice_end_;
+    std::size_t n = 0;
+    for (; i_ < points_.size() && points_[i_].t < end; ++i_, ++n) engine_.insert(points_[i_]);
+    engine_.retrieve();
+    slice_end_ += 0.05;
+    return n;
+  }
+  /// True when the next slice would run past the stream.
+  bool exhausted() const { return slice_end_ > points_.back().t; }
+  /// A fresh engine with one full window inserted before the first
+  /// retrieval (untimed warm-up). A retrieval while the adaptive resolution
+  /// is still calibrating would end the calibration on a partial window and
+  /// give a much coarser grid.
+  void restart() {
+    engine_ = sc::StreamClusterer<Config>(params_);
+    i_ = 0;
+    slice_end_ = 0.05;
+    const double fill = params_.window.duration + 0.1;
+    for (; i_ < points_.size() && points_[i_].t < fill; ++i_) engine_.insert(points_[i_]);
+    while (slice_end_ < fill) slice_end_ += 0.05;
+    cycle();
+  }
+  sc::StreamClusterer<Config>& engine() { return engine_; }
+
+ private:
+  const std::vector<sim::SimPoint>& points_;
+  sc::ClustererParams<Config> params_;
+  sc::StreamClusterer<Config> engine_;
+  std::size_t i_ = 0;
+  double slice_end_ = 0.05;
+};
+
+template <class Config, class Scenario>
+void BM_CycleVsBatch(benchmark::State& state) {
+  const auto& points = Scenario::points();
+  const auto params = params_for<Config, Scenario>(state.range(0));
+  CycleDriver<Config> driver(points, params);
+  sc::BatchClusterer<Config> batch(params);
+  std::vector<sc::Sample> window;
+  std::vector<double> cycle_ms, batch_ms;
+  std::size_t processed = 0;
+  std::size_t window_points = 0;
+  for (auto _ : state) {
+    if (driver.exhausted()) driver.restart();
+    const auto t0 = std::chrono::steady_clock::now();
+    processed += driver.cycle();
+    const double c = ms_since(t0);
+    cycle_ms.push_back(c);
+    window.clear();
+    driver.engine().for_each_point([&](const sc::Sample& s, std::uint64_t) { window.push_back(s); });
+    window_points += window.size();
+    batch.set_grid({driver.engine().grid().rows, driver.engine().grid().cols});
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(batch.cluster(window).components);
+    batch_ms.push_back(ms_since(t1));
+    state.SetIterationTime(c / 1000.0);
+  }
+  const double cycle_median = percentile(cycle_ms, 0.5);
+  const double batch_median = percentile(batch_ms, 0.5);
+  state.counters["cycle_p50_ms"] = cycle_median;
+  state.counters["cycle_p99_ms"] = percentile(cycle_ms, 0.99);
+  state.counters["cycle_p999_ms"] = percentile(cycle_ms, 0.999);
+  state.counters["batch_p50_ms"] = batch_median;
+  state.counters["batch_p99_ms"] = percentile(batch_ms, 0.99);
+  state.counters["batch_over_cycle"] = cycle_median > 0.0 ? batch_median / cycle_median : 0.0;
+  state.counters["window_pts"] =
+      cycle_ms.empty() ? 0.0 : static_cast<double>(window_points) / static_cast<double>(cycle_ms.size());
+  state.SetItemsProcessed(static_cast<std::int64_t>(processed));
+  state.SetLabel(Scenario::name());
+}
+
+// ------------------------------------------------- retrieval alone
+
+/// retrieve() after `slice` ms of insertion into a full window of T_B ms
+/// (Mid-360 office). Insertion is untimed; pending_share is the fraction of
+/// the window's points in clusters that the retrieval had to validate.
+template <class Config>
+void BM_Retrieve(benchmark::State& state) {
+  const auto& points = Mid360Office::points();
+  const auto params = params_for<Config, Mid360Office>(state.range(0));
+  const double slice = static_cast<double>(state.range(1)) / 1000.0;
+  sc::StreamClusterer<Config> engine(params);
+  std::size_t i = 0;
+  double next = params.window.duration + 0.1;
+  auto insert_until = [&](double t) {
+    for (; i < points.size() && points[i].t < t; ++i) engine.insert(points[i]);
+  };
+  insert_until(next);
+  engine.retrieve();
+  double validated = 0.0;
+  double window = 0.0;
+  std::int64_t retrievals = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    next += slice;
+    if (next > points.back().t) {
+      engine = sc::StreamClusterer<Config>(params);
+      i = 0;
+      next = params.window.duration + 0.1;
+      insert_until(next);
+      engine.retrieve();
+      next += slice;
+    }
+    insert_until(next);
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(engine.retrieve().components.size());
+    validated += static_cast<double>(engine.last_stats().points_validated);
+    window += static_cast<double>(engine.size());
+    ++retrievals;
+  }
+  state.counters["window_pts"] = retrievals > 0 ? window / static_cast<double>(retrievals) : 0.0;
+  state.counters["pending_share"] = window > 0.0 ? validated / window : 0.0;
+  state.SetItemsProcessed(static_cast<std::int64_t>(window));
+}
+
+// ------------------------------------------------------------ configs
+
+using sc::CArcCappedConfig;
+using sc::CArcCappedFastConfig;
+using sc::CArcConfig;
+using sc::CArcFastConfig;
+using sc::EuclideanConfig;
+using sc::FrameBaselineConfig;
+
+}  // namespace
+
+#define SC_INSERT(CONFIG, SCENARIO) \
+  BENCHMARK_TEMPLATE(BM_Insert, CONFIG, SCENARIO)->Arg(100)->Arg(500)->Unit(benchmark::kMillisecond)
+#define SC_CYCLE(CONFIG, SCENARIO)                                                                      \
+  BENCHMARK_TEMPLATE(BM_CycleVsBatch, CONFIG, SCENARIO)->Arg(100)->Arg(500)->UseManualTime()->Unit(    \
+      benchmark::kMillisecond)
+
+SC_INSERT(CArcConfig, Mid360Office);
+SC_INSERT(CArcFastConfig, Mid360Office);
+SC_INSERT(CArcFastConfig, Mid360Forest);
+SC_INSERT(CArcCappedFastConfig, Mid360Office);
+SC_INSERT(CArcCappedFastConfig, AviaOffice);
+SC_INSERT(CArcConfig, Mid360Forest);
+SC_INSERT(CArcConfig, AviaOffice);
+SC_INSERT(CArcCappedConfig, Mid360Office);
+SC_INSERT(CArcCappedConfig, AviaOffice);
+SC_INSERT(FrameBaselineConfig, Mid360Office);
+SC_INSERT(EuclideanConfig, Mid360Office);
+
+SC_CYCLE(CArcConfig, Mid360Office);
+SC_CYCLE(CArcFastConfig, Mid360Office);
+SC_CYCLE(CArcFastConfig, Mid360Forest);
+SC_CYCLE(CArcFastConfig, AviaOffice);
+SC_CYCLE(CArcCappedFastConfig, AviaOffice);
+SC_CYCLE(CArcCappedFastConfig, Mid360Office);
+SC_CYCLE(CArcConfig, Mid360Forest);
+SC_CYCLE(CArcConfig, AviaOffice);
+SC_CYCLE(CArcCappedConfig, Mid360Office);
+SC_CYCLE(CArcCappedConfig, AviaOffice);
+SC_CYCLE(CArcCappedConfig, AviaForest);
+SC_CYCLE(EuclideanConfig, Mid360Office);
+
+#define SC_RETRIEVE(CONFIG)                                                                          \
+  BENCHMARK_TEMPLATE(BM_Retrieve, CONFIG)                                                            \
+      ->Args({100, 5})                                                                               \
+      ->Args({100, 50})                                                                              \
+      ->Args({500, 5})                                                                               \
+      ->Args({500, 50})                                                                              \
+      ->Args({500, 250})                                                                             \
+      ->Unit(benchmark::kMicrosecond)
+SC_RETRIEVE(CArcConfig);
+SC_RETRIEVE(CArcFastConfig);
+
+BENCHMARK_MAIN();
