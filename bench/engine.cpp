@@ -173,9 +173,7 @@ class CycleDriver {
   /// True when the next slice would run past the stream.
   bool exhausted() const { return slice_end_ > points_.back().t; }
   /// A fresh engine with one full window inserted before the first
-  /// retrieval (untimed warm-up). A retrieval while the adaptive resolution
-  /// is still calibrating would end the calibration on a partial window and
-  /// give a much coarser grid.
+  /// retrieval (untimed warm-up: the adaptive resolution calibrates on it).
   void restart() {
     engine_ = sc::StreamClusterer<Config>(params_);
     i_ = 0;

@@ -427,3 +427,65 @@ TEST_CASE("batch range-image mode: displaced points are unlabelled, bucket grids
   CHECK(sc::test::partition_mismatch(a, b) == "");
   for (auto l : b) CHECK(l >= 0);
 }
+
+TEST_CASE("adaptive calibration: the first complete window chooses the grid, retrievals do not cut it short") {
+  sc::CArcParams carc;
+  carc.window_seconds = 0.1;
+  // Irregular timestamps: no point lands exactly T_B after the first one.
+  const std::vector<double> times = {0.0, 0.013, 0.031, 0.046, 0.058, 0.072, 0.089, 0.097, 0.1043, 0.12, 0.2};
+  const auto point_at = [](std::size_t i, double t) {
+    const float a = 0.05f * static_cast<float>(i);
+    return sc::Point{5.0f * std::cos(a), 5.0f * std::sin(a), 1.0f, 0.0f, t};
+  };
+  SUBCASE("a retrieval at 20 Hz during the first window returns nothing and keeps buffering") {
+    auto engine = sc::make_carc(carc);
+    for (std::size_t i = 0; i < 5; ++i) engine.insert(point_at(i, times[i]));
+    const sc::Clustering& early = engine.retrieve();  // t = 0.058 < T_B
+    CHECK(early.points.empty());
+    CHECK(early.cycle == 1);
+    CHECK(engine.calibrating());
+    CHECK(engine.size() == 5);
+    for (std::size_t i = 5; i < 8; ++i) engine.insert(point_at(i, times[i]));
+    CHECK(engine.calibrating());  // t = 0.097: still inside the first window
+    engine.insert(point_at(8, times[8]));  // 0.1043 - 0.0 >= T_B: completes it
+    CHECK_FALSE(engine.calibrating());
+    // Calibrated on the 8 buffered points, then the 9th was inserted and the
+    // first (t = 0) evicted: the window is (0.0043, 0.1043].
+    CHECK(engine.size() == 8);
+    const sc::Clustering& result = engine.retrieve();
+    CHECK(result.points.size() == 8);
+    CHECK(result.points.front().stream_index == 1);
+  }
+  SUBCASE("advance_to past the first window ends the calibration too") {
+    auto engine = sc::make_carc(carc);
+    for (std::size_t i = 0; i < 4; ++i) engine.insert(point_at(i, times[i]));
+    engine.advance_to(0.05);
+    CHECK(engine.calibrating());
+    engine.advance_to(0.11);  // completes the window (0.11 - 0.0 >= T_B), then evicts t < 0.01
+    CHECK_FALSE(engine.calibrating());
+    CHECK(engine.retrieve().points.size() == 3);
+  }
+  SUBCASE("complete_calibration: a stream shorter than one window still gets labels") {
+    auto engine = sc::make_carc(carc);
+    for (std::size_t i = 0; i < 4; ++i) engine.insert(point_at(i, times[i]));
+    CHECK(engine.retrieve().points.empty());
+    engine.complete_calibration();
+    CHECK_FALSE(engine.calibrating());
+    CHECK(engine.retrieve().points.size() == 4);
+    engine.complete_calibration();  // no-op afterwards
+    CHECK(engine.size() == 4);
+  }
+  SUBCASE("the grid equals the resolution policy's choice on exactly the first window") {
+    auto engine = sc::make_carc(carc);
+    std::vector<sc::Projected> first;
+    const sc::SphericalProjection projection(carc.field_of_view);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      engine.insert(point_at(i, times[i]));
+      if (times[i] < 0.1) first.push_back(projection.project(sc::position(point_at(i, times[i]))));
+    }
+    sc::AdaptiveResolution reference{sc::to_clusterer_params<sc::CArcConfig>(carc).resolution};
+    const sc::GridSize g = reference.calibrate(first, projection.fov_aspect());
+    CHECK(engine.grid().rows == g.rows);
+    CHECK(engine.grid().cols == g.cols);
+  }
+}

@@ -379,8 +379,8 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     {
       sc::bench::AllocScope scope;
       for (const auto& p : slice) engine->insert(p);
-      // No retrieval while the first window is buffered: retrieve() would end
-      // the calibration early, on the first 50 ms instead of the first T_B.
+      // No retrieval while the first window is buffered (it would return an
+      // empty result and measure nothing).
       if (!engine->calibrating()) result = &engine->retrieve();
     }
     const auto t1 = Clock::now();

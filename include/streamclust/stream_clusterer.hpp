@@ -89,10 +89,15 @@ struct RetrievalStats {
 /// and never shrink, so the steady state allocates nothing per point.
 ///
 /// Resolution: a policy that needs calibration (adaptive) makes the engine
-/// buffer the first window unclustered; when the window is complete (or at
-/// the first retrieval) the grid is chosen and the buffered points are
-/// inserted in their original order, so no point is lost (the paper clears
-/// them instead).
+/// buffer the first window unclustered. When a point arrives that completes
+/// the window (time window: it is T_B or more after the first buffered
+/// point; count window: it is the capacity-th), the grid is chosen from the
+/// buffered points, they are inserted in their original order (no point is
+/// lost; the paper clears them instead), and the new point follows.
+/// Retrievals before that return an empty result and leave the calibration
+/// running, so a client may retrieve at 20 Hz from the start without the
+/// grid being chosen on 50 ms of data; `complete_calibration()` ends it
+/// early on what is buffered (a stream shorter than one window).
 ///
 /// Thread safety: none; drive one engine from one thread.
 ///
@@ -160,11 +165,16 @@ class StreamClusterer {
   /// Evicts the points that have left the window at stream time `time` [s]
   /// without inserting anything (a quiet sensor). A time earlier than the
   /// newest point's is ignored; later points earlier than `time` are then
-  /// rejected as `time_backwards`.
+  /// rejected as `time_backwards`. A time that completes the first window
+  /// ends a running calibration.
   void advance_to(double time) {
     if (!std::isfinite(time) || (has_time_ && time < last_time_)) return;
     has_time_ = true;
     last_time_ = time;
+    if (calibrating_) {
+      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size())) finish_calibration();
+      if (calibrating_) return;  // the first window is still filling: nothing expires
+    }
     const auto t0 = clock_now();
     evict_expired(time, size());
     add_elapsed(stats_.phase_us.eviction, t0);
@@ -173,11 +183,12 @@ class StreamClusterer {
   // ------------------------------------------------------------ retrieval
 
   /// Validates pending clusters, updates the component graph and labels every
-  /// point in the window. May be called at any moment. O(N) for N points in
-  /// the window plus the BFS over pending clusters. The reference stays valid
-  /// until the next call.
+  /// point in the window. May be called at any moment; while the first window
+  /// is still buffered for calibration the result is empty (no labels yet,
+  /// see `calibrating()`). O(N) for N points in the window plus the BFS over
+  /// pending clusters. The reference stays valid until the next call.
   const Clustering& retrieve() {
-    if (calibrating_ && size() > 0) finish_calibration();
+    if (calibrating_) return empty_retrieval();
     const auto t0 = clock_now();
     if constexpr (rebuilds_components) {
       rebuild_components();
@@ -190,6 +201,13 @@ class StreamClusterer {
     last_stats_ = stats_;
     stats_ = RetrievalStats{};
     return result_;
+  }
+
+  /// Ends the calibration now on the buffered points (e.g. at the end of a
+  /// stream shorter than one window): the grid is chosen and the points are
+  /// clustered. No-op when not calibrating or when nothing is buffered.
+  void complete_calibration() {
+    if (calibrating_ && size() > 0) finish_calibration();
   }
 
   /// The last retrieval's result.
@@ -351,13 +369,34 @@ class StreamClusterer {
     last_time_ = time;
     ++rejections_[RejectReason::accepted];
 
+    if (calibrating_) {
+      // Buffering the first window: nothing expires before it is complete
+      // (expiry implies completeness), so no eviction here.
+      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size() + 1)) {
+        finish_calibration();  // on the complete first window; the new point is inserted below
+      } else {
+        append_point(pos, pr.range, point_intensity, time, stream_index);
+        return RejectReason::accepted;
+      }
+    }
     const auto t0 = clock_now();
     evict_expired(time, size() + 1);
     add_elapsed(stats_.phase_us.eviction, t0);
+    const PointHandle h = append_point(pos, pr.range, point_intensity, time, stream_index);
+    point(h).cell = grid_.cell_of(pr.u, pr.v);
+    const auto t1 = clock_now();
+    link(h);
+    add_elapsed(stats_.phase_us.insertion, t1);
+    return RejectReason::accepted;
+  }
+
+  /// Appends a point record (no index, no edges yet) to the ring.
+  PointHandle append_point(const Eigen::Vector3f& pos, float range, float point_intensity, double time,
+                           std::uint64_t stream_index) {
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
-    r.sample = make_sample(pos, pr.range, point_intensity, time);
+    r.sample = make_sample(pos, range, point_intensity, time);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
     r.next_member = kNoPoint;
@@ -365,15 +404,18 @@ class StreamClusterer {
     r.back_count = 0;
     r.fwd_head = kNoEdge;
     r.mark = 0;
-    if (calibrating_) {
-      if (window_.complete(point(oldest_).sample.time, time, size())) finish_calibration();
-      return RejectReason::accepted;
-    }
-    r.cell = grid_.cell_of(pr.u, pr.v);
-    const auto t1 = clock_now();
-    link(h);
-    add_elapsed(stats_.phase_us.insertion, t1);
-    return RejectReason::accepted;
+    return h;
+  }
+
+  /// A retrieval while the first window is still buffered: no labels yet.
+  const Clustering& empty_retrieval() {
+    result_.time = last_time_;
+    ++result_.cycle;
+    result_.points.clear();
+    result_.components.clear();
+    last_stats_ = stats_;
+    stats_ = RetrievalStats{};
+    return result_;
   }
 
   /// Chooses the grid from the buffered first window, then inserts the

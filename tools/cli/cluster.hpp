@@ -335,7 +335,10 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
         next_retrieval = first_time + period;
       }
       if (started && std::isfinite(r.t) && r.t >= next_retrieval) {
-        const int code = run_cycle(next_retrieval);
+        // No cycle while the engine buffers its first window for the grid.
+        if (engine) engine->advance_to(next_retrieval);
+        const bool calibrating = engine && engine->calibrating();
+        const int code = calibrating ? kOk : run_cycle(next_retrieval);
         if (code != kOk) return code;
         next_retrieval = first_time + (std::floor((r.t - first_time) / period) + 1.0) * period;
       }
@@ -368,7 +371,9 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   }
   if (progress) err << "\r" << std::string(60, ' ') << "\r";
   if (records == 0) throw io::InputError(o.input, "header", "no points: the input is empty");
-  // The final cycle covers the points after the last scheduled retrieval.
+  // The final cycle covers the points after the last scheduled retrieval
+  // (and, for an input shorter than one window, ends the calibration).
+  if (engine) engine->complete_calibration();
   if (inserted_since > 0 || cycle == 0) {
     const int code = run_cycle(started ? std::max(last_time, first_time) : 0.0);
     if (code != kOk) return code;
