@@ -98,6 +98,7 @@ int main() {
     frame.push_back(sc::Point{xyz.x(), xyz.y(), xyz.z(), 0.0f, r.time});
   }
   for (const sc::Point& p : frame) engine.insert(p);
+  engine.complete_calibration();  // the stream ends before a point completes the window
   engine.retrieve();
   sc::BatchClusterer<sc::FrameBaselineConfig> baseline(sc::to_clusterer_params<sc::FrameBaselineConfig>(carc),
                                                        sc::BatchMode::range_image);
