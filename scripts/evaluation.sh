@@ -82,6 +82,17 @@ for sensor in $SENSORS; do
         done
       done
     done
+    # 1b. The spinning sensor on its natural fixed grid (one row per beam, one
+    # column per firing column: the classic range image), for both methods.
+    if [[ $sensor == spinning32 ]]; then
+      for st in keep drop; do
+        base="--sensor $sensor --scene $scene --duration $SECONDS_MAIN --grid 32x1800 --structure $st"
+        job "main_${sensor}_${scene}_tmnat_${st}_ang10" $base --linkage angular --theta 10
+        for d in 0.3 0.6; do
+          job "main_${sensor}_${scene}_tmnat_${st}_euc${d}" $base --linkage euclidean --distance "$d"
+        done
+      done
+    fi
     # 3. Quality against T_B (the adaptive loop picks the grid for each T_B, T_M 2).
     for tb in $TB_LIST; do
       job "tb_${sensor}_${scene}_tb${tb}" --sensor "$sensor" --scene "$scene" --duration "$SECONDS_MAIN" \
@@ -159,24 +170,37 @@ def pair(run, key, fmt=f2):
     c, b = method(run, "carc"), method(run, "baseline")
     return f"{fmt(c['mean'][key])} / {fmt(b['mean'][key])}"
 
+def lab(m):
+    # The method's mean on the points the baseline labelled.
+    return m.get("mean_on_baseline_labelled") or {}
+
+def pair_labelled(run, key, fmt=f2):
+    c, b = lab(method(run, "carc")), lab(method(run, "baseline"))
+    return f"{fmt(c.get(key))} / {fmt(b.get(key))}"
+
+TMS = ["1.25", "2", "nat"]
+TM_NAME = {"1.25": "1.25", "2": "2", "nat": "fixed"}
+
 tables = {}
 
 # --- the comparative matrix, one table per (linkage, structure)
 def main_table(st, link):
-    rows = ["| sensor | scene | T_M | grid | M_mu | ARI | PQ | OSE/obj | USE/cl | over-seg | under-seg | coverage |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = ["| sensor | scene | T_M | grid | M_mu | ARI | PQ | OSE/obj | USE/cl | over-seg | under-seg | coverage | ARI, baseline-labelled | PQ, baseline-labelled |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for sensor in SENSORS:
         for scene in SCENES:
-            for tm in ["1.25", "2"]:
+            for tm in TMS:
                 lk = link if not link.startswith("angS") else f"ang{SENSOR_THETA.get(sensor, '')}"
                 r = runs.get(f"main_{sensor}_{scene}_tm{tm}_{st}_{lk}")
                 if r is None:
                     continue
                 g = r["grid"]
-                rows.append(f"| {SENSOR_NAME[sensor]} | {scene} | {tm} | {g['rows']}x{g['cols']} | "
-                            f"{g['mean_multiplicity']:.2f} | {pair(r, 'ari')} | {pair(r, 'pq')} | "
+                mmu = f"{g['mean_multiplicity']:.2f}" if g["adaptive"] else "-"
+                rows.append(f"| {SENSOR_NAME[sensor]} | {scene} | {TM_NAME[tm]} | {g['rows']}x{g['cols']} | "
+                            f"{mmu} | {pair(r, 'ari')} | {pair(r, 'pq')} | "
                             f"{pair(r, 'ose_mean')} | {pair(r, 'use_mean')} | {pair(r, 'over_segmented')} | "
-                            f"{pair(r, 'under_segmented')} | {pair(r, 'coverage')} |")
+                            f"{pair(r, 'under_segmented')} | {pair(r, 'coverage')} | {pair_labelled(r, 'ari')} | "
+                            f"{pair_labelled(r, 'pq')} |")
     return "\n".join(rows)
 
 tables["main-keep-ang10"] = main_table("keep", "ang10")
@@ -194,15 +218,15 @@ def verdict(c, b, higher_better=True):
     d = (c - b) if higher_better else (b - c)
     return "win" if d > TOL else ("loss" if d < -TOL else "tie")
 
-summary = ["| linkage | structure | T_M | cells | ARI (win/tie/loss) | PQ | OSE/obj | USE/cl | under-seg rate | mean ARI C-ARC / baseline | mean PQ C-ARC / baseline |",
-           "|---|---|---|---|---|---|---|---|---|---|---|"]
+summary = ["| linkage | structure | T_M | cells | ARI (win/tie/loss) | PQ | OSE/obj | USE/cl | under-seg rate | mean ARI C-ARC / baseline | mean PQ C-ARC / baseline | ARI, baseline-labelled (w/t/l) | PQ, baseline-labelled (w/t/l) | mean ARI, baseline-labelled | mean PQ, baseline-labelled |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for link, label in [("ang10", "angular 10 deg"), ("angS", "angular, paper's theta (Mid-360 30, Avia 80)"),
                     ("euc0.3", "Euclidean 0.3 m"), ("euc0.6", "Euclidean 0.6 m")]:
     for st in ["keep", "drop"]:
-        for tm in ["1.25", "2"]:
-            counts = {k: {"win": 0, "tie": 0, "loss": 0} for k in ["ari", "pq", "ose_mean", "use_mean", "under_segmented"]}
+        for tm in TMS:
+            counts = {k: {"win": 0, "tie": 0, "loss": 0} for k in ["ari", "pq", "ose_mean", "use_mean", "under_segmented", "ari_l", "pq_l"]}
             n = 0
-            sums = [0.0, 0.0, 0.0, 0.0]
+            sums = [0.0] * 8
             for sensor in SENSORS:
                 for scene in SCENES:
                     lk = link if link != "angS" else (f"ang{SENSOR_THETA[sensor]}" if sensor in SENSOR_THETA else None)
@@ -216,12 +240,17 @@ for link, label in [("ang10", "angular 10 deg"), ("angS", "angular, paper's thet
                     for k, hb in [("ari", True), ("pq", True), ("ose_mean", False), ("use_mean", False), ("under_segmented", False)]:
                         counts[k][verdict(c[k], b[k], hb)] += 1
                     sums[0] += c["ari"]; sums[1] += b["ari"]; sums[2] += c["pq"]; sums[3] += b["pq"]
+                    cl, bl = lab(method(r, "carc")), lab(method(r, "baseline"))
+                    counts["ari_l"][verdict(cl["ari"], bl["ari"])] += 1
+                    counts["pq_l"][verdict(cl["pq"], bl["pq"])] += 1
+                    sums[4] += cl["ari"]; sums[5] += bl["ari"]; sums[6] += cl["pq"]; sums[7] += bl["pq"]
             if n == 0:
                 continue
             cell = lambda k: f"{counts[k]['win']}/{counts[k]['tie']}/{counts[k]['loss']}"
-            summary.append(f"| {label} | {st} | {tm} | {n} | {cell('ari')} | {cell('pq')} | {cell('ose_mean')} | "
+            summary.append(f"| {label} | {st} | {TM_NAME[tm]} | {n} | {cell('ari')} | {cell('pq')} | {cell('ose_mean')} | "
                            f"{cell('use_mean')} | {cell('under_segmented')} | {sums[0]/n:.2f} / {sums[1]/n:.2f} | "
-                           f"{sums[2]/n:.2f} / {sums[3]/n:.2f} |")
+                           f"{sums[2]/n:.2f} / {sums[3]/n:.2f} | {cell('ari_l')} | {cell('pq_l')} | "
+                           f"{sums[4]/n:.2f} / {sums[5]/n:.2f} | {sums[6]/n:.2f} / {sums[7]/n:.2f} |")
 tables["summary"] = "\n".join(summary)
 
 # --- theta sweep: mean over scenes per sensor

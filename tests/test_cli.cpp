@@ -269,3 +269,38 @@ TEST_CASE("simulate writes a stream with ground truth that cluster reads back") 
   CHECK(run({"simulate", "--dropout", "2", "--out", (dir / "s.csv").string()}).code == 2);
   CHECK(run({"simulate", "--help"}).out.find("examples:") != std::string::npos);
 }
+
+TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor() rounds down") {
+  // At 10 Hz from t0 = 0.3 s the 4th retrieval is at 0.3 + 4 * 0.1 = 0.7 s
+  // (the same double as the literal 0.7), but (0.7 - 0.3) / 0.1 is
+  // 3.9999999999999996 in double: floor() + 1 schedules 0.7 s again, and the
+  // record at 0.72 s would trigger a second retrieval at 0.7 s.
+  const fs::path dir = temp_dir("schedule");
+  {
+    std::ofstream f(dir / "stream.csv");
+    f.precision(17);
+    f << "x,y,z,intensity,t\n";
+    const double times[] = {0.3, 0.45, 0.65, 0.7, 0.72, 0.75};
+    int k = 0;
+    for (const double t : times) {
+      f << 5.0 << ',' << 0.1 * k << ',' << 0.05 * k << ",1," << t << '\n';
+      ++k;
+    }
+  }
+  const auto result = run({"cluster", (dir / "stream.csv").string(), "--grid", "8x32", "--rate", "10",
+                           "--window-time", "0.2", "--labels", (dir / "labels.csv").string(), "--cycles", "all",
+                           "--quiet"});
+  INFO(result.err);
+  REQUIRE(result.code == 0);
+  std::map<std::uint64_t, double> cycle_time;
+  for (const LabelRow& r : read_labels(dir / "labels.csv")) cycle_time[r.cycle] = r.time;
+  // Scheduled retrievals at 0.4, 0.5 (after 0.45 and 0.65: the pause skips 0.6), 0.7, then the final one at 0.75.
+  std::vector<double> times;
+  for (const auto& kv : cycle_time) times.push_back(kv.second);
+  REQUIRE(times.size() == 4);
+  CHECK(times[0] == doctest::Approx(0.4));
+  CHECK(times[1] == doctest::Approx(0.5));
+  CHECK(times[2] == doctest::Approx(0.7));
+  CHECK(times[3] == doctest::Approx(0.75));
+  for (std::size_t i = 1; i < times.size(); ++i) CHECK(times[i] > times[i - 1]);
+}

@@ -706,3 +706,51 @@ TEST_CASE("size mismatch and invalid options throw std::invalid_argument naming 
   o.under_segmentation_fraction = 1.0;  // upper bound allowed
   CHECK_NOTHROW(ev::evaluate(three, three, o));
 }
+
+TEST_CASE("evaluate_on_labelled scores both methods on the points the reference labelled") {
+  // Two objects of 3 points. The baseline lost points 2 and 5 and got the
+  // rest right; C-ARC kept every point but split point 2 off object 1.
+  const Labels truth{1, 1, 1, 2, 2, 2};
+  const Labels baseline{4, 4, -1, 6, 6, -1};
+  const Labels carc{7, 7, 8, 9, 9, 9};
+
+  // On all points: the baseline's unlabelled points count against it.
+  const ev::QualityReport b_all = ev::evaluate(truth, baseline);
+  CHECK(b_all.coverage == doctest::Approx(4.0 / 6.0));
+  CHECK(b_all.adjusted_rand_index < 1.0);
+
+  // On the baseline's labelled points {0, 1, 3, 4}: truth {1, 1, 2, 2},
+  // baseline {4, 4, 6, 6}, C-ARC {7, 7, 9, 9}: both perfect there.
+  const ev::LabelledSubset s = ev::restrict_to_labelled(truth, carc, baseline);
+  CHECK(s.truth == Labels{1, 1, 2, 2});
+  CHECK(s.predicted == Labels{7, 7, 9, 9});
+  const ev::QualityReport b = ev::evaluate_on_labelled(truth, baseline, baseline);
+  const ev::QualityReport c = ev::evaluate_on_labelled(truth, carc, baseline);
+  CHECK(b.points == 4);
+  CHECK(c.points == 4);
+  CHECK(b.coverage == 1.0);
+  CHECK(b.adjusted_rand_index == doctest::Approx(1.0));
+  CHECK(c.adjusted_rand_index == doctest::Approx(1.0));
+  CHECK(b.panoptic.pq == doctest::Approx(1.0));
+  CHECK(c.panoptic.pq == doctest::Approx(1.0));
+
+  // A C-ARC that merges both objects is not rescued by the restriction:
+  // truth {1, 1, 2, 2} vs one cluster: pairs X = 2, A = 2, B = 6, E = A B / 6 = 2,
+  // ARI = (2 - 2) / ((2 + 6) / 2 - 2) = 0; IoU of each object with the
+  // merged cluster = 2 / 4 = 0.5, not > 0.5: no match, PQ = 0.
+  const Labels merged{3, 3, 3, 3, 3, 3};
+  const ev::QualityReport m = ev::evaluate_on_labelled(truth, merged, baseline);
+  CHECK(m.points == 4);
+  CHECK(m.adjusted_rand_index == doctest::Approx(0.0));
+  CHECK(m.panoptic.pq == doctest::Approx(0.0));
+  CHECK(m.panoptic.false_negatives == 2);
+
+  // A reference that labelled nothing leaves an empty frame.
+  const Labels none(6, -1);
+  CHECK(ev::evaluate_on_labelled(truth, carc, none).points == 0);
+
+  const Labels five{1, 1, 1, 2, 2};
+  const auto msg = invalid_argument_message([&] { ev::restrict_to_labelled(truth, carc, five); });
+  CHECK(msg.find("truth has 6") != std::string::npos);
+  CHECK(msg.find("has 5") != std::string::npos);
+}

@@ -54,12 +54,14 @@ struct JsonCycle {
   double time = 0.0;
   std::size_t window = 0;
   std::map<std::string, double> q;
+  double ari_labelled = -2.0, pq_labelled = -2.0;  ///< -2 when absent or null
 };
 
 /// What the tests read back from `evaluate --json` (one cycle per line by contract).
 struct JsonEvaluation {
   std::uint32_t rows = 0, cols = 0;
   std::map<std::string, std::map<std::string, double>> mean;  ///< method -> metric -> value
+  std::map<std::string, std::map<std::string, double>> mean_labelled;  ///< method -> metric on the baseline-labelled points
   std::map<std::string, std::vector<JsonCycle>> cycles;       ///< method -> retrievals
   std::map<std::string, std::string> recovery_line;           ///< method -> its "recovery" JSON
 };
@@ -83,6 +85,8 @@ JsonEvaluation parse_evaluation(const std::string& json) {
   std::string line, method;
   static const std::regex name_re("\\{\"name\": \"([a-z]+)\"");
   static const std::regex mean_re("\"mean\": \\{(.*)\\}");
+  static const std::regex labelled_re("\"ari_labelled\": ([-0-9.eE+]+), \"pq_labelled\": ([-0-9.eE+]+)");
+  static const std::regex mean_labelled_re("\"mean_on_baseline_labelled\": \\{(.*)\\}");
   static const std::regex cycle_re("\\{\"time\": ([-0-9.eE+]+), \"window\": ([0-9]+), .*\"quality\": \\{(.*)\\}\\}");
   while (std::getline(lines, line)) {
     if (std::regex_search(line, m, name_re)) method = m[1].str();
@@ -92,7 +96,13 @@ JsonEvaluation parse_evaluation(const std::string& json) {
       c.time = std::stod(m[1].str());
       c.window = std::stoul(m[2].str());
       c.q = parse_metrics(m[3].str());
+      if (std::regex_search(line, m, labelled_re)) {
+        c.ari_labelled = std::stod(m[1].str());
+        c.pq_labelled = std::stod(m[2].str());
+      }
       e.cycles[method].push_back(c);
+    } else if (std::regex_search(line, m, mean_labelled_re)) {
+      e.mean_labelled[method] = parse_metrics(m[1].str());
     } else if (std::regex_search(line, m, mean_re)) {
       e.mean[method] = parse_metrics(m[1].str());
     }
@@ -157,7 +167,7 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
   sc::eval::MetricOptions options;
   options.min_points = 10;  // evaluate's default
 
-  std::vector<sc::eval::MeanQuality> carc, frame;
+  std::vector<sc::eval::MeanQuality> carc, frame, carc_labelled, frame_labelled;
   std::vector<double> times;
   const double first = stream.front().t;
   const double period = 0.05;
@@ -180,8 +190,12 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
       }
       engine.for_each_point([&](const sc::Sample& s, std::uint64_t) { window.push_back(s); });
       times.push_back(t);
+      const std::vector<std::int64_t> base_labels = baseline.cluster(window).labels;
       carc.push_back(sc::eval::to_mean_quality(sc::eval::evaluate(truth, predicted, options)));
-      frame.push_back(sc::eval::to_mean_quality(sc::eval::evaluate(truth, baseline.cluster(window).labels, options)));
+      frame.push_back(sc::eval::to_mean_quality(sc::eval::evaluate(truth, base_labels, options)));
+      // Both on the points the baseline labelled (same window, same order).
+      carc_labelled.push_back(sc::eval::to_mean_quality(sc::eval::evaluate_on_labelled(truth, predicted, base_labels, options)));
+      frame_labelled.push_back(sc::eval::to_mean_quality(sc::eval::evaluate_on_labelled(truth, base_labels, base_labels, options)));
     }
     engine.insert(p, p.t);
   }
@@ -199,7 +213,7 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
       &sc::eval::MeanQuality::coverage,     &sc::eval::MeanQuality::object_coverage,
       &sc::eval::MeanQuality::correct,      &sc::eval::MeanQuality::over_segmented,
       &sc::eval::MeanQuality::under_segmented, &sc::eval::MeanQuality::missed};
-  sc::eval::QualityAverage carc_mean;
+  sc::eval::QualityAverage carc_mean, carc_labelled_mean, frame_labelled_mean;
   for (std::size_t i = 0; i < carc.size(); ++i) {
     const JsonCycle& jc = e.cycles.at("carc")[i];
     const JsonCycle& jb = e.cycles.at("baseline")[i];
@@ -211,8 +225,32 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
       CHECK(jc.q.at(names[f]) == doctest::Approx(carc[i].*fields[f]).epsilon(1e-7));
       CHECK(jb.q.at(names[f]) == doctest::Approx(frame[i].*fields[f]).epsilon(1e-7));
     }
+    CAPTURE(i);
+    CHECK(jc.ari_labelled == doctest::Approx(carc_labelled[i].ari).epsilon(1e-7));
+    CHECK(jc.pq_labelled == doctest::Approx(carc_labelled[i].pq).epsilon(1e-7));
+    CHECK(jb.ari_labelled == doctest::Approx(frame_labelled[i].ari).epsilon(1e-7));
+    CHECK(jb.pq_labelled == doctest::Approx(frame_labelled[i].pq).epsilon(1e-7));
+    // The same subset for both methods, smaller than the window when the baseline lost points.
+    CHECK(carc_labelled[i].points == frame_labelled[i].points);
+    CHECK(frame_labelled[i].points == doctest::Approx(frame[i].coverage * frame[i].points));
+    CHECK(frame_labelled[i].coverage == 1.0);
     carc_mean.add(carc[i]);
+    carc_labelled_mean.add(carc_labelled[i]);
+    frame_labelled_mean.add(frame_labelled[i]);
   }
+  // The subset is a real restriction: the overwrite grid lost points.
+  std::size_t restricted = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) restricted += frame_labelled[i].points < frame[i].points ? 1u : 0u;
+  CHECK(restricted > 0);
+  REQUIRE(e.mean_labelled.count("carc") == 1);
+  REQUIRE(e.mean_labelled.count("baseline") == 1);
+  CHECK(e.mean_labelled.at("carc").at("ari") == doctest::Approx(carc_labelled_mean.mean().ari).epsilon(1e-7));
+  CHECK(e.mean_labelled.at("carc").at("pq") == doctest::Approx(carc_labelled_mean.mean().pq).epsilon(1e-7));
+  CHECK(e.mean_labelled.at("carc").at("points") == doctest::Approx(carc_labelled_mean.mean().points).epsilon(1e-7));
+  CHECK(e.mean_labelled.at("baseline").at("ari") == doctest::Approx(frame_labelled_mean.mean().ari).epsilon(1e-7));
+  CHECK(e.mean_labelled.at("baseline").at("pq") == doctest::Approx(frame_labelled_mean.mean().pq).epsilon(1e-7));
+  CHECK(e.mean_labelled.at("baseline").at("under_segmented") ==
+        doctest::Approx(frame_labelled_mean.mean().under_segmented).epsilon(1e-7));
   for (std::size_t f = 0; f < 12; ++f) {
     CAPTURE(names[f]);
     CHECK(e.mean.at("carc").at(names[f]) == doctest::Approx(carc_mean.mean().*fields[f]).epsilon(1e-7));

@@ -210,6 +210,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   std::uint64_t records = 0;
   std::uint64_t cycle = 0;
   double first_time = 0.0, last_time = 0.0, next_retrieval = 0.0;
+  double next_k = 1.0;  // next_retrieval = first_time + next_k * period
   bool started = false;
   const double period = 1.0 / o.rate_hz;
   std::uint64_t inserted_since = 0;
@@ -340,7 +341,11 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
         const bool calibrating = engine && engine->calibrating();
         const int code = calibrating ? kOk : run_cycle(next_retrieval);
         if (code != kOk) return code;
-        next_retrieval = first_time + (std::floor((r.t - first_time) / period) + 1.0) * period;
+        // Skip the empty cycles of a pause, but always move on: floor() may
+        // round (r.t - first_time) / period a hair below next_k although
+        // r.t >= next_retrieval, which would schedule this retrieval again.
+        next_k = std::max(next_k + 1.0, std::floor((r.t - first_time) / period) + 1.0);
+        next_retrieval = first_time + next_k * period;
       }
       const std::uint64_t index = records++;
       RejectReason reason;

@@ -16,6 +16,7 @@
 #include "cli/simulate.hpp"
 
 #include <streamclust/eval/average.hpp>
+#include <streamclust/eval/labelled_subset.hpp>
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>
 
@@ -59,19 +60,28 @@ struct EvaluateOptions {
 
 /// The field of view of each simulated sensor (degrees), used unless
 /// --fov-azimuth / --fov-elevation override it; a margin of about 0.5 deg
-/// keeps every simulated ray inside.
+/// keeps every simulated ray inside. The spinning sensor's FOV is shifted so
+/// that its natural grid (--grid 32x1800: one row per beam, one column per
+/// firing column) has a firing direction at the centre of every cell: its
+/// 32 beams span -25..15 deg (1.29 deg apart), so rows of 41.29 / 32 deg from
+/// -25.645 deg; its columns are 0.2 deg apart from azimuth 0, so the azimuth
+/// range starts half a column early (-180.1 .. 179.9 deg). On cell edges
+/// instead, rounding puts two firing columns in one cell and none in the
+/// next, an artefact that costs the overwrite grid ~18 % of its points.
 inline void apply_sensor_fov(const std::string& sensor, ClusterOptions& o) {
   struct Fov {
     const char* name;
-    float az, el_min, el_max;
+    float az_min, az_max, el_min, el_max;
   };
-  static constexpr Fov kFov[] = {{"mid360", 180.0f, -7.5f, 52.5f}, {"mid40", 20.0f, -20.0f, 20.0f},
-                                 {"mid70", 36.0f, -36.0f, 36.0f},  {"avia", 35.5f, -39.0f, 39.0f},
-                                 {"spinning32", 180.0f, -25.5f, 15.5f}};
+  static constexpr Fov kFov[] = {{"mid360", -180.0f, 180.0f, -7.5f, 52.5f},
+                                 {"mid40", -20.0f, 20.0f, -20.0f, 20.0f},
+                                 {"mid70", -36.0f, 36.0f, -36.0f, 36.0f},
+                                 {"avia", -35.5f, 35.5f, -39.0f, 39.0f},
+                                 {"spinning32", -180.1f, 179.9f, -25.645f, 15.645f}};
   for (const Fov& f : kFov) {
     if (sensor == f.name) {
-      o.azimuth_min = -f.az;
-      o.azimuth_max = f.az;
+      o.azimuth_min = f.az_min;
+      o.azimuth_max = f.az_max;
       o.elevation_min = f.el_min;
       o.elevation_max = f.el_max;
     }
@@ -134,6 +144,9 @@ struct CycleQuality {
   std::size_t window = 0;   ///< points in the window (clustered or lost)
   double cost_us = 0.0;     ///< clustering work for this retrieval [us] (C-ARC: inserts, evictions and retrieval since the previous one; baseline: the batch run, 0 for a held frame)
   eval::MeanQuality quality;
+  /// The metrics on the points the baseline labelled in this window (both
+  /// methods scored on the same subset; empty unless both methods run).
+  std::optional<eval::MeanQuality> on_labelled;
 };
 
 /// The recovery of the methods' metrics after an ego-motion burst.
@@ -147,6 +160,7 @@ struct MethodResult {
   std::string name;  ///< "carc" or "baseline"
   std::vector<CycleQuality> cycles;
   eval::MeanQuality mean;
+  std::optional<eval::MeanQuality> mean_on_labelled;  ///< mean of CycleQuality::on_labelled, when every cycle has it
   double cost_median_us = 0.0;
   std::optional<BurstRecovery> recovery;
 };
@@ -237,20 +251,38 @@ inline eval::MeanQuality score_window(const std::vector<std::int64_t>& truth, co
   return eval::to_mean_quality(eval::evaluate(truth, predicted, m));
 }
 
+/// The stream indices of the points the baseline labelled, one sorted list
+/// per evaluated retrieval (in order): the subset on which both methods get
+/// their `on_labelled` scores.
+using LabelledSets = std::vector<std::vector<std::size_t>>;
+
+/// Scores one window on the points `reference` labelled (>= 0).
+inline eval::MeanQuality score_labelled(const std::vector<std::int64_t>& truth, const std::vector<std::int64_t>& predicted,
+                                        const std::vector<std::int64_t>& reference, std::size_t min_points) {
+  eval::MetricOptions m;
+  m.min_points = min_points;
+  return eval::to_mean_quality(eval::evaluate_on_labelled(truth, predicted, reference, m));
+}
+
 /// True when a retrieval at `time` sees a full window (the first window is skipped).
 inline bool window_is_full(double time, double first_time, double window_seconds) {
   return time - first_time >= window_seconds - 1e-9;
 }
 
+/// C-ARC on `grid`; with `baseline_labelled` (one entry per evaluated
+/// retrieval, from run_baseline_method) each retrieval is also scored on the
+/// points the baseline labelled.
 template <class Index>
-MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Record>& records, GridSize grid) {
+MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Record>& records, GridSize grid,
+                             const LabelledSets* baseline_labelled = nullptr) {
   using Config = ToolConfig<SphericalProjection, Index>;
   ClusterOptions c = o.policy;
   c.grid = std::make_pair(grid.rows, grid.cols);
   StreamClusterer<Config> engine(make_params<Config>(c));
   MethodResult m;
   m.name = "carc";
-  std::vector<std::int64_t> truth, predicted;
+  std::vector<std::int64_t> truth, predicted, reference;
+  std::vector<char> labelled_by_baseline(baseline_labelled ? records.size() : 0, 0);
   const double first = records.empty() ? 0.0 : records.front().t;
   run_schedule(
       records, o.policy.rate_hz, [&](const io::Record& r, std::size_t) { engine.insert(r, r.t); },
@@ -270,13 +302,24 @@ MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Rec
         q.window = result.points.size();
         q.cost_us = p.insertion + p.eviction + p.validation + p.component_update + p.labelling;
         q.quality = score_window(truth, predicted, o.min_points);
+        if (baseline_labelled && m.cycles.size() < baseline_labelled->size()) {
+          const std::vector<std::size_t>& kept = (*baseline_labelled)[m.cycles.size()];
+          for (const std::size_t i : kept) labelled_by_baseline[i] = 1;
+          reference.clear();
+          for (const PointLabel& pl : result.points) reference.push_back(labelled_by_baseline[pl.stream_index] ? 0 : -1);
+          for (const std::size_t i : kept) labelled_by_baseline[i] = 0;
+          q.on_labelled = score_labelled(truth, predicted, reference, o.min_points);
+        }
         m.cycles.push_back(q);
       });
   return m;
 }
 
+/// The overwrite frame baseline on `grid`; with `labelled` it is scored on
+/// its own labelled points too, and the stream indices of those points are
+/// appended for each evaluated retrieval (for run_carc_method).
 inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vector<io::Record>& records,
-                                        GridSize grid) {
+                                        GridSize grid, LabelledSets* labelled = nullptr) {
   using Config = ToolConfig<SphericalProjection, OverwriteGrid>;
   ClusterOptions c = o.policy;
   c.grid = std::make_pair(grid.rows, grid.cols);
@@ -288,6 +331,7 @@ inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vec
   m.name = "baseline";
   std::vector<Sample> samples;
   std::vector<std::int64_t> truth;
+  std::vector<std::size_t> indices;
   const double first = records.empty() ? 0.0 : records.front().t;
   std::optional<double> last_frame;
   run_schedule(
@@ -301,21 +345,33 @@ inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vec
           // A frame-based driver still shows the last frame it published.
           q.window = m.cycles.back().window;
           q.quality = m.cycles.back().quality;
+          q.on_labelled = m.cycles.back().on_labelled;
+          if (labelled) labelled->push_back(labelled->back());
           m.cycles.push_back(q);
           return;
         }
         last_frame = time;
         samples.clear();
         truth.clear();
+        indices.clear();
         for (const auto& e : frame.points()) {
           samples.push_back(e.sample);
           truth.push_back(records[e.index].label);
+          indices.push_back(e.index);
         }
         const auto t0 = std::chrono::steady_clock::now();
         const BatchResult& r = batch.cluster(samples);
         q.cost_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
         q.window = samples.size();
         q.quality = score_window(truth, r.labels, o.min_points);
+        if (labelled) {
+          q.on_labelled = score_labelled(truth, r.labels, r.labels, o.min_points);
+          std::vector<std::size_t> kept;
+          for (std::size_t k = 0; k < indices.size(); ++k) {
+            if (r.labels[k] >= 0) kept.push_back(indices[k]);
+          }
+          labelled->push_back(std::move(kept));
+        }
         m.cycles.push_back(q);
       });
   return m;
@@ -323,13 +379,15 @@ inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vec
 
 /// Mean, median cost and (with a burst) the recovery of one method's cycles.
 inline void summarize(const EvaluateOptions& o, MethodResult& m) {
-  eval::QualityAverage average;
+  eval::QualityAverage average, on_labelled;
   std::vector<double> costs;
   for (const CycleQuality& q : m.cycles) {
     average.add(q.quality);
+    if (q.on_labelled) on_labelled.add(*q.on_labelled);
     if (q.cost_us > 0.0) costs.push_back(q.cost_us);
   }
   m.mean = average.mean();
+  if (!m.cycles.empty() && on_labelled.frames() == m.cycles.size()) m.mean_on_labelled = on_labelled.mean();
   m.cost_median_us = percentile(costs, 0.5);
   const SimulateOptions& s = o.scenario;
   if (s.burst_length <= 0.0 || m.cycles.empty()) return;
@@ -357,12 +415,19 @@ inline Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<i
   e.records = records.size();
   try {
     e.grid = choose_grid(o, records);
+    // With both methods, the baseline runs first and records the points it
+    // labels, so that C-ARC is also scored on that subset.
+    LabelledSets labelled;
+    const bool both = o.run_carc && o.run_baseline;
+    std::optional<MethodResult> baseline;
+    if (o.run_baseline) baseline = run_baseline_method(o, records, e.grid.grid, both ? &labelled : nullptr);
     if (o.run_carc) {
+      const LabelledSets* sets = both ? &labelled : nullptr;
       e.methods.push_back(o.policy.index == IndexKind::capped
-                              ? run_carc_method<CappedGrid>(o, records, e.grid.grid)
-                              : run_carc_method<BucketGrid>(o, records, e.grid.grid));
+                              ? run_carc_method<CappedGrid>(o, records, e.grid.grid, sets)
+                              : run_carc_method<BucketGrid>(o, records, e.grid.grid, sets));
     }
-    if (o.run_baseline) e.methods.push_back(run_baseline_method(o, records, e.grid.grid));
+    if (baseline) e.methods.push_back(std::move(*baseline));
   } catch (const std::invalid_argument& ex) {
     throw UsageError(ex.what());
   }
@@ -445,7 +510,8 @@ inline void write_evaluation_json(std::ostream& out, const EvaluateOptions& o, c
     const MethodResult& m = e.methods[k];
     out << "    {\"name\": " << json_string(m.name) << ", \"cycles_evaluated\": " << m.cycles.size()
         << ", \"cycle_cost_median_us\": " << json_number(m.cost_median_us) << ",\n     \"mean\": " << json_quality(m.mean)
-        << ",\n     \"recovery\": ";
+        << ",\n     \"mean_on_baseline_labelled\": "
+        << (m.mean_on_labelled ? json_quality(*m.mean_on_labelled) : std::string("null")) << ",\n     \"recovery\": ";
     if (m.recovery) {
       out << "{\"use\": " << json_recovery(m.recovery->use)
           << ", \"under_segmented\": " << json_recovery(m.recovery->under)
@@ -457,7 +523,10 @@ inline void write_evaluation_json(std::ostream& out, const EvaluateOptions& o, c
     for (std::size_t i = 0; i < m.cycles.size(); ++i) {
       const CycleQuality& q = m.cycles[i];
       out << "      {\"time\": " << json_number(q.time) << ", \"window\": " << q.window
-          << ", \"cost_us\": " << json_number(q.cost_us) << ", \"quality\": " << json_quality(q.quality) << "}"
+          << ", \"cost_us\": " << json_number(q.cost_us)
+          << ", \"ari_labelled\": " << (q.on_labelled ? json_number(q.on_labelled->ari) : std::string("null"))
+          << ", \"pq_labelled\": " << (q.on_labelled ? json_number(q.on_labelled->pq) : std::string("null"))
+          << ", \"quality\": " << json_quality(q.quality) << "}"
           << (i + 1 < m.cycles.size() ? "," : "") << "\n";
     }
     out << "     ]}" << (k + 1 < e.methods.size() ? "," : "") << "\n";
@@ -553,6 +622,23 @@ inline void print_evaluation(std::ostream& out, const EvaluateOptions& o, const 
     out << line;
     for (const MethodResult& m : e.methods) {
       std::snprintf(line, sizeof line, "%12.3f", m.mean.*(r.field));
+      out << line;
+    }
+    out << "\n";
+  }
+  // Both methods on the points the baseline labelled (its losses excluded).
+  static const Row kLabelledRows[] = {{"ARI, baseline-labelled pts", &eval::MeanQuality::ari},
+                                      {"PQ, baseline-labelled pts", &eval::MeanQuality::pq},
+                                      {"under-seg, baseline-labelled", &eval::MeanQuality::under_segmented},
+                                      {"baseline-labelled points", &eval::MeanQuality::points}};
+  bool labelled = !e.methods.empty();
+  for (const MethodResult& m : e.methods) labelled = labelled && m.mean_on_labelled.has_value();
+  for (const Row& r : kLabelledRows) {
+    if (!labelled) break;
+    std::snprintf(line, sizeof line, "%-28s", r.label);
+    out << line;
+    for (const MethodResult& m : e.methods) {
+      std::snprintf(line, sizeof line, "%12.3f", (*m.mean_on_labelled).*(r.field));
       out << line;
     }
     out << "\n";

@@ -6,7 +6,9 @@
 /// streamclust::eval): adjusted Rand index, TRAVEL's OSE / USE, panoptic
 /// matching at IoU > 0.5, coverage, object outcome rates, and evaluate()
 /// bundling them into a QualityReport, QualityAverage over frames and
-/// recovery_after for a metric's time series. Definitions: docs/evaluation-metrics.md.
+/// recovery_after for a metric's time series, evaluate_on_labelled for
+/// scores on the points a reference method labelled. Definitions:
+/// docs/evaluation-metrics.md.
 ///
 /// Inputs: per-point ground-truth instance ids (0 = structure, > 0 = object,
 /// < 0 = ignored) and predicted cluster ids (< 0 = unlabelled), same length.
@@ -15,6 +17,7 @@
 #include <streamclust/eval/average.hpp>
 #include <streamclust/eval/contingency.hpp>
 #include <streamclust/eval/coverage.hpp>
+#include <streamclust/eval/labelled_subset.hpp>
 #include <streamclust/eval/object_rates.hpp>
 #include <streamclust/eval/options.hpp>
 #include <streamclust/eval/panoptic.hpp>
