@@ -101,6 +101,11 @@ template <class Config>
 struct WithOverwrite : Config {
   using spatial_index = sc::OverwriteGrid;
 };
+/// EuclideanConfig with the union-find rebuild (no preset of its own): the
+/// fast strategy against the PCL peer, which only runs on Euclidean linkage.
+struct EuclideanFastConfig : sc::EuclideanConfig {
+  using connectivity = sc::UnionFindRebuildConnectivity;
+};
 
 struct Options;
 struct Scenario;
@@ -129,8 +134,14 @@ const ConfigEntry kConfigs[] = {
     {"carc", "C-ARC preset (bucket grid, angular)", true, true, kAllWindows, &run_scenario<sc::CArcConfig>},
     {"capped", "CArcCappedConfig (capped grid K = 4, angular)", false, true, kAllWindows,
      &run_scenario<sc::CArcCappedConfig>},
+    {"fast", "CArcFastConfig (bucket grid, angular, union-find rebuild)", true, true, kAllWindows,
+     &run_scenario<sc::CArcFastConfig>},
+    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, union-find rebuild)", false, true, kAllWindows,
+     &run_scenario<sc::CArcCappedFastConfig>},
     {"euclid", "EuclideanConfig (bucket grid, Euclidean 0.5 m)", true, true, kLongestWindow,
      &run_scenario<sc::EuclideanConfig>},
+    {"euclidfast", "EuclideanConfig + union-find rebuild (bench-local)", true, true, kLongestWindow,
+     &run_scenario<EuclideanFastConfig>},
 };
 
 const double kWindows[] = {0.1, 0.2, 0.3, 0.4, 0.5};
