@@ -9,6 +9,7 @@
 #include <streamclust/io/reader.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
 
+#include "support/cli_run.hpp"
 #include "support/partition.hpp"
 
 #include <cmath>
@@ -26,29 +27,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int code;
-  std::string out, err;
-};
-
-RunResult run(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = sc::cli::run_main(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using streamclust::test::run_cli;
+using streamclust::test::RunResult;
+using streamclust::test::slurp;
 
 fs::path temp_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("streamclust_cli_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 /// Writes `seconds` of the synthetic stream as CSV; every 50th record gets a
@@ -105,7 +92,7 @@ std::pair<std::uint32_t, std::uint32_t> report_grid(const std::string& json) {
 TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the batch clusterer") {
   const fs::path dir = temp_dir("e2e");
   const auto points = write_stream_csv(dir / "stream.csv", 0.35);
-  const auto result = run({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30", "--window-time",
+  const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30", "--window-time",
                            "0.1", "--rate", "20", "--labels", (dir / "labels.csv").string(), "--cycles", "all", "--report",
                            (dir / "report.json").string(), "--verify", "--ply", (dir / "last.ply").string(), "--pcd",
                            (dir / "last.pcd").string()});
@@ -161,7 +148,7 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
 TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabelled") {
   const fs::path dir = temp_dir("frame");
   write_stream_csv(dir / "stream.csv", 0.2);
-  const auto result = run({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--grid", "16x64",
+  const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--grid", "16x64",
                            "--labels", (dir / "labels.csv").string(), "--quiet"});
   INFO(result.err);
   REQUIRE(result.code == 0);
@@ -176,7 +163,7 @@ TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabel
 TEST_CASE("info reports format, count and time span") {
   const fs::path dir = temp_dir("info");
   const auto points = write_stream_csv(dir / "stream.csv", 0.05);
-  const auto result = run({"info", (dir / "stream.csv").string()});
+  const auto result = run_cli({"info", (dir / "stream.csv").string()});
   INFO(result.err);
   REQUIRE(result.code == 0);
   CHECK(result.out.find("csv") != std::string::npos);
@@ -185,40 +172,40 @@ TEST_CASE("info reports format, count and time span") {
 }
 
 TEST_CASE("exit codes: help 0, usage 2, input 4") {
-  CHECK(run({"--help"}).code == 0);
-  CHECK(run({}).code == 2);
-  const auto help = run({"cluster", "--help"});
+  CHECK(run_cli({"--help"}).code == 0);
+  CHECK(run_cli({}).code == 2);
+  const auto help = run_cli({"cluster", "--help"});
   CHECK(help.code == 0);
   CHECK(help.out.find("examples:") != std::string::npos);
-  CHECK(run({"info", "--help"}).out.find("examples:") != std::string::npos);
-  CHECK(run({"bogus"}).code == 2);
-  CHECK(run({"cluster"}).code == 2);
-  CHECK(run({"cluster", "a.csv", "--theta", "abc"}).err.find("--theta: expected a number") != std::string::npos);
-  CHECK(run({"cluster", "a.csv", "--mask", "4"}).code == 2);
-  CHECK(run({"cluster", "a.csv", "--index", "kd-tree"}).code == 2);
-  CHECK(run({"cluster", "a.csv", "--window-time", "0.1", "--window-count", "5"}).code == 2);
-  CHECK(run({"cluster", "a.csv", "--frobnicate"}).code == 2);
-  CHECK(run({"cluster", "a.csv", "--mode", "frame", "--verify"}).code == 2);
+  CHECK(run_cli({"info", "--help"}).out.find("examples:") != std::string::npos);
+  CHECK(run_cli({"bogus"}).code == 2);
+  CHECK(run_cli({"cluster"}).code == 2);
+  CHECK(run_cli({"cluster", "a.csv", "--theta", "abc"}).err.find("--theta: expected a number") != std::string::npos);
+  CHECK(run_cli({"cluster", "a.csv", "--mask", "4"}).code == 2);
+  CHECK(run_cli({"cluster", "a.csv", "--index", "kd-tree"}).code == 2);
+  CHECK(run_cli({"cluster", "a.csv", "--window-time", "0.1", "--window-count", "5"}).code == 2);
+  CHECK(run_cli({"cluster", "a.csv", "--frobnicate"}).code == 2);
+  CHECK(run_cli({"cluster", "a.csv", "--mode", "frame", "--verify"}).code == 2);
 
   const fs::path dir = temp_dir("codes");
-  const auto missing = run({"cluster", (dir / "missing.csv").string()});
+  const auto missing = run_cli({"cluster", (dir / "missing.csv").string()});
   CHECK(missing.code == 4);
   CHECK(missing.err.find("missing.csv") != std::string::npos);
   { std::ofstream(dir / "empty.csv"); }
-  CHECK(run({"cluster", (dir / "empty.csv").string()}).code == 4);
+  CHECK(run_cli({"cluster", (dir / "empty.csv").string()}).code == 4);
   {
     std::ofstream f(dir / "untimed.csv");
     f << "x,y,z\n1,2,3\n4,5,6\n";
   }
-  const auto untimed = run({"cluster", (dir / "untimed.csv").string()});
+  const auto untimed = run_cli({"cluster", (dir / "untimed.csv").string()});
   CHECK(untimed.code == 4);
   CHECK(untimed.err.find("point-rate") != std::string::npos);
-  CHECK(run({"cluster", (dir / "untimed.csv").string(), "--point-rate", "1000", "--quiet"}).code == 0);
+  CHECK(run_cli({"cluster", (dir / "untimed.csv").string(), "--point-rate", "1000", "--quiet"}).code == 0);
   {
     std::ofstream f(dir / "bad.csv");
     f << "x,y,z,t\n1,2,3,0\n4,five,6,0.1\n";
   }
-  const auto bad = run({"cluster", (dir / "bad.csv").string()});
+  const auto bad = run_cli({"cluster", (dir / "bad.csv").string()});
   CHECK(bad.code == 4);
   CHECK(bad.err.find("line 3") != std::string::npos);
 }
@@ -233,7 +220,7 @@ TEST_CASE("the --verify comparison finds the first point where two partitions di
 
 TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {
   const fs::path dir = temp_dir("simulate");
-  const auto sim = run({"simulate", "--sensor", "synthetic", "--scene", "room", "--seconds", "0.1", "--point-rate",
+  const auto sim = run_cli({"simulate", "--sensor", "synthetic", "--scene", "room", "--seconds", "0.1", "--point-rate",
                         "20000", "--out", (dir / "s.csv").string()});
   INFO(sim.err);
   REQUIRE(sim.code == 0);
@@ -249,7 +236,7 @@ TEST_CASE("simulate writes a stream with ground truth that cluster reads back") 
   for (const char* sensor : {"mid360", "mid40", "mid70", "avia", "spinning32"}) {
     for (const char* scene : {"office", "forest", "street"}) {
       INFO(sensor << " in " << scene);
-      const auto r = run({"simulate", "--sensor", sensor, "--scene", scene, "--seconds", "0.05", "--speed", "1",
+      const auto r = run_cli({"simulate", "--sensor", sensor, "--scene", scene, "--seconds", "0.05", "--speed", "1",
                           "--out", (dir / "m.pcd").string(), "--quiet"});
       REQUIRE(r.code == 0);
       auto pcd = sc::io::open_reader((dir / "m.pcd").string(), {});
@@ -262,12 +249,12 @@ TEST_CASE("simulate writes a stream with ground truth that cluster reads back") 
       CHECK(labelled > 0);
     }
   }
-  CHECK(run({"cluster", (dir / "m.pcd").string(), "--quiet"}).code == 0);
-  CHECK(run({"simulate", "--sensor", "synthetic", "--out", (dir / "s.csv").string()}).code == 2);
-  CHECK(run({"simulate", "--out", (dir / "s.txt").string()}).code == 2);
-  CHECK(run({"simulate", "--scene", "mars", "--out", (dir / "s.csv").string()}).code == 2);
-  CHECK(run({"simulate", "--dropout", "2", "--out", (dir / "s.csv").string()}).code == 2);
-  CHECK(run({"simulate", "--help"}).out.find("examples:") != std::string::npos);
+  CHECK(run_cli({"cluster", (dir / "m.pcd").string(), "--quiet"}).code == 0);
+  CHECK(run_cli({"simulate", "--sensor", "synthetic", "--out", (dir / "s.csv").string()}).code == 2);
+  CHECK(run_cli({"simulate", "--out", (dir / "s.txt").string()}).code == 2);
+  CHECK(run_cli({"simulate", "--scene", "mars", "--out", (dir / "s.csv").string()}).code == 2);
+  CHECK(run_cli({"simulate", "--dropout", "2", "--out", (dir / "s.csv").string()}).code == 2);
+  CHECK(run_cli({"simulate", "--help"}).out.find("examples:") != std::string::npos);
 }
 
 TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor() rounds down") {
@@ -287,7 +274,7 @@ TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor
       ++k;
     }
   }
-  const auto result = run({"cluster", (dir / "stream.csv").string(), "--grid", "8x32", "--rate", "10",
+  const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--grid", "8x32", "--rate", "10",
                            "--window-time", "0.2", "--labels", (dir / "labels.csv").string(), "--cycles", "all",
                            "--quiet"});
   INFO(result.err);

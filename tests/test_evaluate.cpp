@@ -16,6 +16,7 @@
 #include <streamclust/sim/simulator.hpp>
 #include <streamclust/streamclust.hpp>
 
+#include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
 #include <cmath>
@@ -31,23 +32,9 @@ namespace sc = streamclust;
 
 namespace {
 
-struct RunResult {
-  int code;
-  std::string out, err;
-};
-
-RunResult run(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = sc::cli::run_main(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using streamclust::test::run_cli;
+using streamclust::test::RunResult;
+using streamclust::test::slurp;
 
 /// One retrieval of the JSON output: its time and metrics by name.
 struct JsonCycle {
@@ -119,7 +106,7 @@ struct OracleConfig : sc::CArcFixedConfig {};
 TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stream") {
   const sc::test::TempDir dir("evaluate", "evaluate_oracle");
   const std::string json = dir.path("e.json");
-  const auto r = run({"evaluate", "--sensor", "mid40", "--scene", "office", "--duration", "0.45", "--seed", "3",
+  const auto r = run_cli({"evaluate", "--sensor", "mid40", "--scene", "office", "--duration", "0.45", "--seed", "3",
                       "--theta", "10", "--mask", "3", "--window-time", "0.1", "--json", json});
   REQUIRE_MESSAGE(r.code == 0, r.err);
   CHECK(r.out.find("ARI (object points)") != std::string::npos);
@@ -260,7 +247,7 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
 TEST_CASE("evaluate: on a coarse grid the overwrite baseline loses points, C-ARC none") {
   const sc::test::TempDir dir("evaluate", "evaluate_coverage");
   const std::string json = dir.path("e.json");
-  const auto r = run({"evaluate", "--sensor", "avia", "--scene", "forest", "--duration", "0.3", "--multiplicity", "2",
+  const auto r = run_cli({"evaluate", "--sensor", "avia", "--scene", "forest", "--duration", "0.3", "--multiplicity", "2",
                       "--theta", "80", "--json", json, "--quiet"});
   REQUIRE_MESSAGE(r.code == 0, r.err);
   CHECK(r.out.empty());
@@ -285,7 +272,7 @@ TEST_CASE("evaluate: an ego-motion burst merges objects until its points leave t
   const sc::test::TempDir dir("evaluate", "evaluate_burst");
   const std::string json = dir.path("e.json");
   const std::string series = dir.path("s.csv");
-  const auto r = run({"evaluate", "--sensor", "mid360", "--scene", "forest", "--structure", "drop", "--duration", "1.6",
+  const auto r = run_cli({"evaluate", "--sensor", "mid360", "--scene", "forest", "--structure", "drop", "--duration", "1.6",
                       "--burst", "0.5:0.3", "--burst-yaw-rate", "3", "--method", "carc", "--json", json, "--series",
                       series});
   REQUIRE_MESSAGE(r.code == 0, r.err);
@@ -332,7 +319,7 @@ TEST_CASE("evaluate: an ego-motion burst merges objects until its points leave t
 
 TEST_CASE("evaluate: usage errors exit 2 with a clear message") {
   const auto expect = [](const std::vector<std::string>& args, const std::string& says) {
-    const auto r = run(args);
+    const auto r = run_cli(args);
     CAPTURE(says);
     CHECK(r.code == 2);
     CHECK(r.err.find(says) != std::string::npos);
@@ -348,14 +335,14 @@ TEST_CASE("evaluate: usage errors exit 2 with a clear message") {
   expect({"evaluate", "--theta", "95"}, "theta");
   expect({"evaluate", "--bogus"}, "unknown option '--bogus'");
   expect({"evaluate", "--window-time", "0"}, "--window-time");
-  const auto help = run({"evaluate", "--help"});
+  const auto help = run_cli({"evaluate", "--help"});
   CHECK(help.code == 0);
   CHECK(help.out.find("examples:") != std::string::npos);
-  CHECK(run({"--help"}).out.find("evaluate") != std::string::npos);
+  CHECK(run_cli({"--help"}).out.find("evaluate") != std::string::npos);
 }
 
 TEST_CASE("evaluate: an unwritable --json is an output error (exit 4)") {
-  const auto r = run({"evaluate", "--sensor", "mid40", "--duration", "0.2", "--method", "carc", "--json",
+  const auto r = run_cli({"evaluate", "--sensor", "mid40", "--duration", "0.2", "--method", "carc", "--json",
                       "/nonexistent-dir/e.json", "--quiet"});
   CHECK(r.code == 4);
   CHECK(r.err.find("--json") != std::string::npos);

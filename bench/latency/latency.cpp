@@ -193,21 +193,7 @@ sc::CArcParams sensor_params(Sensor s, double window) {
 /// calibration with the linkage's default Params otherwise.
 template <class Config>
 sc::ClustererParams<Config> engine_params(const Scenario& s) {
-  const sc::CArcParams p = sensor_params(s.sensor, s.window);
-  if constexpr (std::is_same_v<typename sc::config_traits<Config>::linkage, sc::AngularLinkage>) {
-    return sc::to_clusterer_params<Config>(p);
-  } else {
-    sc::ClustererParams<Config> out;
-    out.projection = p.field_of_view;
-    out.window.duration = p.window_seconds;
-    out.resolution.max_multiplicity = p.max_multiplicity;
-    out.resolution.target_gap = p.target_gap;
-    out.resolution.target_density = p.target_density;
-    out.resolution.gain_gap = p.gain_gap;
-    out.resolution.gain_density = p.gain_density;
-    out.mask_size = p.mask_size;
-    return out;
-  }
+  return sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
 }
 
 /// The same parameters for a configuration derived from another: every slot

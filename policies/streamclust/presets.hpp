@@ -129,14 +129,18 @@ inline CArcParams carc_avia_params() {
 }
 
 /// Template-level parameters of any config whose slots match C-ARC's
-/// (spherical projection, angular linkage, time window); the calibration
-/// targets are copied when the resolution slot is AdaptiveResolution.
+/// (spherical projection, time window); theta and the ray-angle floor are
+/// copied when the linkage slot is AngularLinkage (other linkages keep their
+/// default Params), the calibration targets when the resolution slot is
+/// AdaptiveResolution.
 template <class Config = CArcConfig>
 ClustererParams<Config> to_clusterer_params(const CArcParams& p) {
   ClustererParams<Config> out;
   out.projection = p.field_of_view;
-  out.linkage.theta_deg = p.theta_deg;
-  out.linkage.min_ray_angle_deg = p.min_ray_angle_deg;
+  if constexpr (std::is_same_v<typename config_traits<Config>::linkage, AngularLinkage>) {
+    out.linkage.theta_deg = p.theta_deg;
+    out.linkage.min_ray_angle_deg = p.min_ray_angle_deg;
+  }
   out.window.duration = p.window_seconds;
   if constexpr (std::is_same_v<typename config_traits<Config>::resolution, AdaptiveResolution>) {
     out.resolution.max_multiplicity = p.max_multiplicity;
