@@ -7,6 +7,7 @@
 #include <streamclust/clustering.hpp>
 #include <streamclust/config.hpp>
 #include <streamclust/detail/mask.hpp>
+#include <streamclust/memory_usage.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
 
@@ -235,6 +236,31 @@ class StreamClusterer {
   visitor_type& visitor() { return visitor_; }
   const visitor_type& visitor() const { return visitor_; }
   const connectivity_type& connectivity() const { return connectivity_; }
+
+  /// Heap footprint by part [bytes], as capacities (see MemoryUsage): what
+  /// the engine holds, not what its window uses. The spatial index is
+  /// counted when it has `heap_bytes()` (the standard grids do), otherwise
+  /// reported unknown. O(clusters) plus the index's cost (O(cells) for the
+  /// BucketGrid); allocates nothing.
+  MemoryUsage memory_usage() const {
+    MemoryUsage m;
+    m.point_ring = capacity_bytes(points_);
+    m.edge_storage = capacity_bytes(edges_) + capacity_bytes(edge_older_);
+    if constexpr (is_spatial_index_heap_reporting_v<spatial_index_type>) {
+      m.spatial_index = static_cast<std::size_t>(index_.heap_bytes());
+    } else {
+      m.spatial_index_known = false;
+    }
+    m.clusters = capacity_bytes(clusters_) + capacity_bytes(free_clusters_) + capacity_bytes(pending_);
+    for (const Cluster& c : clusters_) m.clusters += capacity_bytes(c.bridges);
+    m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(touched_) +
+                capacity_bytes(order_) + capacity_bytes(fragment_begin_) + capacity_bytes(component_of_) +
+                capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
+                capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
+                capacity_bytes(sums_);
+    m.result = capacity_bytes(result_.points) + capacity_bytes(result_.components);
+    return m;
+  }
 
   /// Calls `f(const Sample&, std::uint64_t stream_index)` for every point in
   /// the window, oldest first. O(N).

@@ -15,6 +15,12 @@
 /// | `i.for_each(cell, f)`      | void        | call `f(PointHandle)` for every handle stored in the cell            | O(k)       |
 /// | `i.size()`                 | std::size_t | handles currently stored                                             | O(1)       |
 ///
+/// Optional capability: `i.heap_bytes()` (const, convertible to std::size_t):
+/// the heap bytes the index holds (capacities, not sizes), reported by
+/// `StreamClusterer::memory_usage()`; detected with
+/// `is_spatial_index_heap_reporting_v<I>`. An index without it still works
+/// (its memory is then reported as unknown).
+///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
 /// it can only no longer be found by later points. The engine removes points
@@ -50,6 +56,18 @@ struct is_spatial_index_policy<
 
 template <class I>
 inline constexpr bool is_spatial_index_policy_v = detail::is_spatial_index_policy<I>::value;
+
+namespace detail {
+template <class I, class = void>
+struct is_spatial_index_heap_reporting : std::false_type {};
+template <class I>
+struct is_spatial_index_heap_reporting<I, std::void_t<decltype(std::declval<const I&>().heap_bytes())>>
+    : std::is_convertible<decltype(std::declval<const I&>().heap_bytes()), std::size_t> {};
+}  // namespace detail
+
+/// True when index `I` has the optional `std::size_t heap_bytes() const`.
+template <class I>
+inline constexpr bool is_spatial_index_heap_reporting_v = detail::is_spatial_index_heap_reporting<I>::value;
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class I>

@@ -116,6 +116,14 @@ class BucketGrid {
 
   const Params& params() const { return params_; }
 
+  /// Heap bytes held [bytes]: the cell table plus every bucket's capacity
+  /// (dead head slots and slack included). O(cells).
+  std::size_t heap_bytes() const {
+    std::size_t bytes = cells_.capacity() * sizeof(Cell);
+    for (const Cell& c : cells_) bytes += c.items.capacity() * sizeof(PointHandle);
+    return bytes;
+  }
+
  private:
   struct Cell {
     std::vector<PointHandle> items;

@@ -128,6 +128,11 @@ class CappedGrid {
 
   const Params& params() const { return params_; }
 
+  /// Heap bytes held [bytes]: cells x (4 K + 2) after `reset`. O(1).
+  std::size_t heap_bytes() const {
+    return slots_.capacity() * sizeof(PointHandle) + head_.capacity() + count_.capacity();
+  }
+
  private:
   unsigned wrap(unsigned i) const { return i < k_ ? i : i - k_; }
 

@@ -75,6 +75,9 @@ class OverwriteGrid {
   /// Occupied cells. O(1).
   std::size_t size() const { return size_; }
 
+  /// Heap bytes held [bytes]: 4 per cell after `reset`. O(1).
+  std::size_t heap_bytes() const { return occupant_.capacity() * sizeof(PointHandle); }
+
  private:
   std::vector<PointHandle> occupant_;
   std::size_t size_ = 0;
