@@ -18,14 +18,29 @@
 #   BENCH_TIMED_CYCLES  cycles of the phase-split pass          (default 200)
 #   BENCH_FILTER        only latency scenarios containing this  (default all)
 #   BENCH_MIN_TIME      Google Benchmark min time per case [s] (default 0.5)
-#   BENCH_SKIP_MICRO=1  skip the microbenchmarks
+#   BENCH_SKIP_MICRO=1  skip the microbenchmarks (and their build)
 #   BENCH_JOBS          build parallelism                       (default 2)
+#   BENCH_LATENCY_JOBS  latency scenarios run side by side      (default 2)
+#   BENCH_BUILD_DIR     build directory                (default build/bench-run)
+#   BENCH_IMG_DIR       where the CDF plots go             (default docs/img)
+#
+# Latency: every scenario of `bench_latency --list` runs as its own process
+# (`--scenario NAME`, so each has its own peak RSS), BENCH_LATENCY_JOBS at a
+# time, longest expected first (xargs -P); the per-scenario outputs in
+# results/latency-parts/ are merged into results/latency/ by
+# bench/latency/merge_summaries.py. With 2 jobs on a 2-core machine the two
+# processes share the memory bus and L3: set BENCH_LATENCY_JOBS=1 for a
+# strictly sequential record.
+#
+# Expected duration on the 2-core reference VM (estimated from 50-cycle runs
+# of every scenario with bench/latency/estimate_duration.py, engine of commit
+# DURATION_COMMIT, load about DURATION_LOAD): DURATION_TEXT
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${root}/build/bench-run"
+build="${BENCH_BUILD_DIR:-${root}/build/bench-run}"
 results="${build}/results"
-img="${root}/docs/img"
+img="${BENCH_IMG_DIR:-${root}/docs/img}"
 cycles="${BENCH_CYCLES:-1000}"
 peer_every="${BENCH_PEER_EVERY:-20}"
 pcl_every="${BENCH_PCL_EVERY:-100}"
@@ -33,6 +48,7 @@ timed_cycles="${BENCH_TIMED_CYCLES:-200}"
 filter="${BENCH_FILTER:-}"
 min_time="${BENCH_MIN_TIME:-0.5}"
 jobs="${BENCH_JOBS:-2}"
+latency_jobs="${BENCH_LATENCY_JOBS:-2}"
 
 # ------------------------------------------------------------- dependencies
 need=()
@@ -50,10 +66,12 @@ fi
 echo "== configuring ${build}"
 cmake -S "${root}" -B "${build}" -DCMAKE_BUILD_TYPE=Release -DSTREAMCLUST_BUILD_BENCH=ON >/dev/null
 micro_targets=()
-for src in "${root}"/bench/*.cpp; do
-  stem="$(basename "${src}" .cpp)"
-  micro_targets+=("bench_${stem#bench_}")
-done
+if [[ "${BENCH_SKIP_MICRO:-0}" != 1 ]]; then
+  for src in "${root}"/bench/*.cpp; do
+    stem="$(basename "${src}" .cpp)"
+    micro_targets+=("bench_${stem#bench_}")
+  done
+fi
 echo "== building ${micro_targets[*]} bench_latency"
 cmake --build "${build}" -j"${jobs}" --target "${micro_targets[@]}" bench_latency
 
@@ -66,7 +84,7 @@ mkdir -p "${results}" "${img}"
   echo "memory: $(free -h | awk '/^Mem:/ {print $2}')"
   echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "compiler: $(c++ --version | head -1)"
-  echo "latency: cycles=${cycles} peer_every=${peer_every} pcl_every=${pcl_every} timed_cycles=${timed_cycles} filter='${filter}'"
+  echo "latency: cycles=${cycles} peer_every=${peer_every} pcl_every=${pcl_every} timed_cycles=${timed_cycles} filter='${filter}' jobs=${latency_jobs}"
 } | tee "${results}/machine.txt"
 
 # ------------------------------------------------------- microbenchmarks
@@ -79,11 +97,44 @@ if [[ "${BENCH_SKIP_MICRO:-0}" != 1 ]]; then
 fi
 
 # ----------------------------------------------------------------- latency
-echo "== bench_latency"
-latency_args=(--cycles "${cycles}" --peer-every "${peer_every}" --pcl-every "${pcl_every}"
-              --timed-cycles "${timed_cycles}" --out "${results}/latency")
-[[ -n "${filter}" ]] && latency_args+=(--filter "${filter}")
-"${build}/bench/bench_latency" "${latency_args[@]}" | tee "${results}/latency.txt"
+latency_bin="${build}/bench/bench_latency"
+parts="${results}/latency-parts"
+rm -rf "${parts}" "${results}/latency"
+mkdir -p "${parts}"
+list_args=()
+[[ -n "${filter}" ]] && list_args+=(--filter "${filter}")
+mapfile -t scenarios < <("${latency_bin}" --list "${list_args[@]}")
+((${#scenarios[@]})) || { echo "no latency scenario matches '${filter}'" >&2; exit 1; }
+echo "== bench_latency: ${#scenarios[@]} scenarios, ${latency_jobs} at a time"
+# Longest expected first (the T_B 0.5 s, paper-strategy and Euclidean + PCL
+# scenarios), so that the last scenarios running alone are short ones.
+order() {
+  local s w
+  for s in "$@"; do
+    w=0
+    [[ ${s} == *tb0.5 ]] && w=$((w + 4))
+    [[ ${s} == *tb0.4 ]] && w=$((w + 3))
+    [[ ${s} == *tb0.3 ]] && w=$((w + 2))
+    [[ ${s} == *-euclid-* || ${s} == *-carc-* || ${s} == *-capped-* ]] && w=$((w + 3))
+    [[ ${s} == *office* ]] && w=$((w + 1))
+    echo "${w} ${s}"
+  done | sort -k1,1nr -s | cut -d' ' -f2
+}
+run_one() {
+  "${latency_bin}" --scenario "$1" --cycles "${cycles}" --peer-every "${peer_every}" --pcl-every "${pcl_every}" \
+    --timed-cycles "${timed_cycles}" --out "${parts}/$1" > "${parts}/$1.txt" 2>&1 \
+    || { echo "bench_latency --scenario $1 FAILED (see ${parts}/$1.txt)" >&2; return 1; }
+  grep -F "$1 " "${parts}/$1.txt"
+}
+export -f run_one
+export latency_bin parts cycles peer_every pcl_every timed_cycles
+latency_start=${SECONDS}
+order "${scenarios[@]}" | xargs -P "${latency_jobs}" -I{} bash -c 'run_one "$1"' _ {} | tee "${results}/latency.txt"
+echo "bench_latency: $(( (SECONDS - latency_start) / 60 )) min $(( (SECONDS - latency_start) % 60 )) s wall" \
+  | tee -a "${results}/latency.txt" "${results}/machine.txt"
+part_dirs=()
+for s in "${scenarios[@]}"; do part_dirs+=("${parts}/${s}"); done
+python3 "${root}/bench/latency/merge_summaries.py" "${results}/latency" "${part_dirs[@]}"
 python3 "${root}/bench/latency/targets.py" "${results}/latency/summary.json" | tee "${results}/latency/targets.md"
 
 # ------------------------------------------------------------------- plots

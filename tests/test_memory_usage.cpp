@@ -157,6 +157,24 @@ TEST_CASE("heap_bytes of the standard grids") {
     for (sc::PointHandle h = 0; h < 1000; ++h) grid.remove(3, h);
     CHECK(grid.size() == 0);
     CHECK(grid.heap_bytes() == full);  // capacity, not size
+    // A sliding window of 16 live handles in one cell (insert newest, remove
+    // oldest): the bucket compacts its removed front instead of growing, so
+    // its capacity stays at the 16 it reached (vector growth 1, 2, ..., 16).
+    sc::BucketGrid sliding{{}};
+    sliding.reset(shape);
+    const std::size_t table = sliding.heap_bytes();
+    for (sc::PointHandle h = 0; h < 16; ++h) sliding.insert(5, h);
+    REQUIRE(sliding.heap_bytes() == table + 16 * sizeof(sc::PointHandle));
+    std::vector<sc::PointHandle> seen;
+    for (sc::PointHandle h = 16; h < 10000; ++h) {
+      sliding.remove(5, h - 16);
+      sliding.insert(5, h);
+      REQUIRE(sliding.cell_size(5) == 16);
+    }
+    CHECK(sliding.heap_bytes() == table + 16 * sizeof(sc::PointHandle));
+    sliding.for_each(5, [&](sc::PointHandle h) { seen.push_back(h); });
+    REQUIRE(seen.size() == 16);
+    for (std::size_t i = 0; i < seen.size(); ++i) CHECK(seen[i] == 10000 - 16 + i);  // oldest first
     sc::BucketGrid reserved{{8}};
     reserved.reset(shape);
     CHECK(reserved.heap_bytes() >= empty + cells * 8 * sizeof(sc::PointHandle));

@@ -4,10 +4,15 @@
 
 #include "alloc_counter.hpp"
 
+#include <execinfo.h>
 #include <malloc.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 
 namespace streamclust::bench {
@@ -17,6 +22,43 @@ std::atomic<std::uint64_t> g_allocations{0};
 std::atomic<std::uint64_t> g_deallocations{0};
 std::atomic<std::int64_t> g_live_bytes{0};
 thread_local bool t_in_scope = false;
+
+// Allocation tracing: a fixed table of distinct stacks (no heap use).
+constexpr int kTraceFrames = 32;
+constexpr std::size_t kMaxTraces = 256;
+struct Trace {
+  void* frames[kTraceFrames];
+  int depth;
+  std::uint64_t count;
+};
+Trace g_traces[kMaxTraces];
+std::size_t g_trace_count = 0;
+std::uint64_t g_traced = 0;
+bool g_tracing = false;
+bool g_in_trace = false;  // backtrace() itself may allocate once (loading libgcc)
+
+void record_trace() {
+  if (g_in_trace) return;
+  g_in_trace = true;
+  void* frames[kTraceFrames];
+  const int depth = backtrace(frames, kTraceFrames);
+  ++g_traced;
+  for (std::size_t i = 0; i < g_trace_count; ++i) {
+    Trace& t = g_traces[i];
+    if (t.depth == depth && std::memcmp(t.frames, frames, sizeof(void*) * static_cast<std::size_t>(depth)) == 0) {
+      ++t.count;
+      g_in_trace = false;
+      return;
+    }
+  }
+  if (g_trace_count < kMaxTraces) {
+    Trace& t = g_traces[g_trace_count++];
+    std::memcpy(t.frames, frames, sizeof(void*) * static_cast<std::size_t>(depth));
+    t.depth = depth;
+    t.count = 1;
+  }
+  g_in_trace = false;
+}
 
 void* counted_alloc(std::size_t size, std::size_t alignment) {
   if (size == 0) size = 1;
@@ -30,6 +72,7 @@ void* counted_alloc(std::size_t size, std::size_t alignment) {
   if (t_in_scope) {
     g_allocations.fetch_add(1, std::memory_order_relaxed);
     g_live_bytes.fetch_add(static_cast<std::int64_t>(malloc_usable_size(p)), std::memory_order_relaxed);
+    if (g_tracing) record_trace();
   }
   return p;
 }
@@ -57,6 +100,26 @@ AllocCounters alloc_counters() {
   c.deallocations = g_deallocations.load(std::memory_order_relaxed);
   c.live_bytes = g_live_bytes.load(std::memory_order_relaxed);
   return c;
+}
+
+void set_alloc_tracing(bool enabled) { g_tracing = enabled; }
+
+std::uint64_t dump_alloc_traces(int fd) {
+  const bool was = g_tracing;
+  g_tracing = false;
+  std::sort(g_traces, g_traces + g_trace_count, [](const Trace& a, const Trace& b) { return a.count > b.count; });
+  char line[128];
+  for (std::size_t i = 0; i < g_trace_count; ++i) {
+    const int n = std::snprintf(line, sizeof line, "--- %llu allocation(s) from:\n",
+                                static_cast<unsigned long long>(g_traces[i].count));
+    if (n > 0 && write(fd, line, static_cast<std::size_t>(n)) < 0) break;
+    backtrace_symbols_fd(g_traces[i].frames, g_traces[i].depth, fd);
+  }
+  const std::uint64_t traced = g_traced;
+  g_trace_count = 0;
+  g_traced = 0;
+  g_tracing = was;
+  return traced;
 }
 
 AllocScope::AllocScope() : previous_(t_in_scope) { t_in_scope = true; }

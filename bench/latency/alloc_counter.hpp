@@ -28,6 +28,19 @@ struct AllocCounters {
 /// Snapshot of the counters. O(1).
 AllocCounters alloc_counters();
 
+/// Allocation tracing (to find where steady-state allocations come from):
+/// while enabled, every allocation attributed to a scope records its call
+/// stack (glibc backtrace(), up to 32 frames) into a fixed table of distinct
+/// stacks with a count each (no allocation while recording; at most 256
+/// distinct stacks, the rest only counted). Not thread-safe: enable from the
+/// benchmark's single thread only.
+void set_alloc_tracing(bool enabled);
+/// Writes the recorded stacks, most frequent first, to file descriptor `fd`
+/// (backtrace_symbols_fd format: `binary(+offset)`, resolve with
+/// `addr2line -Cfie <binary> <offset>` on a build with -g), then forgets
+/// them. Returns the number of traced allocations.
+std::uint64_t dump_alloc_traces(int fd);
+
 /// While alive on this thread, allocations and frees are attributed.
 class AllocScope {
  public:

@@ -19,18 +19,27 @@
 // against the simulator's ground truth is computed (streamclust::eval,
 // object points only).
 //
-// Memory (alloc_counter.hpp: a counting global operator new/delete, only the
-// engine's calls attributed): live engine heap bytes per windowed point,
-// heap allocations per cycle after warm-up, and the process's peak RSS
+// Memory: the engine's footprint per windowed point from
+// StreamClusterer::memory_usage() (heap capacities by part: point ring, edge
+// storage, spatial index, clusters/bridges, scratch, result; divided by the
+// window's points at that cycle), and as a cross-check the live engine heap
+// bytes per windowed point from a counting global operator new/delete
+// (alloc_counter.hpp: only the engine's calls attributed, malloc usable
+// sizes); heap allocations per cycle after warm-up; the process's peak RSS
 // (VmHWM, reset per scenario through /proc/self/clear_refs; getrusage's
-// ru_maxrss, never reset, when /proc is unavailable).
+// ru_maxrss, never reset, when /proc is unavailable). --trace-allocs prints
+// the call stack of every steady-state allocation (see alloc_counter.hpp).
 // The phase split (RetrievalStats::phase_us) comes from a second, shorter
 // pass with a timed copy of the configuration (T_B = 0.5 s scenarios only),
 // so that the totals are measured without the timer overhead.
 //
 // Usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K]
 //                      [--timed-cycles N] [--filter TEXT] [--out DIR]
-//                      [--data DIR] [--smoke] [--list]
+//                      [--scenario NAME] [--data DIR] [--smoke] [--list]
+//                      [--trace-allocs]
+// (--scenario: exactly one scenario, by its --list name; bench/run.sh runs
+// every scenario as its own process, two at a time, and merges the outputs
+// with merge_summaries.py.)
 // Output in DIR (default latency-results):
 //   cycles.csv    every measured cycle: scenario, cycle, latency_us, inserted, window
 //   summary.json  per scenario: percentiles, peers, ratios, ARI, memory, phases
@@ -125,6 +134,7 @@ struct ConfigEntry {
 
 constexpr unsigned kAllWindows = 0x1Fu;     // T_B = 0.1 ... 0.5 s
 constexpr unsigned kLongestWindow = 0x10u;  // T_B = 0.5 s only
+constexpr unsigned kShortestWindow = 0x01u; // T_B = 0.1 s only
 
 template <class Config>
 ScenarioResult run_scenario(const Scenario& s, const Options& o);
@@ -138,6 +148,9 @@ const ConfigEntry kConfigs[] = {
      &run_scenario<sc::CArcFastConfig>},
     {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, union-find rebuild)", false, true, kAllWindows,
      &run_scenario<sc::CArcCappedFastConfig>},
+    // The capped fast preset (target 6's memory figure) on the Mid-360 too, at the window ends only.
+    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, union-find rebuild)", true, false,
+     kShortestWindow | kLongestWindow, &run_scenario<sc::CArcCappedFastConfig>},
     {"euclid", "EuclideanConfig (bucket grid, Euclidean 0.5 m)", true, true, kLongestWindow,
      &run_scenario<sc::EuclideanConfig>},
     {"euclidfast", "EuclideanConfig + union-find rebuild (bench-local)", true, true, kLongestWindow,
@@ -167,10 +180,12 @@ struct Options {
   std::size_t pcl_every = 100;     ///< PCL peer on every k-th measured cycle
   std::size_t timed_cycles = 200;  ///< cycles of the timed (phase split) pass, 0 = none
   std::string filter;              ///< run scenarios whose name contains this
+  std::string scenario;            ///< run only the scenario of exactly this name
   std::string out = "latency-results";
   std::string data;                ///< ../shared/data/livox (Mid-360 table); empty = default lookup
   bool smoke = false;
   bool list = false;
+  bool trace_allocs = false;       ///< print the stacks of steady-state engine allocations to stderr
 };
 
 // ------------------------------------------------------------------- inputs
@@ -255,7 +270,11 @@ struct ScenarioResult {
   std::vector<std::uint32_t> window;
   PeerResult batch, frame, pcl;
   std::vector<double> ari_engine, ari_frame;
-  std::vector<double> bytes_per_point;
+  std::vector<double> bytes_per_point;       ///< memory_usage().total() / window points
+  std::vector<double> heap_bytes_per_point;  ///< live engine heap (counting allocator) / window points
+  /// memory_usage() parts / window points: ring, edges, index, clusters, scratch, result.
+  std::vector<double> part_bytes_per_point[6];
+  bool index_memory_known = true;
   std::uint64_t steady_allocations = 0;
   std::size_t cycles_with_allocations = 0;
   double peak_rss_mb = 0.0;
@@ -266,6 +285,9 @@ struct ScenarioResult {
   double timed_median_us = 0.0;
   double wall_seconds = 0.0;
 };
+
+/// Names of MemoryUsage's parts, in ScenarioResult::part_bytes_per_point order.
+const char* const kMemoryParts[6] = {"point_ring", "edge_storage", "spatial_index", "clusters", "scratch", "result"};
 
 double mean(const std::vector<double>& v) {
   if (v.empty()) return 0.0;
@@ -368,6 +390,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
     for (const auto& p : slice) truth_log.push(p.instance);
     const bool measured = cycle >= warmup;
+    if (o.trace_allocs && cycle == warmup) sc::bench::set_alloc_tracing(true);
     const sc::bench::AllocCounters before = sc::bench::alloc_counters();
 
     const double c0 = thread_cpu_us();
@@ -396,8 +419,14 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     r.steady_allocations += allocs;
     if (allocs > 0) ++r.cycles_with_allocations;
     if (engine->size() > 0) {
-      r.bytes_per_point.push_back(static_cast<double>(after.live_bytes - live_base) /
-                                  static_cast<double>(engine->size()));
+      const auto n = static_cast<double>(engine->size());
+      const sc::MemoryUsage mu = engine->memory_usage();
+      r.index_memory_known = mu.spatial_index_known;
+      r.bytes_per_point.push_back(static_cast<double>(mu.total()) / n);
+      r.heap_bytes_per_point.push_back(static_cast<double>(after.live_bytes - live_base) / n);
+      const std::size_t parts[6] = {mu.point_ring, mu.edge_storage, mu.spatial_index,
+                                    mu.clusters,   mu.scratch,      mu.result};
+      for (std::size_t k = 0; k < 6; ++k) r.part_bytes_per_point[k].push_back(static_cast<double>(parts[k]) / n);
     }
     if (m == 0) r.grid = sc::GridSize{engine->grid().rows, engine->grid().cols};
 
@@ -448,6 +477,12 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
       r.pcl.us.push_back(sc::bench::pcl_euclidean_us(xyz, tolerance, clusters));
       r.pcl.engine_us.push_back(us);
     }
+  }
+  if (o.trace_allocs) {
+    sc::bench::set_alloc_tracing(false);
+    std::cerr << "=== " << r.name << ": stacks of the steady-state engine allocations" << std::endl;
+    const std::uint64_t traced = sc::bench::dump_alloc_traces(2);
+    std::cerr << "=== " << r.name << ": " << traced << " traced allocation(s)" << std::endl;
   }
   sc::bench::AllocScope scope;  // the engine's frees balance its allocations
   engine.reset();
@@ -604,6 +639,13 @@ void write_outputs(const Options& o, const Written& w) {
     json << ",\n    \"ari_engine_mean\": " << mean(r.ari_engine) << ", \"ari_frame_mean\": " << mean(r.ari_frame)
          << ", \"ari_samples\": " << r.ari_engine.size() << ",\n    \"bytes_per_point\": ";
     write_json_summary(json, summarize(r.bytes_per_point), 1.0);
+    json << ",\n    \"heap_bytes_per_point\": ";
+    write_json_summary(json, summarize(r.heap_bytes_per_point), 1.0);
+    json << ",\n    \"memory_parts_bytes_per_point_median\": {";
+    for (std::size_t part = 0; part < 6; ++part) {
+      json << (part ? ", " : "") << '"' << kMemoryParts[part] << "\": " << summarize(r.part_bytes_per_point[part]).median;
+    }
+    json << "}, \"index_memory_known\": " << (r.index_memory_known ? "true" : "false");
     json << ",\n    \"steady_allocations\": " << r.steady_allocations
          << ", \"cycles_with_allocations\": " << r.cycles_with_allocations << ", \"peak_rss_mb\": " << r.peak_rss_mb
          << ", \"peak_rss_reset\": " << (r.rss_reset ? "true" : "false") << ",\n    \"timed_cycles\": " << r.timed_cycles
@@ -657,13 +699,27 @@ void write_outputs(const Options& o, const Written& w) {
        << cell(p, p.median) << " | " << cell(p, p.p99) << " | " << ratio(p) << " |\n";
   }
   md << "\n## Quality and memory\n\n";
-  md << "| scenario | ARI engine | ARI frame baseline | bytes / window point (median) | steady allocations "
-        "(cycles with any) | peak RSS [MB] |\n";
-  md << "|---|---|---|---|---|---|\n";
+  md << "Bytes / window point = StreamClusterer::memory_usage().total() (heap capacities: point ring, edge "
+        "storage, spatial index, clusters and bridges, scratch, result) / points in the window, median over the "
+        "measured cycles; live heap = the engine's live heap bytes counted by the allocator (malloc usable sizes, "
+        "the same parts plus allocator rounding and policies' small buffers) / window points.\n\n";
+  md << "| scenario | ARI engine | ARI frame baseline | bytes / window point (median) | live heap / window point "
+        "(median) | steady allocations (cycles with any) | peak RSS [MB] |\n";
+  md << "|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     md << "| " << r.name << " | " << fmt(mean(r.ari_engine), 4) << " | " << fmt(mean(r.ari_frame), 4) << " | "
-       << fmt(summarize(r.bytes_per_point).median, 1) << " | " << r.steady_allocations << " ("
+       << fmt(summarize(r.bytes_per_point).median, 1) << (r.index_memory_known ? "" : " (index unknown)") << " | "
+       << fmt(summarize(r.heap_bytes_per_point).median, 1) << " | " << r.steady_allocations << " ("
        << r.cycles_with_allocations << ") | " << fmt(r.peak_rss_mb, 0) << " |\n";
+  }
+  md << "\n## Engine memory by part [bytes per window point, median over the measured cycles]\n\n";
+  md << "| scenario | window pts | point ring | edge storage | spatial index | clusters + bridges | scratch | result "
+        "| total |\n";
+  md << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [s, r] : w.all) {
+    md << "| " << r.name << " | " << fmt(mean(std::vector<double>(r.window.begin(), r.window.end())), 0);
+    for (const auto& part : r.part_bytes_per_point) md << " | " << fmt(summarize(part).median, 1);
+    md << " | " << fmt(summarize(r.bytes_per_point).median, 1) << " |\n";
   }
   md << "\n## Phase split (timed configuration, mean per cycle) [ms]\n\n";
   md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median |\n";
@@ -726,6 +782,8 @@ Options parse(int argc, char** argv) {
       timed_given = true;
     } else if (a == "--filter") {
       o.filter = value();
+    } else if (a == "--scenario") {
+      o.scenario = value();
     } else if (a == "--out") {
       o.out = value();
     } else if (a == "--data") {
@@ -734,9 +792,12 @@ Options parse(int argc, char** argv) {
       o.smoke = true;
     } else if (a == "--list") {
       o.list = true;
+    } else if (a == "--trace-allocs") {
+      o.trace_allocs = true;
     } else if (a == "--help" || a == "-h") {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
-                   "                     [--filter TEXT] [--out DIR] [--data DIR] [--smoke] [--list]\n";
+                   "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
+                   "                     [--list] [--trace-allocs]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");
@@ -764,14 +825,19 @@ int main(int argc, char** argv) {
       scenarios.push_back(Scenario{Sensor::mid360, "office", euclid, 0.1});
     } else {
       for (const Scenario& s : all_scenarios()) {
-        if (o.filter.empty() || s.name().find(o.filter) != std::string::npos) scenarios.push_back(s);
+        const std::string name = s.name();
+        if (!o.scenario.empty() && name != o.scenario) continue;
+        if (o.filter.empty() || name.find(o.filter) != std::string::npos) scenarios.push_back(s);
       }
     }
     if (o.list) {
       for (const Scenario& s : scenarios) std::cout << s.name() << '\n';
       return 0;
     }
-    if (scenarios.empty()) throw std::invalid_argument("--filter '" + o.filter + "' matches no scenario (see --list)");
+    if (scenarios.empty()) {
+      throw std::invalid_argument("--filter '" + o.filter + "' / --scenario '" + o.scenario +
+                                  "' match no scenario (see --list)");
+    }
     std::cout << "bench_latency: " << scenarios.size() << " scenario(s), " << o.cycles << " cycles each, peers every "
               << o.peer_every << ", PCL every " << o.pcl_every << " ("
               << (sc::bench::pcl_peer_available() ? "available" : "not built") << ")\n";

@@ -3,7 +3,9 @@
 """Merges the results of several bench_latency runs (e.g. one per sensor run
 side by side with --filter mid360 / --filter avia) into one directory:
 summary.json (scenarios concatenated, run settings of the first), summary.md
-(each table's rows concatenated), and the cdf/ and pct/ files copied.
+(each table's rows concatenated), cycles.csv (rows concatenated, one header),
+and the cdf/ and pct/ files copied. bench/run.sh runs every scenario as its
+own process (`--scenario NAME`) and merges them in --list order with this.
 
     python3 bench/latency/merge_summaries.py OUT_DIR RUN_DIR [RUN_DIR ...]
 
@@ -57,6 +59,13 @@ def main(out_dir, runs):
     os.makedirs(out_dir, exist_ok=True)
     json.dump(merged, open(os.path.join(out_dir, "summary.json"), "w"), indent=1)
     open(os.path.join(out_dir, "summary.md"), "w").write(merge_md([os.path.join(r, "summary.md") for r in runs]))
+    with open(os.path.join(out_dir, "cycles.csv"), "w") as csv:
+        for r in runs:
+            path = os.path.join(r, "cycles.csv")
+            if not os.path.isfile(path):
+                continue
+            lines = open(path).read().splitlines(keepends=True)
+            csv.writelines(lines if csv.tell() == 0 else lines[1:])
     for r in runs:
         for sub in ("cdf", "pct"):
             src = os.path.join(r, sub)

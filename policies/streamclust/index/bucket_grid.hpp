@@ -70,8 +70,16 @@ class BucketGrid {
   }
 
   /// Append `h` to the cell; never displaces, returns kNoPoint. O(1) amortised.
+  /// A full bucket with removed handles at its front is compacted instead of
+  /// grown, so a bucket's capacity only grows past its largest live
+  /// occupancy (steady state: no allocation).
   PointHandle insert(CellIndex cell, PointHandle h) {
-    cells_[cell].items.push_back(h);
+    Cell& c = cells_[cell];
+    if (c.head > 0 && c.items.size() == c.items.capacity()) {
+      c.items.erase(c.items.begin(), c.items.begin() + c.head);
+      c.head = 0;
+    }
+    c.items.push_back(h);
     ++size_;
     return kNoPoint;
   }
