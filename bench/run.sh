@@ -32,9 +32,14 @@
 # processes share the memory bus and L3: set BENCH_LATENCY_JOBS=1 for a
 # strictly sequential record.
 #
-# Expected duration on the 2-core reference VM (estimated from 50-cycle runs
-# of every scenario with bench/latency/estimate_duration.py, engine of commit
-# DURATION_COMMIT, load about DURATION_LOAD): DURATION_TEXT
+# Expected duration of the latency part with the defaults (72 scenarios,
+# 1000 cycles), on the 2-core reference VM, estimated from a 50-cycle run of
+# every scenario with bench/latency/estimate_duration.py (engine of main
+# 0596598, see docs/benchmarks.md "Run time of the full record"):
+#   idle machine:  about 25 min with 2 jobs, 50 min with BENCH_LATENCY_JOBS=1
+#   load avg ~6:   about 1 h 45 min with 2 jobs
+# plus the build (a few minutes) and the microbenchmarks. A faster engine
+# shortens it; PCL (10 windows of 7-22 s per Euclidean scenario) does not.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

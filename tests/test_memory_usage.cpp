@@ -10,44 +10,28 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace sc = streamclust;
 
 namespace {
 
-/// A minimal spatial index WITHOUT heap_bytes(): the engine must compile and
-/// report its memory as unknown.
+/// A user index WITHOUT heap_bytes() (a BucketGrid behind the concept's
+/// operations only): the engine must compile and report its memory unknown.
 struct PlainIndex {
   struct Params {};
   explicit PlainIndex(const Params&) {}
-  void reset(const sc::GridShape& g) { cells.assign(g.cell_count(), {}); }
-  void clear() {
-    for (auto& c : cells) c.clear();
-  }
-  sc::PointHandle insert(sc::CellIndex c, sc::PointHandle h) {
-    cells[c].push_back(h);
-    return sc::kNoPoint;
-  }
-  void remove(sc::CellIndex c, sc::PointHandle h) {
-    auto& v = cells[c];
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (v[i] == h) {
-        v.erase(v.begin() + static_cast<std::ptrdiff_t>(i));
-        return;
-      }
-    }
-  }
+  void reset(const sc::GridShape& g) { grid.reset(g); }
+  void clear() { grid.clear(); }
+  sc::PointHandle insert(sc::CellIndex c, sc::PointHandle h) { return grid.insert(c, h); }
+  void remove(sc::CellIndex c, sc::PointHandle h) { grid.remove(c, h); }
   template <class F>
   void for_each(sc::CellIndex c, F&& f) const {
-    for (const sc::PointHandle h : cells[c]) f(h);
+    grid.for_each(c, std::forward<F>(f));
   }
-  std::size_t size() const {
-    std::size_t n = 0;
-    for (const auto& c : cells) n += c.size();
-    return n;
-  }
-  std::vector<std::vector<sc::PointHandle>> cells;
+  std::size_t size() const { return grid.size(); }
+  sc::BucketGrid grid{{}};
 };
 
 struct ReportingIndex : PlainIndex {
