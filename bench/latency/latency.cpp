@@ -41,7 +41,8 @@
 // every scenario as its own process, two at a time, and merges the outputs
 // with merge_summaries.py.)
 // Output in DIR (default latency-results):
-//   cycles.csv    every measured cycle: scenario, cycle, latency_us, inserted, window
+//   cycles.csv    every measured cycle: scenario, cycle, latency_us, cpu_us,
+//                 inserted, window, allocations (engine heap allocations)
 //   summary.json  per scenario: percentiles, peers, ratios, ARI, memory, phases
 //   summary.md    the same as markdown tables
 //   cdf/<scenario>.dat, pct/<scenario>.dat  sorted latencies (ms, fraction)
@@ -268,6 +269,7 @@ struct ScenarioResult {
   std::vector<double> cpu_us;  ///< thread CPU time of the same cycles
   std::vector<std::uint32_t> inserted;
   std::vector<std::uint32_t> window;
+  std::vector<std::uint32_t> allocations;  ///< engine heap allocations of each cycle
   PeerResult batch, frame, pcl;
   std::vector<double> ari_engine, ari_frame;
   std::vector<double> bytes_per_point;       ///< memory_usage().total() / window points
@@ -417,6 +419,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     r.window.push_back(static_cast<std::uint32_t>(engine->size()));
     const std::uint64_t allocs = after.allocations - before.allocations;
     r.steady_allocations += allocs;
+    r.allocations.push_back(static_cast<std::uint32_t>(allocs));
     if (allocs > 0) ++r.cycles_with_allocations;
     if (engine->size() > 0) {
       const auto n = static_cast<double>(engine->size());
@@ -591,12 +594,11 @@ void write_outputs(const Options& o, const Written& w) {
   fs::create_directories(out / "pct");
 
   std::ofstream csv(out / "cycles.csv");
-  csv << "scenario,cycle,latency_us,cpu_us,inserted,window\n";
+  csv << "scenario,cycle,latency_us,cpu_us,inserted,window,allocations\n";
   for (const auto& [s, r] : w.all) {
     for (std::size_t i = 0; i < r.latency_us.size(); ++i) {
       csv << r.name << ',' << i << ',' << fmt(r.latency_us[i], 1) << ',' << fmt(r.cpu_us[i], 1) << ',' << r.inserted[i]
-          << ',' << r.window[i]
-          << '\n';
+          << ',' << r.window[i] << ',' << r.allocations[i] << '\n';
     }
     std::vector<double> sorted = r.latency_us;
     std::sort(sorted.begin(), sorted.end());
