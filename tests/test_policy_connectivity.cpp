@@ -113,11 +113,17 @@ TEST_CASE("connectivity concept: both policies model it, incomplete types do not
 
 TEST_CASE("spanning forest: min_fold_edges is validated") {
   using SF = sc::SpanningForestConnectivity;
-  CHECK(SF{SF::Params{}}.min_fold_edges() == 65536);
-  CHECK(SF{SF::Params{1}}.min_fold_edges() == 1);
-  CHECK(SF{SF::Params{SF::kMaxFoldEdges}}.min_fold_edges() == SF::kMaxFoldEdges);
-  CHECK_THROWS_AS(SF{SF::Params{0}}, std::invalid_argument);
-  CHECK_THROWS_AS(SF{SF::Params{SF::kMaxFoldEdges + 1}}, std::invalid_argument);
+  const auto make = [](std::uint32_t min_edges, std::uint32_t per_point) {
+    return SF{SF::Params{min_edges, per_point}};
+  };
+  CHECK(SF{SF::Params{}}.fold_threshold(10) == 65536);
+  CHECK(SF{SF::Params{}}.fold_threshold(100000) == 200000);
+  CHECK(make(1, 1).fold_threshold(7) == 7);
+  CHECK(make(SF::kMaxFoldEdges, 64).fold_threshold(1) == SF::kMaxFoldEdges);
+  CHECK_THROWS_AS(make(0, 2), std::invalid_argument);
+  CHECK_THROWS_AS(make(SF::kMaxFoldEdges + 1, 2), std::invalid_argument);
+  CHECK_THROWS_AS(make(1, 0), std::invalid_argument);
+  CHECK_THROWS_AS(make(1, 65), std::invalid_argument);
   auto params = chain_params<Forest>(1.0);
   params.connectivity.min_fold_edges = 0;
   CHECK_THROWS_WITH_AS(sc::StreamClusterer<Forest>{params}, doctest::Contains("min_fold_edges = 0"),
@@ -301,7 +307,7 @@ TEST_CASE_TEMPLATE("a long chain evicted from its old end stays one component, w
   // A path (points 0.6 m apart, linkage 1.0 m: each links its predecessor
   // only) 2,000 points long through a window of 50 points.
   auto params = chain_params<Config>(0.495);
-  if constexpr (sc::StreamClusterer<Config>::keeps_forest) params.connectivity.min_fold_edges = 1;
+  if constexpr (sc::StreamClusterer<Config>::keeps_forest) params.connectivity = {1, 1};
   for (const int every : {1, 7, 1000000}) {
     sc::StreamClusterer<Config> engine(params);
     std::uint64_t folds = 0;
@@ -339,7 +345,7 @@ TEST_CASE("spanning forest: folds without retrieval bound the new edges and keep
   fp.resolution = {32, 256};
   fp.window.duration = 0.02;
   fp.linkage.theta_deg = 30.0f;
-  fp.connectivity.min_fold_edges = 1;  // fold whenever the new edges outnumber the window's points
+  fp.connectivity = {1, 1};  // fold whenever the new edges outnumber the window's points
   sc::ClustererParams<RebuildFixed> rp;
   rp.resolution = fp.resolution;
   rp.window.duration = fp.window.duration;

@@ -7,6 +7,8 @@
 
 #include <streamclust/concepts/connectivity.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -29,9 +31,13 @@ namespace streamclust {
 /// at `StreamClusterer::fold_forest`.
 ///
 /// When the client rarely retrieves, the new edges are folded into F without
-/// labelling once they outnumber max(window points, `min_fold_edges`), which
-/// bounds the edge memory at about 2 x 8 bytes per point (plus the sort and
-/// merge scratch).
+/// labelling once they outnumber max(`fold_edges_per_point` x window points,
+/// `min_fold_edges`), which bounds the edges held at (1 + r) x 8 bytes per
+/// point for r = fold_edges_per_point (plus the sort and merge scratch, up to
+/// as much again). The default r = 2 keeps a 20 Hz client on a Mid-360
+/// (T_B = 0.5 s: about 1.4 new edges per window point per cycle) at one fold
+/// per retrieval; r = 1 folds mid-cycle as well, which cost as much as the
+/// forest saved (docs/optimization-log.md, section 7).
 ///
 /// Same partition as the other strategies (oracle tests); what a user sees
 /// is UnionFindRebuildConnectivity's: local clusters are the last
@@ -48,12 +54,21 @@ struct SpanningForestConnectivity {
   struct Params {
     /// Lower bound of the fold threshold [edges]: the edges inserted since
     /// the last fold are folded without a retrieval once they outnumber
-    /// max(points in the window, min_fold_edges). Allowed: [1, 2^30].
+    /// max(fold_edges_per_point x points in the window, min_fold_edges).
+    /// Allowed: [1, 2^30].
     std::uint32_t min_fold_edges = 65536;
+    /// Fold threshold per window point [edges per point]. Allowed: [1, 64].
+    std::uint32_t fold_edges_per_point = 2;
   };
 
-  /// Throws std::invalid_argument if min_fold_edges is outside [1, 2^30].
+  /// Throws std::invalid_argument if min_fold_edges is outside [1, 2^30] or
+  /// fold_edges_per_point outside [1, 64].
   explicit SpanningForestConnectivity(const Params& params) : params_(params) {
+    if (params.fold_edges_per_point < 1 || params.fold_edges_per_point > 64) {
+      std::string message = "SpanningForestConnectivity: parameter fold_edges_per_point = ";
+      message.append(std::to_string(params.fold_edges_per_point)).append(" is invalid; allowed: [1, 64] edges per point");
+      throw std::invalid_argument(message);
+    }
     if (params.min_fold_edges < 1 || params.min_fold_edges > kMaxFoldEdges) {
       std::string message = "SpanningForestConnectivity: parameter min_fold_edges = ";
       message.append(std::to_string(params.min_fold_edges))
@@ -68,8 +83,11 @@ struct SpanningForestConnectivity {
   static constexpr std::uint32_t kMaxFoldEdges = std::uint32_t{1} << 30;
 
   const Params& params() const { return params_; }
-  /// The new-edge count past which the engine folds (`min_fold_edges`).
-  std::uint32_t min_fold_edges() const { return params_.min_fold_edges; }
+  /// The new-edge count past which the engine folds without a retrieval,
+  /// for a window of `points` points [edges].
+  std::size_t fold_threshold(std::size_t points) const {
+    return std::max<std::size_t>(params_.fold_edges_per_point * points, params_.min_fold_edges);
+  }
 
  private:
   Params params_;
