@@ -287,8 +287,10 @@ void BM_Retrieve(benchmark::State& state) {
 
 using sc::CArcCappedConfig;
 using sc::CArcCappedFastConfig;
+using sc::CArcCappedRebuildConfig;
 using sc::CArcConfig;
 using sc::CArcFastConfig;
+using sc::CArcRebuildConfig;
 using sc::EuclideanConfig;
 using sc::FrameBaselineConfig;
 
@@ -311,6 +313,10 @@ SC_INSERT(CArcCappedConfig, Mid360Office);
 SC_INSERT(CArcCappedConfig, AviaOffice);
 SC_INSERT(FrameBaselineConfig, Mid360Office);
 SC_INSERT(EuclideanConfig, Mid360Office);
+SC_INSERT(CArcRebuildConfig, Mid360Office);
+SC_INSERT(CArcRebuildConfig, Mid360Forest);
+SC_INSERT(CArcCappedRebuildConfig, Mid360Office);
+SC_INSERT(CArcCappedRebuildConfig, AviaOffice);
 
 SC_CYCLE(CArcConfig, Mid360Office);
 SC_CYCLE(CArcFastConfig, Mid360Office);
@@ -324,6 +330,13 @@ SC_CYCLE(CArcCappedConfig, Mid360Office);
 SC_CYCLE(CArcCappedConfig, AviaOffice);
 SC_CYCLE(CArcCappedConfig, AviaForest);
 SC_CYCLE(EuclideanConfig, Mid360Office);
+SC_CYCLE(CArcRebuildConfig, Mid360Office);
+SC_CYCLE(CArcRebuildConfig, Mid360Forest);
+SC_CYCLE(CArcRebuildConfig, AviaOffice);
+SC_CYCLE(CArcFastConfig, AviaForest);
+SC_CYCLE(CArcRebuildConfig, AviaForest);
+SC_CYCLE(CArcCappedRebuildConfig, AviaOffice);
+SC_CYCLE(CArcCappedRebuildConfig, Mid360Office);
 
 #define SC_RETRIEVE(CONFIG)                                                                          \
   BENCHMARK_TEMPLATE(BM_Retrieve, CONFIG)                                                            \
@@ -335,6 +348,7 @@ SC_CYCLE(EuclideanConfig, Mid360Office);
       ->Unit(benchmark::kMicrosecond)
 SC_RETRIEVE(CArcConfig);
 SC_RETRIEVE(CArcFastConfig);
+SC_RETRIEVE(CArcRebuildConfig);
 
 // BENCHMARK_MAIN() plus the smoke detection: a min time below 0.05 s (CTest
 // passes 0.01) means a smoke run, which uses 0.7 s streams unless

@@ -8,6 +8,7 @@
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/spanning_forest.hpp>
 #include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
@@ -118,30 +119,49 @@ std::string compare_with_batch(const sc::StreamClusterer<Config>& engine, sc::Ba
   return {};
 }
 
+/// When the oracle retrieves: after a random 1-40 points, after every
+/// point, or only once at the end of the stream.
+enum class Schedule { random, every_point, at_end };
+
+/// Runs one seed; returns the spanning forest's folds without retrieval
+/// (zero for the other strategies).
 template <class Config>
-void run_oracle(std::uint64_t seed) {
+std::uint64_t run_oracle(std::uint64_t seed, Schedule schedule = Schedule::random,
+                         std::uint32_t forest_min_fold_edges = 0) {
   std::mt19937_64 rng(seed * 7919 + 13);
-  const auto params = random_params<Config>(rng);
+  auto params = random_params<Config>(rng);
+  if constexpr (sc::config_traits<Config>::connectivity::strategy == sc::ConnectivityStrategy::spanning_forest) {
+    // The default threshold (65536 edges) never folds on these short streams:
+    // mostly tiny ones, so the fold path runs between retrievals.
+    const std::uint32_t thresholds[] = {1, 1, 3, 20, 65536};
+    params.connectivity.min_fold_edges =
+        forest_min_fold_edges != 0 ? forest_min_fold_edges : thresholds[rng() % 5];
+    params.connectivity.fold_edges_per_point = 1 + static_cast<std::uint32_t>(rng() % 2);
+  }
   const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
   const auto stream = st::make_stream(kind, 120 + seed % 200, seed);
   sc::StreamClusterer<Config> engine(params);
   sc::BatchClusterer<Config> batch(params);
-  std::size_t next_retrieval = 1 + rng() % 40;
+  std::size_t next_retrieval = schedule == Schedule::every_point ? 1 : 1 + rng() % 40;
   int retrievals = 0;
+  std::uint64_t folds = 0;
   for (std::size_t i = 0; i < stream.size(); ++i) {
     engine.insert(stream[i]);
-    if (i + 1 == next_retrieval || i + 1 == stream.size()) {
+    const bool due = schedule == Schedule::at_end ? false : i + 1 == next_retrieval;
+    if (due || i + 1 == stream.size()) {
       engine.retrieve();
       ++retrievals;
+      folds += engine.last_stats().forest_folds;
       const std::string mismatch = compare_with_batch(engine, batch);
       INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i << ", retrieval "
                    << retrievals << ", grid " << engine.grid().rows << "x" << engine.grid().cols << ", mask "
                    << params.mask_size << ", window size " << engine.size());
       REQUIRE(mismatch == "");
-      next_retrieval += 1 + rng() % 40;
+      next_retrieval += schedule == Schedule::every_point ? 1 : 1 + rng() % 40;
     }
   }
   CHECK(retrievals > 0);
+  return folds;
 }
 
 constexpr std::uint64_t kSeeds = 200;
@@ -149,7 +169,13 @@ constexpr std::uint64_t kSeeds = 200;
 }  // namespace
 
 TEST_CASE_TEMPLATE_DEFINE("continuous partition equals the batch partition of the same window", Config, oracle_id) {
-  for (std::uint64_t seed = 0; seed < kSeeds; ++seed) run_oracle<Config>(seed);
+  std::uint64_t folds = 0;
+  for (std::uint64_t seed = 0; seed < kSeeds; ++seed) folds += run_oracle<Config>(seed);
+  if constexpr (sc::StreamClusterer<Config>::keeps_forest) {
+    CHECK(folds > 0);  // the fold without retrieval ran
+  } else {
+    CHECK(folds == 0);
+  }
 }
 
 using SphB = sc::SphericalProjection;
@@ -210,8 +236,55 @@ TEST_CASE_TEMPLATE_APPLY(
                Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow, UF>,
                Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, UF>>);
 
+// Every combination again with the spanning forest (random fold thresholds, see run_oracle).
+using SF = sc::SpanningForestConnectivity;
+TEST_CASE_TEMPLATE_APPLY(
+    oracle_id,
+    std::tuple<Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow, SF>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow, SF>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<SphB, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::BucketGrid, sc::EuclideanLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::CappedGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::CappedGrid, sc::EuclideanLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+               Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>>);
+
+// The spanning forest's own edge cases: a retrieval after every point (a
+// fold per point, the forest never older than one point) and a single
+// retrieval at the end (everything before it by folds without labelling,
+// threshold 1: a fold whenever the new edges outnumber the window's points).
+TEST_CASE_TEMPLATE("spanning forest: retrieval after every point and only at the end agree with the batch clusterer",
+                   Config, Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+                   Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+                   Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+                   Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>) {
+  std::uint64_t folds = 0;
+  for (std::uint64_t seed = 0; seed < 100; ++seed) {
+    run_oracle<Config>(seed, Schedule::every_point, 1);
+    folds += run_oracle<Config>(seed, Schedule::at_end, 1);
+  }
+  CHECK(folds > 100);
+}
+
 TEST_CASE_TEMPLATE("the C-ARC presets with adaptive resolution agree with the batch clusterer on their calibrated grid",
-                   Preset, sc::CArcConfig, sc::CArcFastConfig, sc::CArcCappedFastConfig) {
+                   Preset, sc::CArcConfig, sc::CArcFastConfig, sc::CArcCappedFastConfig, sc::CArcRebuildConfig,
+                   sc::CArcCappedRebuildConfig) {
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
     auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
     params.window.duration = 0.05;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The connectivity slot: the concept, the default, and the union-find rebuild
-// strategy on hand-made streams (splits, stable ids, local clusters) and
+// and spanning-forest strategies on hand-made streams (splits, stable ids,
+// local clusters, expiring bridges, long chains, folds without retrieval) and
 // against the paper's lazy BFS on a long synthetic stream.
 
 #include <doctest/doctest.h>
@@ -11,7 +12,9 @@
 
 #include "support/partition.hpp"
 
+#include <algorithm>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -66,13 +69,26 @@ std::vector<sc::ComponentId> labels(const Engine& e) {
 }
 
 using Rebuild = ChainConfig<sc::UnionFindRebuildConnectivity>;
+using Forest = ChainConfig<sc::SpanningForestConnectivity>;
 using Lazy = ChainConfig<sc::LazyBfsConnectivity>;
+
+sc::Point at(float x, float y, double t) { return sc::Point{x, y, 0.0f, 0.0f, t}; }
+
+/// Sizes of the last retrieval's components, ascending.
+template <class Engine>
+std::vector<std::size_t> component_sizes(const Engine& e) {
+  std::vector<std::size_t> out;
+  for (const auto& c : e.last_result().components) out.push_back(c.size);
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 }  // namespace
 
 TEST_CASE("connectivity concept: both policies model it, incomplete types do not, the default is the paper's") {
   CHECK(sc::is_connectivity_policy_v<sc::LazyBfsConnectivity>);
   CHECK(sc::is_connectivity_policy_v<sc::UnionFindRebuildConnectivity>);
+  CHECK(sc::is_connectivity_policy_v<sc::SpanningForestConnectivity>);
   CHECK_FALSE(sc::is_connectivity_policy_v<MissingStrategy>);
   CHECK_FALSE(sc::is_connectivity_policy_v<WrongStrategyType>);
   CHECK_FALSE(sc::is_connectivity_policy_v<int>);
@@ -82,10 +98,41 @@ TEST_CASE("connectivity concept: both policies model it, incomplete types do not
   CHECK(sc::StreamClusterer<Rebuild>::rebuilds_components);
   CHECK(sc::StreamClusterer<sc::CArcFastConfig>::rebuilds_components);
   CHECK_FALSE(sc::StreamClusterer<sc::CArcConfig>::rebuilds_components);
+  CHECK(sc::config_traits<Forest>::connectivity::strategy == sc::ConnectivityStrategy::spanning_forest);
+  CHECK(sc::StreamClusterer<Forest>::rebuilds_components);  // no local-cluster bookkeeping either
+  CHECK(sc::StreamClusterer<Forest>::keeps_forest);
+  CHECK_FALSE(sc::StreamClusterer<Forest>::stores_point_edges);
+  CHECK_FALSE(sc::StreamClusterer<Rebuild>::keeps_forest);
+  CHECK(sc::StreamClusterer<Rebuild>::stores_point_edges);
+  CHECK(sc::StreamClusterer<Lazy>::stores_point_edges);
+  CHECK(sc::StreamClusterer<sc::CArcFastConfig>::keeps_forest);
+  CHECK(sc::StreamClusterer<sc::CArcCappedFastConfig>::keeps_forest);
+  CHECK_FALSE(sc::StreamClusterer<sc::CArcRebuildConfig>::keeps_forest);
+  CHECK(sc::StreamClusterer<sc::CArcRebuildConfig>::rebuilds_components);
 }
 
-TEST_CASE("union-find rebuild: the middle of a chain leaving splits it; the larger part keeps the id") {
-  sc::StreamClusterer<Rebuild> engine(chain_params<Rebuild>(1.0));
+TEST_CASE("spanning forest: min_fold_edges is validated") {
+  using SF = sc::SpanningForestConnectivity;
+  const auto make = [](std::uint32_t min_edges, std::uint32_t per_point) {
+    return SF{SF::Params{min_edges, per_point}};
+  };
+  CHECK(SF{SF::Params{}}.fold_threshold(10) == 65536);
+  CHECK(SF{SF::Params{}}.fold_threshold(100000) == 200000);
+  CHECK(make(1, 1).fold_threshold(7) == 7);
+  CHECK(make(SF::kMaxFoldEdges, 64).fold_threshold(1) == SF::kMaxFoldEdges);
+  CHECK_THROWS_AS(make(0, 2), std::invalid_argument);
+  CHECK_THROWS_AS(make(SF::kMaxFoldEdges + 1, 2), std::invalid_argument);
+  CHECK_THROWS_AS(make(1, 0), std::invalid_argument);
+  CHECK_THROWS_AS(make(1, 65), std::invalid_argument);
+  auto params = chain_params<Forest>(1.0);
+  params.connectivity.min_fold_edges = 0;
+  CHECK_THROWS_WITH_AS(sc::StreamClusterer<Forest>{params}, doctest::Contains("min_fold_edges = 0"),
+                       std::invalid_argument);
+}
+
+TEST_CASE_TEMPLATE("rebuild and forest: the middle of a chain leaving splits it; the larger part keeps the id", Config,
+                   Rebuild, Forest) {
+  sc::StreamClusterer<Config> engine(chain_params<Config>(1.0));
   engine.insert(at(5.0f, 0.0));  // middle of the chain, leaves first
   engine.insert(at(4.2f, 0.5));
   engine.insert(at(3.4f, 0.5));
@@ -108,8 +155,9 @@ TEST_CASE("union-find rebuild: the middle of a chain leaving splits it; the larg
   CHECK(engine.last_stats().evicted == 1);
 }
 
-TEST_CASE("union-find rebuild: local clusters are the last retrieval's components, without bridges") {
-  sc::StreamClusterer<Rebuild> engine(chain_params<Rebuild>(10.0));
+TEST_CASE_TEMPLATE("rebuild and forest: local clusters are the last retrieval's components, without bridges", Config,
+                   Rebuild, Forest) {
+  sc::StreamClusterer<Config> engine(chain_params<Config>(10.0));
   engine.insert(at(1.0f, 0.0));
   engine.insert(at(1.5f, 0.1));
   engine.insert(at(8.0f, 0.2));
@@ -131,8 +179,9 @@ TEST_CASE("union-find rebuild: local clusters are the last retrieval's component
   CHECK(engine.cluster_size(engine.cluster_of(engine.handle_at(0))) == 3);
 }
 
-TEST_CASE("union-find rebuild: ids persist, merge to the heavier side and are never reused") {
-  sc::StreamClusterer<Rebuild> engine(chain_params<Rebuild>(100.0));
+TEST_CASE_TEMPLATE("rebuild and forest: ids persist, merge to the heavier side and are never reused", Config, Rebuild,
+                   Forest) {
+  sc::StreamClusterer<Config> engine(chain_params<Config>(100.0));
   engine.insert(at(10.0f, 0.0));
   engine.insert(at(10.5f, 0.1));
   engine.insert(at(10.9f, 0.2));
@@ -162,11 +211,16 @@ TEST_CASE("union-find rebuild: ids persist, merge to the heavier side and are ne
   CHECK(seen.count(small) == 0);  // the lighter id is retired, never handed out again
 }
 
-TEST_CASE("union-find rebuild and lazy BFS give the same partition, every retrieval, on a long stream") {
+namespace {
+template <class Connectivity>
+struct FixedWith : sc::CArcFixedConfig {
+  using connectivity = Connectivity;
+};
+}  // namespace
+
+TEST_CASE_TEMPLATE("rebuild, forest and lazy BFS give the same partition, every retrieval, on a long stream", FastFixed,
+                   FixedWith<sc::UnionFindRebuildConnectivity>, FixedWith<sc::SpanningForestConnectivity>) {
   using LazyPreset = sc::CArcFixedConfig;
-  struct FastFixed : sc::CArcFixedConfig {
-    using connectivity = sc::UnionFindRebuildConnectivity;
-  };
   sc::ClustererParams<LazyPreset> lp;
   lp.resolution = {32, 256};
   lp.window.duration = 0.05;
@@ -196,4 +250,125 @@ TEST_CASE("union-find rebuild and lazy BFS give the same partition, every retrie
   }
   CHECK(retrievals == 24);
   CHECK(split_work > 0);  // the stream exercised splits, not just growth
+}
+
+// ------------------------------------------------ spanning forest edge cases
+
+TEST_CASE_TEMPLATE("an old bridge expires while a younger path keeps the component connected", Config, Lazy, Rebuild,
+                   Forest) {
+  // a-b, a-c and b-c all link (0.90 m, 0.92 m, 0.92 m). The forest must keep
+  // the younger edge b-c (it expires with b) over a second edge to a (which
+  // expires with a): a forest of the two edges to a would fall apart when a
+  // leaves.
+  sc::StreamClusterer<Config> engine(chain_params<Config>(1.0));
+  engine.insert(at(5.0f, 0.0f, 0.0));   // a
+  engine.insert(at(5.9f, 0.0f, 0.5));   // b
+  engine.insert(at(5.45f, 0.8f, 0.6));  // c
+  engine.retrieve();
+  REQUIRE(component_sizes(engine) == std::vector<std::size_t>{3});
+  const sc::ComponentId id = engine.last_result().components[0].id;
+  engine.advance_to(1.2);  // a leaves
+  engine.retrieve();
+  REQUIRE(component_sizes(engine) == std::vector<std::size_t>{2});
+  CHECK(engine.last_result().components[0].id == id);
+  engine.advance_to(1.55);  // b leaves: c alone, keeps the id (largest part)
+  engine.retrieve();
+  REQUIRE(component_sizes(engine) == std::vector<std::size_t>{1});
+  CHECK(engine.last_result().components[0].id == id);
+}
+
+TEST_CASE_TEMPLATE("a ladder whose old rungs expire stays connected through its younger rungs", Config, Lazy, Rebuild,
+                   Forest) {
+  // Two rails 0.8 m apart (y = 0 and y = 0.8), points 0.9 m apart along x > 0,
+  // inserted rail 0 first, then rail 1 from the other end: each rail is a
+  // path, every rung (same x) links them. Old rungs leave with rail 0's
+  // points; as long as one rung is live the ladder is one component.
+  auto params = chain_params<Config>(1.0);
+  sc::StreamClusterer<Config> engine(params);
+  const int n = 12;
+  double t = 0.0;
+  for (int i = 0; i < n; ++i, t += 0.01) engine.insert(at(2.0f + 0.9f * static_cast<float>(i), 0.0f, t));
+  for (int i = n - 1; i >= 0; --i, t += 0.01) engine.insert(at(2.0f + 0.9f * static_cast<float>(i), 0.8f, t));
+  engine.retrieve();
+  REQUIRE(component_sizes(engine) == std::vector<std::size_t>{2 * n});
+  // Rail 0 leaves point by point (its point i at t = 0.01 i); the rung of
+  // rail 0's newest live point always holds the ladder together.
+  for (int gone = 1; gone < n; ++gone) {
+    engine.advance_to(1.0 + 0.01 * gone - 0.005);
+    engine.retrieve();
+    INFO("rail-0 points evicted: " << gone);
+    REQUIRE(engine.size() == static_cast<std::size_t>(2 * n - gone));
+    CHECK(component_sizes(engine) == std::vector<std::size_t>{static_cast<std::size_t>(2 * n - gone)});
+  }
+}
+
+TEST_CASE_TEMPLATE("a long chain evicted from its old end stays one component, with and without retrievals between",
+                   Config, Lazy, Rebuild, Forest) {
+  // A path (points 0.6 m apart, linkage 1.0 m: each links its predecessor
+  // only) 2,000 points long through a window of 50 points.
+  auto params = chain_params<Config>(0.495);
+  if constexpr (sc::StreamClusterer<Config>::keeps_forest) params.connectivity = {1, 1};
+  for (const int every : {1, 7, 1000000}) {
+    sc::StreamClusterer<Config> engine(params);
+    std::uint64_t folds = 0;
+    for (int i = 0; i < 2000; ++i) {
+      engine.insert(at(2.0f + 0.6f * static_cast<float>(i % 1000), 0.0f, 0.01 * i));  // restarts at x = 2 after 1,000
+      if (i % every == every - 1 || i == 1999) {
+        engine.retrieve();
+        folds += engine.last_stats().forest_folds;
+        INFO("every " << every << ", point " << i);
+        const auto window = static_cast<std::size_t>(std::min(i + 1, 50));
+        REQUIRE(engine.size() == window);
+        if (i >= 1000 && i % 1000 < 49) {  // the restart cut the chain in two
+          CHECK(component_sizes(engine).size() == 2);
+        } else {
+          CHECK(component_sizes(engine) == std::vector<std::size_t>{window});
+        }
+      }
+    }
+    if constexpr (sc::StreamClusterer<Config>::keeps_forest) {
+      if (every == 1000000) CHECK(folds > 30);  // about one fold per 51 edges without labelling
+    }
+  }
+}
+
+TEST_CASE("spanning forest: folds without retrieval bound the new edges and keep labels identical to the rebuild's") {
+  // Same stream, same retrievals: the partition is the same, and since both
+  // use the same per-point vote rule, so are the stable ids, label for label.
+  struct ForestFixed : sc::CArcFixedConfig {
+    using connectivity = sc::SpanningForestConnectivity;
+  };
+  struct RebuildFixed : sc::CArcFixedConfig {
+    using connectivity = sc::UnionFindRebuildConnectivity;
+  };
+  sc::ClustererParams<ForestFixed> fp;
+  fp.resolution = {32, 256};
+  fp.window.duration = 0.02;
+  fp.linkage.theta_deg = 30.0f;
+  fp.connectivity = {1, 1};  // fold whenever the new edges outnumber the window's points
+  sc::ClustererParams<RebuildFixed> rp;
+  rp.resolution = fp.resolution;
+  rp.window.duration = fp.window.duration;
+  rp.linkage.theta_deg = fp.linkage.theta_deg;
+  sc::StreamClusterer<ForestFixed> forest(fp);
+  sc::StreamClusterer<RebuildFixed> rebuild(rp);
+  sc::SyntheticStream stream;
+  std::uint64_t folds = 0;
+  std::size_t components = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const auto p = stream.next();
+    forest.insert(p);
+    rebuild.insert(p);
+    if (i % 3001 == 3000) {
+      forest.retrieve();
+      rebuild.retrieve();
+      folds += forest.last_stats().forest_folds;
+      components += forest.last_result().components.size();
+      INFO("point " << i);
+      REQUIRE(labels(forest) == labels(rebuild));
+      CHECK(forest.last_result().components.size() == rebuild.last_result().components.size());
+    }
+  }
+  CHECK(folds > 13);  // more than one fold per retrieval
+  CHECK(components > 13);  // not a single blob every time
 }

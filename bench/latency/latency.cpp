@@ -111,10 +111,11 @@ template <class Config>
 struct WithOverwrite : Config {
   using spatial_index = sc::OverwriteGrid;
 };
-/// EuclideanConfig with the union-find rebuild (no preset of its own): the
-/// fast strategy against the PCL peer, which only runs on Euclidean linkage.
+/// EuclideanConfig with the fast presets' spanning-forest connectivity (no
+/// preset of its own): the fast strategy against the PCL peer, which only
+/// runs on Euclidean linkage.
 struct EuclideanFastConfig : sc::EuclideanConfig {
-  using connectivity = sc::UnionFindRebuildConnectivity;
+  using connectivity = sc::SpanningForestConnectivity;
 };
 
 struct Options;
@@ -145,16 +146,20 @@ const ConfigEntry kConfigs[] = {
     {"carc", "C-ARC preset (bucket grid, angular)", true, true, kAllWindows, &run_scenario<sc::CArcConfig>},
     {"capped", "CArcCappedConfig (capped grid K = 4, angular)", false, true, kAllWindows,
      &run_scenario<sc::CArcCappedConfig>},
-    {"fast", "CArcFastConfig (bucket grid, angular, union-find rebuild)", true, true, kAllWindows,
+    {"fast", "CArcFastConfig (bucket grid, angular, spanning forest)", true, true, kAllWindows,
      &run_scenario<sc::CArcFastConfig>},
-    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, union-find rebuild)", false, true, kAllWindows,
+    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, spanning forest)", false, true, kAllWindows,
      &run_scenario<sc::CArcCappedFastConfig>},
     // The capped fast preset (target 6's memory figure) on the Mid-360 too, at the window ends only.
-    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, union-find rebuild)", true, false,
+    {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, spanning forest)", true, false,
      kShortestWindow | kLongestWindow, &run_scenario<sc::CArcCappedFastConfig>},
+    {"rebuild", "CArcRebuildConfig (bucket grid, angular, union-find rebuild)", true, true, kLongestWindow,
+     &run_scenario<sc::CArcRebuildConfig>},
+    {"caprebuild", "CArcCappedRebuildConfig (capped grid K = 4, angular, union-find rebuild)", false, true,
+     kLongestWindow, &run_scenario<sc::CArcCappedRebuildConfig>},
     {"euclid", "EuclideanConfig (bucket grid, Euclidean 0.5 m)", true, true, kLongestWindow,
      &run_scenario<sc::EuclideanConfig>},
-    {"euclidfast", "EuclideanConfig + union-find rebuild (bench-local)", true, true, kLongestWindow,
+    {"euclidfast", "EuclideanConfig + spanning forest (bench-local)", true, true, kLongestWindow,
      &run_scenario<EuclideanFastConfig>},
 };
 

@@ -13,20 +13,27 @@
 /// | CArcCappedConfig      | spherical  | capped    | angular  | time   | adaptive   | lazy BFS (paper)    |
 /// | FrameBaselineConfig   | spherical  | overwrite | angular  | time   | adaptive   | lazy BFS (paper)    |
 /// | EuclideanConfig       | spherical  | bucket    | euclidean| time   | adaptive   | lazy BFS (paper)    |
-/// | CArcFastConfig        | spherical  | bucket    | angular  | time   | adaptive   | union-find rebuild  |
-/// | CArcCappedFastConfig  | spherical  | capped    | angular  | time   | adaptive   | union-find rebuild  |
+/// | CArcFastConfig        | spherical  | bucket    | angular  | time   | adaptive   | spanning forest     |
+/// | CArcCappedFastConfig  | spherical  | capped    | angular  | time   | adaptive   | spanning forest     |
+/// | CArcRebuildConfig     | spherical  | bucket    | angular  | time   | adaptive   | union-find rebuild  |
+/// | CArcCappedRebuildConfig | spherical | capped   | angular  | time   | adaptive   | union-find rebuild  |
 ///
 /// Which to pick: all give exactly the same partition for the same index
 /// (the batch oracle). CArcConfig is the paper's algorithm, with visitor
 /// hooks and a component graph of local clusters and bridges at all times.
 /// CArcFastConfig is the one to deploy when only the labels/components of
 /// each retrieval matter: its cost per retrieval does not depend on how much
-/// of the window is pending (docs/optimization-log.md). The capped variants
-/// bound the work per point on scan patterns that revisit cells (Avia).
+/// of the window is pending, and is O(N + edges inserted since the previous
+/// retrieval) (docs/optimization-log.md, sections 1 and 7). The rebuild
+/// presets are the previous fast presets (O(N + E) per retrieval), kept for
+/// comparison and for the point-level edge accessors, which the spanning
+/// forest does not store. The capped variants bound the work per point on
+/// scan patterns that revisit cells (Avia).
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/concepts/visitor.hpp>
 #include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/spanning_forest.hpp>
 #include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
@@ -76,16 +83,30 @@ struct EuclideanConfig : CArcConfig {
   using linkage = EuclideanLinkage;
 };
 
-/// C-ARC's policies with the union-find rebuild at each retrieval instead
-/// of the paper's lazy BFS: same partition, cost per retrieval O(N + E)
-/// whatever is pending; no visitor events, no bridges (see
-/// UnionFindRebuildConnectivity).
+/// C-ARC's policies with a spanning forest of the window folded at each
+/// retrieval instead of the paper's lazy BFS: same partition, cost per
+/// retrieval O(N + edges inserted since the previous one) whatever is
+/// pending, no stored point-level edges; no visitor events, no bridges (see
+/// SpanningForestConnectivity).
 struct CArcFastConfig : CArcConfig {
-  using connectivity = UnionFindRebuildConnectivity;
+  using connectivity = SpanningForestConnectivity;
 };
 
 /// CArcFastConfig with at most K points per cell.
 struct CArcCappedFastConfig : CArcFastConfig {
+  using spatial_index = CappedGrid;
+};
+
+/// C-ARC's policies with the union-find rebuild at each retrieval: same
+/// partition, cost per retrieval O(N + E) whatever is pending, the point
+/// graph's edges stored (see UnionFindRebuildConnectivity). CArcFastConfig
+/// before the spanning forest.
+struct CArcRebuildConfig : CArcConfig {
+  using connectivity = UnionFindRebuildConnectivity;
+};
+
+/// CArcRebuildConfig with at most K points per cell.
+struct CArcCappedRebuildConfig : CArcRebuildConfig {
   using spatial_index = CappedGrid;
 };
 

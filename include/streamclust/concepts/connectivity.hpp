@@ -11,19 +11,20 @@
 /// | `C c{params}`                |                        | construct; throws std::invalid_argument if bad        |            |
 /// | `C::strategy`                | `ConnectivityStrategy` | static constexpr: the algorithm the engine runs       | compile time |
 ///
-/// Why a strategy selector and not callbacks: both algorithms work on the
+/// Why a strategy selector and not callbacks: the algorithms work on the
 /// engine's own ring buffers (points, back/forward edge lists, local
 /// clusters); exposing those through a callback interface would put an
 /// indirection on every edge of the hot path. The policy therefore names one
 /// of the engine's strategies at compile time (`if constexpr`, no run-time
 /// cost) and carries its parameters; a new strategy is added to the enum and
-/// the engine. Both strategies give exactly the batch partition
+/// the engine. Every strategy gives exactly the batch partition
 /// (tests/test_oracle.cpp).
 ///
 /// | strategy             | insertion / eviction                               | retrieval                                     |
 /// |----------------------|----------------------------------------------------|-----------------------------------------------|
 /// | `lazy_bfs` (paper)   | local clusters, bridges with multiplicities; an eviction walks the point's forward edges and may mark its cluster pending | BFS over every pending cluster, splits; BFS over the component graph: O(pending points + edges + N) |
 /// | `union_find_rebuild` | edges only: no cluster or bridge bookkeeping        | one union-find pass over the live edges in ring (FIFO) order: O(N + E), independent of what is pending |
+/// | `spanning_forest`    | appends each new edge to a list (no edge ring, no per-point adjacency); eviction drops the point | folds the new edges into a maximum spanning forest (weight = older endpoint) by Kruskal: O(N + F + edges inserted since the last retrieval), F < N |
 ///
 /// Not thread-safe state is kept by the engine; a policy object is immutable.
 
@@ -37,6 +38,7 @@ namespace streamclust {
 enum class ConnectivityStrategy : std::uint8_t {
   lazy_bfs,            ///< the paper's: local clusters + bridges, lazy BFS validation of pending clusters
   union_find_rebuild,  ///< edges only; components rebuilt by union-find over the live edges at each retrieval
+  spanning_forest,     ///< new edges only; folded into a maximum spanning forest of the window at each retrieval
 };
 
 namespace detail {
