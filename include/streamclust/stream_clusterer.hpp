@@ -84,7 +84,8 @@ struct RetrievalStats {
 ///
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
-/// windowed point plus 12 bytes per edge (about 14 edges per point on a
+/// windowed point (a 40-byte Sample and a 40-byte record, in two rings with
+/// the same slots) plus 12 bytes per edge (about 14 edges per point on a
 /// simulated Mid-360 at w = 5, T_M = 2), plus the index; the ring buffers grow by doubling
 /// and never shrink, so the steady state allocates nothing per point.
 ///
@@ -172,7 +173,7 @@ class StreamClusterer {
     has_time_ = true;
     last_time_ = time;
     if (calibrating_) {
-      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size())) finish_calibration();
+      if (size() > 0 && window_.complete(sample(oldest_).time, time, size())) finish_calibration();
       if (calibrating_) return;  // the first window is still filling: nothing expires
     }
     const auto t0 = clock_now();
@@ -240,7 +241,7 @@ class StreamClusterer {
   /// the window, oldest first. O(N).
   template <class F>
   void for_each_point(F&& f) const {
-    for (PointHandle h = oldest_; h != next_; ++h) f(point(h).sample, point(h).stream_index);
+    for (PointHandle h = oldest_; h != next_; ++h) f(sample(h), point(h).stream_index);
   }
 
   // ------------------------------------------- low-level graph access
@@ -252,7 +253,7 @@ class StreamClusterer {
   std::size_t position_of(PointHandle h) const { return static_cast<PointHandle>(h - oldest_); }
   /// True when `h` is in the window.
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
-  const Sample& sample(PointHandle h) const { return point(h).sample; }
+  const Sample& sample(PointHandle h) const { return samples_[h & point_mask_]; }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
   /// Local cluster of a live point (kNoCluster while calibrating; with
   /// union_find_rebuild, also for a point inserted after the last retrieval).
@@ -303,8 +304,9 @@ class StreamClusterer {
   const std::vector<Bridge>& bridges(ClusterId c) const { return clusters_[c].bridges; }
 
  private:
+  /// Per-point bookkeeping; the point's Sample is apart, in `samples_` (same
+  /// slot), so the neighbour search reads a dense 40-byte-stride ring.
   struct PointRecord {
-    Sample sample;
     std::uint64_t stream_index = 0;
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
@@ -372,7 +374,7 @@ class StreamClusterer {
     if (calibrating_) {
       // Buffering the first window: nothing expires before it is complete
       // (expiry implies completeness), so no eviction here.
-      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size() + 1)) {
+      if (size() > 0 && window_.complete(sample(oldest_).time, time, size() + 1)) {
         finish_calibration();  // on the complete first window; the new point is inserted below
       } else {
         append_point(pos, pr.range, point_intensity, time, stream_index);
@@ -396,7 +398,7 @@ class StreamClusterer {
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
-    r.sample = make_sample(pos, range, point_intensity, time);
+    samples_[h & point_mask_] = make_sample(pos, range, point_intensity, time);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
     r.next_member = kNoPoint;
@@ -423,7 +425,7 @@ class StreamClusterer {
   void finish_calibration() {
     std::vector<Projected> coords;
     coords.reserve(size());
-    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(point(h).sample.position));
+    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(sample(h).position));
     set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
     std::size_t i = 0;
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
@@ -439,19 +441,27 @@ class StreamClusterer {
     ++stats_.inserted;
     neighbours_.clear();
     {
-      // Two passes: gather the mask's candidates and prefetch their samples
-      // (scattered in the ring: each is a likely cache miss), then test the
-      // linkage, so the misses overlap instead of stalling one by one.
-      const PointRecord& r = point(h);
+      // Three passes, so that the cache misses overlap instead of stalling
+      // one by one: (1) list the mask's cells and, when the index can,
+      // prefetch them; (2) gather their handles, prefetching each
+      // candidate's sample (scattered in the ring: each is a likely miss);
+      // (3) test the linkage.
+      const CellIndex cell = point(h).cell;
+      mask_cells_.clear();
+      detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
+        mask_cells_.push_back(c);
+        if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
+      });
       candidates_.clear();
-      detail::for_each_mask_cell(grid_, r.cell, half_, [&](CellIndex c) {
+      for (const CellIndex c : mask_cells_) {
         index_.for_each(c, [&](PointHandle n) {
           candidates_.push_back(n);
-          detail::prefetch(&point(n).sample);
+          detail::prefetch(&sample(n));
         });
-      });
+      }
+      const Sample& s = sample(h);
       for (const PointHandle n : candidates_) {
-        if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
+        if (linkage_(s, sample(n))) neighbours_.push_back(n);
       }
     }
     reserve_edges(neighbours_.size());
@@ -558,7 +568,7 @@ class StreamClusterer {
   }
 
   void evict_expired(double newest_time, std::size_t count) {
-    while (size() > 0 && window_.expired(point(oldest_).sample.time, newest_time, count)) {
+    while (size() > 0 && window_.expired(sample(oldest_).time, newest_time, count)) {
       evict_oldest();
       --count;
     }
@@ -736,15 +746,16 @@ class StreamClusterer {
       const std::uint32_t k = component_of_[r.cluster];
       result_.points.push_back(PointLabel{r.stream_index, component_ids_[k]});
       ComponentSummary& s = result_.components[k];
-      const Eigen::Vector3f& p = r.sample.position;
+      const Sample& sa = sample(h);
+      const Eigen::Vector3f& p = sa.position;
       if (s.size == 0) {
         s.min = s.max = p;
-        s.time_begin = r.sample.time;
+        s.time_begin = sa.time;
       } else {
         s.min = s.min.cwiseMin(p);
         s.max = s.max.cwiseMax(p);
       }
-      s.time_end = r.sample.time;
+      s.time_end = sa.time;
       sums_[k] += p.template cast<double>();
       ++s.size;
     }
@@ -938,9 +949,14 @@ class StreamClusterer {
     std::size_t capacity = std::max<std::size_t>(points_.size() * 2, 1024);
     while (capacity < needed) capacity *= 2;
     std::vector<PointRecord> grown(capacity);
+    std::vector<Sample> grown_samples(capacity);
     const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
-    for (PointHandle h = oldest_; h != next_; ++h) grown[h & new_mask] = point(h);
+    for (PointHandle h = oldest_; h != next_; ++h) {
+      grown[h & new_mask] = point(h);
+      grown_samples[h & new_mask] = sample(h);
+    }
     points_.swap(grown);
+    samples_.swap(grown_samples);
     point_mask_ = new_mask;
   }
 
@@ -974,8 +990,9 @@ class StreamClusterer {
   GridShape grid_{};
   bool calibrating_ = true;
 
-  // Ring buffer of the window: live handles are [oldest_, next_).
-  std::vector<PointRecord> points_;
+  // Ring buffers of the window (same slots): live handles are [oldest_, next_).
+  std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
+  std::vector<PointRecord> points_;  // the bookkeeping
   std::uint32_t point_mask_ = 0;
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;
@@ -1003,6 +1020,7 @@ class StreamClusterer {
   // Scratch buffers, reused so the steady state does not allocate.
   std::vector<PointHandle> neighbours_;
   std::vector<PointHandle> candidates_;
+  std::vector<CellIndex> mask_cells_;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;
   std::vector<std::size_t> fragment_begin_;

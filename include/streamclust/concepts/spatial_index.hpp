@@ -15,6 +15,16 @@
 /// | `i.for_each(cell, f)`      | void        | call `f(PointHandle)` for every handle stored in the cell            | O(k)       |
 /// | `i.size()`                 | std::size_t | handles currently stored                                             | O(1)       |
 ///
+/// Optional capability (detected, never required; an index without it works
+/// unchanged):
+///
+/// | expression                 | type        | meaning                                                              | complexity |
+/// |----------------------------|-------------|----------------------------------------------------------------------|------------|
+/// | `ci.prefetch(cell)`        | any         | hint that `for_each(cell, f)` follows soon (e.g. prefetch the cell's memory); must not change the contents | O(1) |
+///
+/// The engine calls `prefetch` for every cell of the mask before it visits
+/// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`).
+///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
 /// it can only no longer be found by later points. The engine removes points
@@ -46,10 +56,20 @@ struct is_spatial_index_policy<
     : std::bool_constant<
           std::is_convertible_v<decltype(std::declval<I&>().insert(CellIndex{}, PointHandle{})), PointHandle> &&
           std::is_convertible_v<decltype(std::declval<const I&>().size()), std::size_t>> {};
+
+template <class I, class = void>
+struct has_spatial_index_prefetch : std::false_type {};
+template <class I>
+struct has_spatial_index_prefetch<I, std::void_t<decltype(std::declval<const I&>().prefetch(CellIndex{}))>>
+    : std::true_type {};
 }  // namespace detail
 
 template <class I>
 inline constexpr bool is_spatial_index_policy_v = detail::is_spatial_index_policy<I>::value;
+
+/// True when spatial index `I` offers the optional `prefetch(CellIndex) const`.
+template <class I>
+inline constexpr bool has_spatial_index_prefetch_v = detail::has_spatial_index_prefetch<I>::value;
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class I>

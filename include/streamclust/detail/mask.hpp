@@ -5,21 +5,13 @@
 /// Iteration over the w x w neighbourhood mask of a grid cell, shared by the
 /// continuous engine and the batch clusterer so both see the same cells.
 
+#include <streamclust/detail/prefetch.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
 #include <cstdint>
 
 namespace streamclust::detail {
-
-/// Hint that `p` will be read soon (no effect on correctness). O(1).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// Calls `f(CellIndex)` once for every distinct cell within `half` rows and
 /// columns of `center` (the centre included). Rows are clamped at the grid
