@@ -381,11 +381,15 @@ class StreamClusterer {
         return RejectReason::accepted;
       }
     }
+    // The mask is listed (and its index cells prefetched) before the
+    // eviction, so those cache misses overlap the eviction's work.
+    const CellIndex cell = grid_.cell_of(pr.u, pr.v);
+    list_mask_cells(cell);
     const auto t0 = clock_now();
     evict_expired(time, size() + 1);
     add_elapsed(stats_.phase_us.eviction, t0);
     const PointHandle h = append_point(pos, pr.range, point_intensity, time, stream_index);
-    point(h).cell = grid_.cell_of(pr.u, pr.v);
+    point(h).cell = cell;
     const auto t1 = clock_now();
     link(h);
     add_elapsed(stats_.phase_us.insertion, t1);
@@ -431,27 +435,33 @@ class StreamClusterer {
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
       point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
       point(h).back_begin = next_edge_;
+      list_mask_cells(point(h).cell);
       link(h);
     }
   }
 
+  /// Lists the mask cells around `cell` into `mask_cells_` for the next
+  /// `link` and, when the index offers it, prefetches them. O(w^2).
+  void list_mask_cells(CellIndex cell) {
+    mask_cells_.clear();
+    detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
+      mask_cells_.push_back(c);
+      if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
+    });
+  }
+
   /// Finds the neighbours of freshly appended point `h`, records its edges
-  /// and applies isolation, expansion or bridging.
+  /// and applies isolation, expansion or bridging. Requires
+  /// `list_mask_cells(point(h).cell)` since the last link.
   void link(PointHandle h) {
     ++stats_.inserted;
     neighbours_.clear();
     {
       // Three passes, so that the cache misses overlap instead of stalling
-      // one by one: (1) list the mask's cells and, when the index can,
-      // prefetch them; (2) gather their handles, prefetching each
+      // one by one: (1) the caller listed the mask's cells and prefetched
+      // them (list_mask_cells); (2) gather their handles, prefetching each
       // candidate's sample (scattered in the ring: each is a likely miss);
       // (3) test the linkage.
-      const CellIndex cell = point(h).cell;
-      mask_cells_.clear();
-      detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
-        mask_cells_.push_back(c);
-        if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
-      });
       candidates_.clear();
       for (const CellIndex c : mask_cells_) {
         index_.for_each(c, [&](PointHandle n) {
@@ -459,10 +469,20 @@ class StreamClusterer {
           detail::prefetch(&sample(n));
         });
       }
+      // Branch-free compaction: whether a candidate links is close to a
+      // coin flip, a branch on it would mispredict often.
       const Sample& s = sample(h);
+      const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
+      const std::uint32_t slot_mask = point_mask_;
+      neighbours_.resize(candidates_.size());
+      PointHandle* const out = neighbours_.data();
+      std::size_t found = 0;
       for (const PointHandle n : candidates_) {
-        if (linkage_(s, sample(n))) neighbours_.push_back(n);
+        out[found] = n;
+        found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
       }
+      neighbours_.resize(found);
+      for (const PointHandle n : neighbours_) detail::prefetch(&point(n));  // written when the edge is stored
     }
     reserve_edges(neighbours_.size());
     PointRecord& r = point(h);

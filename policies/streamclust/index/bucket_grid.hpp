@@ -5,7 +5,7 @@
 /// BucketGrid: unbounded per-cell buckets of point handles (C-ARC's range grid).
 
 #include <streamclust/concepts/spatial_index.hpp>
-#include <streamclust/detail/prefetch.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 /// CappedGrid: at most K handles per cell in one contiguous array.
 
 #include <streamclust/concepts/spatial_index.hpp>
-#include <streamclust/detail/prefetch.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>

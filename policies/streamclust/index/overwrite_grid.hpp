@@ -5,7 +5,7 @@
 /// OverwriteGrid: one handle per cell, the newest wins (a range image).
 
 #include <streamclust/concepts/spatial_index.hpp>
-#include <streamclust/detail/prefetch.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>

@@ -2,7 +2,16 @@
 #pragma once
 
 /// \file
-/// A portable software-prefetch hint, shared by the engine and the indexes.
+/// Compiler and CPU hints for the hot paths: a portable software prefetch and
+/// a forced-inline marker. Neither changes any result.
+
+/// Forces inlining of a small hot function into its callers (GCC, clang);
+/// plain `inline` elsewhere.
+#if defined(__GNUC__) || defined(__clang__)
+#define STREAMCLUST_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define STREAMCLUST_ALWAYS_INLINE inline
+#endif
 
 namespace streamclust::detail {
 
