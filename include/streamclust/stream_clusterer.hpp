@@ -443,11 +443,15 @@ class StreamClusterer {
   /// Lists the mask cells around `cell` into `mask_cells_` for the next
   /// `link` and, when the index offers it, prefetches them. O(w^2).
   void list_mask_cells(CellIndex cell) {
-    mask_cells_.clear();
+    const auto width = static_cast<std::size_t>(2 * half_ + 1);
+    if (mask_cells_.size() < width * width) mask_cells_.resize(width * width);  // once: at most w^2 cells
+    CellIndex* const out = mask_cells_.data();
+    std::size_t n = 0;
     detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
-      mask_cells_.push_back(c);
+      out[n++] = c;
       if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
     });
+    mask_count_ = n;
   }
 
   /// Finds the neighbours of freshly appended point `h`, records its edges
@@ -463,8 +467,8 @@ class StreamClusterer {
       // candidate's sample (scattered in the ring: each is a likely miss);
       // (3) test the linkage.
       candidates_.clear();
-      for (const CellIndex c : mask_cells_) {
-        index_.for_each(c, [&](PointHandle n) {
+      for (std::size_t i = 0; i < mask_count_; ++i) {
+        index_.for_each(mask_cells_[i], [&](PointHandle n) {
           candidates_.push_back(n);
           detail::prefetch(&sample(n));
         });
@@ -1040,7 +1044,8 @@ class StreamClusterer {
   // Scratch buffers, reused so the steady state does not allocate.
   std::vector<PointHandle> neighbours_;
   std::vector<PointHandle> candidates_;
-  std::vector<CellIndex> mask_cells_;
+  std::vector<CellIndex> mask_cells_;  // the mask of the point being linked: [0, mask_count_)
+  std::size_t mask_count_ = 0;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;
   std::vector<std::size_t> fragment_begin_;
