@@ -305,6 +305,7 @@ using sc::FrameBaselineConfig;
 SC_INSERT(CArcConfig, Mid360Office);
 SC_INSERT(CArcFastConfig, Mid360Office);
 SC_INSERT(CArcFastConfig, Mid360Forest);
+SC_INSERT(CArcFastConfig, AviaOffice);
 SC_INSERT(CArcCappedFastConfig, Mid360Office);
 SC_INSERT(CArcCappedFastConfig, AviaOffice);
 SC_INSERT(CArcConfig, Mid360Forest);

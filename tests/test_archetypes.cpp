@@ -112,10 +112,27 @@ struct PointXYZT {
   double t;
 };
 
+/// The archetype index plus the optional `prefetch` capability, counting
+/// the hints it receives (the hint must not change what the index holds).
+struct PrefetchingIndex : Index {
+  using Index::Index;
+  void prefetch(CellIndex) const { ++hints; }
+  mutable std::size_t hints = 0;
+};
+struct PrefetchingConfig : Config {
+  using spatial_index = PrefetchingIndex;
+};
+
 }  // namespace archetype
 
 template class streamclust::StreamClusterer<archetype::Config>;
 template class streamclust::BatchClusterer<archetype::Config>;
+template class streamclust::StreamClusterer<archetype::PrefetchingConfig>;
+
+// prefetch is optional: the archetype index has none, the engine still runs it.
+static_assert(!streamclust::has_spatial_index_prefetch_v<archetype::Index>);
+static_assert(streamclust::has_spatial_index_prefetch_v<archetype::PrefetchingIndex>);
+static_assert(streamclust::is_spatial_index_policy_v<archetype::PrefetchingIndex>);
 
 TEST_CASE("the engines run on archetype policies") {
   streamclust::StreamClusterer<archetype::Config> engine;
@@ -130,6 +147,27 @@ TEST_CASE("the engines run on archetype policies") {
   std::vector<archetype::PointXYZT> points = {{5.0f, 0.0f, 0.0f, 0.0}, {5.5f, 0.0f, 0.0f, 0.5}};
   streamclust::BatchClusterer<archetype::Config> batch;
   CHECK(batch.cluster(points).components == 1);
+}
+
+TEST_CASE("the engine uses an index's optional prefetch hint, with the same result") {
+  streamclust::StreamClusterer<archetype::Config> plain;
+  streamclust::StreamClusterer<archetype::PrefetchingConfig> hinted;
+  const std::vector<archetype::PointXYZT> points = {
+      {5.0f, 0.0f, 0.0f, 0.0}, {5.5f, 0.0f, 0.0f, 0.5}, {9.0f, 0.0f, 0.0f, 1.0}, {9.5f, 0.0f, 0.0f, 1.2}};
+  for (const auto& p : points) {
+    plain.insert(p);
+    hinted.insert(p);
+  }
+  // four points were linked (the first window's three at the end of the
+  // calibration, then the fourth): each searched its mask and hinted its cells
+  CHECK(hinted.spatial_index().hints >= 4);
+  const auto& a = plain.retrieve();
+  const auto& b = hinted.retrieve();
+  REQUIRE(a.points.size() == b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    CHECK(a.points[i].stream_index == b.points[i].stream_index);
+    CHECK(a.points[i].label == b.points[i].label);
+  }
 }
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L

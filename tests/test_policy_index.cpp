@@ -257,3 +257,90 @@ TEST_CASE("BucketGrid: keeps every point, FIFO removal, compaction keeps order")
   CHECK(grid.cell_size(0) == expected.size());
   CHECK(contents(grid, 1).empty());
 }
+
+TEST_CASE("BucketGrid: overflow of the inline capacity keeps insertion order and recycles spill buckets") {
+  constexpr PointHandle inline_cap = BucketGrid::kInlineCapacity;
+  BucketGrid grid{{}};
+  grid.reset(GridShape{2, 2, false});
+  std::vector<PointHandle> expected;
+  for (PointHandle h = 0; h < inline_cap; ++h) {
+    REQUIRE(grid.insert(3, h) == kNoPoint);
+    expected.push_back(h);
+  }
+  CHECK(grid.spilled_cells() == 0);
+  CHECK(grid.insert(3, inline_cap) == kNoPoint);  // the first handle beyond the inline capacity
+  expected.push_back(inline_cap);
+  CHECK(grid.spilled_cells() == 1);
+  CHECK(contents(grid, 3) == expected);
+  CHECK(grid.cell_size(3) == expected.size());
+  // the oldest leaves: the spilled handle moves inline, the spill bucket is released
+  grid.remove(3, 0);
+  expected.erase(expected.begin());
+  CHECK(contents(grid, 3) == expected);
+  CHECK(grid.spilled_cells() == 0);
+  // spill again, then remove a middle inline handle: the oldest spilled one moves inline
+  for (PointHandle h = 100; h < 103; ++h) {
+    grid.insert(3, h);
+    expected.push_back(h);
+  }
+  CHECK(grid.spilled_cells() == 1);
+  grid.remove(3, 3);
+  expected.erase(std::find(expected.begin(), expected.end(), PointHandle{3}));
+  CHECK(contents(grid, 3) == expected);
+  // remove the newest (in the spill, not its head), then the spill's head
+  grid.remove(3, 102);
+  expected.pop_back();
+  CHECK(contents(grid, 3) == expected);
+  grid.remove(3, expected[inline_cap]);  // the spill's oldest handle
+  expected.erase(expected.begin() + inline_cap);
+  CHECK(contents(grid, 3) == expected);
+  CHECK(grid.spilled_cells() == 0);
+  CHECK(grid.cell_size(3) == inline_cap);
+  // absent handles, and a present handle asked of the wrong cell: no-ops
+  grid.remove(3, 999);
+  grid.remove(2, expected.front());
+  grid.remove(0, 5);
+  CHECK(contents(grid, 3) == expected);
+  CHECK(grid.size() == expected.size());
+  // other cells are untouched
+  CHECK(contents(grid, 0).empty());
+  CHECK(contents(grid, 2).empty());
+  // clear and reset empty every cell and return the spill buckets to the pool
+  for (PointHandle h = 200; h < 220; ++h) grid.insert(1, h);
+  CHECK(grid.spilled_cells() == 1);
+  grid.clear();
+  CHECK(grid.size() == 0);
+  CHECK(grid.spilled_cells() == 0);
+  CHECK(contents(grid, 1).empty());
+  CHECK(contents(grid, 3).empty());
+  for (PointHandle h = 300; h < 320; ++h) grid.insert(h % 4, h);  // 5 per cell: inline only
+  CHECK(grid.spilled_cells() == 0);
+  for (PointHandle h = 320; h < 328; ++h) grid.insert(h % 4, h);  // 7 per cell: 4 spills
+  CHECK(grid.spilled_cells() == 4);
+  CHECK(contents(grid, 2) == std::vector<PointHandle>{302, 306, 310, 314, 318, 322, 326});
+  grid.reset(GridShape{3, 1, false});
+  CHECK(grid.size() == 0);
+  CHECK(grid.spilled_cells() == 0);
+  for (CellIndex c = 0; c < 3; ++c) CHECK(contents(grid, c).empty());
+  // a crowded cell with reserve_per_cell: same contents
+  BucketGrid reserved{{64}};
+  reserved.reset(GridShape{1, 1, false});
+  std::vector<PointHandle> all;
+  for (PointHandle h = 0; h < 100; ++h) {
+    reserved.insert(0, h);
+    all.push_back(h);
+  }
+  CHECK(contents(reserved, 0) == all);
+}
+
+TEST_CASE_TEMPLATE("the standard indexes offer the prefetch hint, which changes nothing", I, BucketGrid, CappedGrid,
+                   OverwriteGrid) {
+  static_assert(streamclust::has_spatial_index_prefetch_v<I>);
+  I index = IndexUnderTest<I>::make();
+  index.reset(GridShape{3, 4, true});
+  for (PointHandle h = 0; h < 40; ++h) index.insert(h % 12, h);
+  std::vector<std::vector<PointHandle>> before;
+  for (CellIndex c = 0; c < 12; ++c) before.push_back(contents(index, c));
+  for (CellIndex c = 0; c < 12; ++c) index.prefetch(c);
+  for (CellIndex c = 0; c < 12; ++c) CHECK(contents(index, c) == before[c]);
+}

@@ -20,7 +20,7 @@ namespace streamclust {
 /// small heap of policies other than the spatial index (e.g. the adaptive
 /// resolution's calibration trace).
 struct MemoryUsage {
-  std::size_t point_ring = 0;     ///< [bytes] point records of the window ring
+  std::size_t point_ring = 0;     ///< [bytes] the window rings: samples and point records
   std::size_t edge_storage = 0;   ///< [bytes] the edge ring(s) of the point graph; spanning forest: forest + new edges
   std::size_t spatial_index = 0;  ///< [bytes] the index's heap; 0 when unknown (see spatial_index_known)
   std::size_t clusters = 0;       ///< [bytes] cluster table, free/pending lists and bridge lists

@@ -100,12 +100,19 @@ struct RetrievalStats {
 ///
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
-/// windowed point plus 12 bytes per edge (about 14 edges per point on a
-/// simulated Mid-360 at w = 5, T_M = 2), plus the index; with the spanning
-/// forest, 8 bytes per forest edge (< 1 per point) and per edge inserted
-/// since the last fold, twice (sort and merge scratch), instead of the edge
-/// ring. The ring buffers grow by doubling, the scratch and result vectors
-/// geometrically, none shrinks: the steady state allocates nothing.
+/// windowed point (a 40-byte Sample and a 40-byte record, in two rings with
+/// the same slots; both rings are powers of two, so up to twice that) plus
+/// the index, plus the point graph: the paper's strategy and the rebuild keep
+/// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
+/// endpoint leaves (about 14 live edges per point on a simulated Mid-360 at
+/// w = 5, T_M = 2, and as many dead ones); the spanning forest keeps 8 bytes
+/// per forest edge (< 1 per point) and per edge inserted since the last
+/// fold, twice (sort and merge scratch). `memory_usage()` reports the parts.
+/// The rings grow by doubling, the scratch and result vectors geometrically,
+/// none shrinks. Steady-state heap allocations: none with the capped grid
+/// and a rebuilding strategy; a bucket-grid cell allocates when it first
+/// exceeds its previous peak occupancy; the paper's strategy allocates bridge
+/// lists.
 ///
 /// Resolution: a policy that needs calibration (adaptive) makes the engine
 /// buffer the first window unclustered. When a point arrives that completes
@@ -198,7 +205,7 @@ class StreamClusterer {
     has_time_ = true;
     last_time_ = time;
     if (calibrating_) {
-      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size())) finish_calibration();
+      if (size() > 0 && window_.complete(sample(oldest_).time, time, size())) finish_calibration();
       if (calibrating_) return;  // the first window is still filling: nothing expires
     }
     const auto t0 = clock_now();
@@ -269,7 +276,7 @@ class StreamClusterer {
   /// BucketGrid); allocates nothing.
   MemoryUsage memory_usage() const {
     MemoryUsage m;
-    m.point_ring = capacity_bytes(points_);
+    m.point_ring = capacity_bytes(samples_) + capacity_bytes(points_);
     m.edge_storage = capacity_bytes(edges_) + capacity_bytes(edge_older_) + capacity_bytes(forest_) +
                      capacity_bytes(fresh_);
     if constexpr (is_spatial_index_heap_reporting_v<spatial_index_type>) {
@@ -279,7 +286,8 @@ class StreamClusterer {
     }
     m.clusters = capacity_bytes(clusters_) + capacity_bytes(free_clusters_) + capacity_bytes(pending_);
     for (const Cluster& c : clusters_) m.clusters += capacity_bytes(c.bridges);
-    m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(touched_) +
+    m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(mask_cells_) +
+                capacity_bytes(touched_) +
                 capacity_bytes(order_) + capacity_bytes(fragment_begin_) + capacity_bytes(component_of_) +
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
                 capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
@@ -294,7 +302,7 @@ class StreamClusterer {
   /// the window, oldest first. O(N).
   template <class F>
   void for_each_point(F&& f) const {
-    for (PointHandle h = oldest_; h != next_; ++h) f(point(h).sample, point(h).stream_index);
+    for (PointHandle h = oldest_; h != next_; ++h) f(sample(h), point(h).stream_index);
   }
 
   // ------------------------------------------- low-level graph access
@@ -306,7 +314,7 @@ class StreamClusterer {
   std::size_t position_of(PointHandle h) const { return static_cast<PointHandle>(h - oldest_); }
   /// True when `h` is in the window.
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
-  const Sample& sample(PointHandle h) const { return point(h).sample; }
+  const Sample& sample(PointHandle h) const { return samples_[h & point_mask_]; }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
   /// Local cluster of a live point (kNoCluster while calibrating; with
   /// union_find_rebuild or spanning_forest, also for a point inserted after
@@ -378,8 +386,9 @@ class StreamClusterer {
   const std::vector<Bridge>& bridges(ClusterId c) const { return clusters_[c].bridges; }
 
  private:
+  /// Per-point bookkeeping; the point's Sample is apart, in `samples_` (same
+  /// slot), so the neighbour search reads a dense 40-byte-stride ring.
   struct PointRecord {
-    Sample sample;
     std::uint64_t stream_index = 0;
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
@@ -461,18 +470,22 @@ class StreamClusterer {
     if (calibrating_) {
       // Buffering the first window: nothing expires before it is complete
       // (expiry implies completeness), so no eviction here.
-      if (size() > 0 && window_.complete(point(oldest_).sample.time, time, size() + 1)) {
+      if (size() > 0 && window_.complete(sample(oldest_).time, time, size() + 1)) {
         finish_calibration();  // on the complete first window; the new point is inserted below
       } else {
         append_point(pos, pr.range, point_intensity, time, stream_index);
         return RejectReason::accepted;
       }
     }
+    // The mask is listed (and its index cells prefetched) before the
+    // eviction, so those cache misses overlap the eviction's work.
+    const CellIndex cell = grid_.cell_of(pr.u, pr.v);
+    list_mask_cells(cell);
     const auto t0 = clock_now();
     evict_expired(time, size() + 1);
     add_elapsed(stats_.phase_us.eviction, t0);
     const PointHandle h = append_point(pos, pr.range, point_intensity, time, stream_index);
-    point(h).cell = grid_.cell_of(pr.u, pr.v);
+    point(h).cell = cell;
     const auto t1 = clock_now();
     link(h);
     add_elapsed(stats_.phase_us.insertion, t1);
@@ -485,7 +498,7 @@ class StreamClusterer {
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
-    r.sample = make_sample(pos, range, point_intensity, time);
+    samples_[h & point_mask_] = make_sample(pos, range, point_intensity, time);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
     r.next_member = kNoPoint;
@@ -512,36 +525,64 @@ class StreamClusterer {
   void finish_calibration() {
     std::vector<Projected> coords;
     coords.reserve(size());
-    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(point(h).sample.position));
+    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(sample(h).position));
     set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
     std::size_t i = 0;
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
       point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
       point(h).back_begin = next_edge_;
+      list_mask_cells(point(h).cell);
       link(h);
     }
   }
 
+  /// Lists the mask cells around `cell` into `mask_cells_` for the next
+  /// `link` and, when the index offers it, prefetches them. O(w^2).
+  void list_mask_cells(CellIndex cell) {
+    const auto width = static_cast<std::size_t>(2 * half_ + 1);
+    if (mask_cells_.size() < width * width) mask_cells_.resize(width * width);  // once: at most w^2 cells
+    CellIndex* const out = mask_cells_.data();
+    std::size_t n = 0;
+    detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
+      out[n++] = c;
+      if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
+    });
+    mask_count_ = n;
+  }
+
   /// Finds the neighbours of freshly appended point `h`, records its edges
-  /// and applies isolation, expansion or bridging.
+  /// and applies isolation, expansion or bridging. Requires
+  /// `list_mask_cells(point(h).cell)` since the last link.
   void link(PointHandle h) {
     ++stats_.inserted;
     neighbours_.clear();
     {
-      // Two passes: gather the mask's candidates and prefetch their samples
-      // (scattered in the ring: each is a likely cache miss), then test the
-      // linkage, so the misses overlap instead of stalling one by one.
-      const PointRecord& r = point(h);
+      // Three passes, so that the cache misses overlap instead of stalling
+      // one by one: (1) the caller listed the mask's cells and prefetched
+      // them (list_mask_cells); (2) gather their handles, prefetching each
+      // candidate's sample (scattered in the ring: each is a likely miss);
+      // (3) test the linkage.
       candidates_.clear();
-      detail::for_each_mask_cell(grid_, r.cell, half_, [&](CellIndex c) {
-        index_.for_each(c, [&](PointHandle n) {
+      for (std::size_t i = 0; i < mask_count_; ++i) {
+        index_.for_each(mask_cells_[i], [&](PointHandle n) {
           candidates_.push_back(n);
-          detail::prefetch(&point(n).sample);
+          detail::prefetch(&sample(n));
         });
-      });
-      for (const PointHandle n : candidates_) {
-        if (linkage_(r.sample, point(n).sample)) neighbours_.push_back(n);
       }
+      // Branch-free compaction: whether a candidate links is close to a
+      // coin flip, a branch on it would mispredict often.
+      const Sample& s = sample(h);
+      const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
+      const std::uint32_t slot_mask = point_mask_;
+      neighbours_.resize(candidates_.size());
+      PointHandle* const out = neighbours_.data();
+      std::size_t found = 0;
+      for (const PointHandle n : candidates_) {
+        out[found] = n;
+        found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+      }
+      neighbours_.resize(found);
+      for (const PointHandle n : neighbours_) detail::prefetch(&point(n));  // written when the edge is stored
     }
     if constexpr (keeps_forest) {
       // Edges go to the list of new edges, folded at the next retrieval.
@@ -662,7 +703,7 @@ class StreamClusterer {
   }
 
   void evict_expired(double newest_time, std::size_t count) {
-    while (size() > 0 && window_.expired(point(oldest_).sample.time, newest_time, count)) {
+    while (size() > 0 && window_.expired(sample(oldest_).time, newest_time, count)) {
       evict_oldest();
       --count;
     }
@@ -854,15 +895,16 @@ class StreamClusterer {
       const std::uint32_t k = slot_of_[component_of_[r.cluster]];
       ComponentSummary& s = result_.components[k];
       result_.points.push_back(PointLabel{r.stream_index, s.id});
-      const Eigen::Vector3f& p = r.sample.position;
+      const Sample& sa = sample(h);
+      const Eigen::Vector3f& p = sa.position;
       if (s.size == 0) {
         s.min = s.max = p;
-        s.time_begin = r.sample.time;
+        s.time_begin = sa.time;
       } else {
         s.min = s.min.cwiseMin(p);
         s.max = s.max.cwiseMax(p);
       }
-      s.time_end = r.sample.time;
+      s.time_end = sa.time;
       sums_[k] += p.template cast<double>();
       ++s.size;
     }
@@ -1271,9 +1313,14 @@ class StreamClusterer {
     std::size_t capacity = std::max<std::size_t>(points_.size() * 2, 1024);
     while (capacity < needed) capacity *= 2;
     std::vector<PointRecord> grown(capacity);
+    std::vector<Sample> grown_samples(capacity);
     const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
-    for (PointHandle h = oldest_; h != next_; ++h) grown[h & new_mask] = point(h);
+    for (PointHandle h = oldest_; h != next_; ++h) {
+      grown[h & new_mask] = point(h);
+      grown_samples[h & new_mask] = sample(h);
+    }
     points_.swap(grown);
+    samples_.swap(grown_samples);
     point_mask_ = new_mask;
   }
 
@@ -1307,8 +1354,9 @@ class StreamClusterer {
   GridShape grid_{};
   bool calibrating_ = true;
 
-  // Ring buffer of the window: live handles are [oldest_, next_).
-  std::vector<PointRecord> points_;
+  // Ring buffers of the window (same slots): live handles are [oldest_, next_).
+  std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
+  std::vector<PointRecord> points_;  // the bookkeeping
   std::uint32_t point_mask_ = 0;
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;
@@ -1336,6 +1384,8 @@ class StreamClusterer {
   // Scratch buffers, reused so the steady state does not allocate.
   std::vector<PointHandle> neighbours_;
   std::vector<PointHandle> candidates_;
+  std::vector<CellIndex> mask_cells_;  // the mask of the point being linked: [0, mask_count_)
+  std::size_t mask_count_ = 0;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;
   std::vector<std::size_t> fragment_begin_;

@@ -15,11 +15,17 @@
 /// | `i.for_each(cell, f)`      | void        | call `f(PointHandle)` for every handle stored in the cell            | O(k)       |
 /// | `i.size()`                 | std::size_t | handles currently stored                                             | O(1)       |
 ///
-/// Optional capability: `i.heap_bytes()` (const, convertible to std::size_t):
-/// the heap bytes the index holds (capacities, not sizes), reported by
-/// `StreamClusterer::memory_usage()`; detected with
-/// `is_spatial_index_heap_reporting_v<I>`. An index without it still works
-/// (its memory is then reported as unknown).
+/// Optional capabilities (detected, never required; an index without them
+/// works unchanged):
+///
+/// | expression                 | type        | meaning                                                              | complexity |
+/// |----------------------------|-------------|----------------------------------------------------------------------|------------|
+/// | `ci.prefetch(cell)`        | any         | hint that `for_each(cell, f)` follows soon (e.g. prefetch the cell's memory); must not change the contents | O(1) |
+/// | `ci.heap_bytes()`          | std::size_t | heap bytes held (capacities, not sizes), for `StreamClusterer::memory_usage()`; without it the index's memory is reported as unknown | any |
+///
+/// The engine calls `prefetch` for every cell of the mask before it visits
+/// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`);
+/// `is_spatial_index_heap_reporting_v` detects `heap_bytes`.
 ///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
@@ -52,6 +58,12 @@ struct is_spatial_index_policy<
     : std::bool_constant<
           std::is_convertible_v<decltype(std::declval<I&>().insert(CellIndex{}, PointHandle{})), PointHandle> &&
           std::is_convertible_v<decltype(std::declval<const I&>().size()), std::size_t>> {};
+
+template <class I, class = void>
+struct has_spatial_index_prefetch : std::false_type {};
+template <class I>
+struct has_spatial_index_prefetch<I, std::void_t<decltype(std::declval<const I&>().prefetch(CellIndex{}))>>
+    : std::true_type {};
 }  // namespace detail
 
 template <class I>
@@ -68,6 +80,10 @@ struct is_spatial_index_heap_reporting<I, std::void_t<decltype(std::declval<cons
 /// True when index `I` has the optional `std::size_t heap_bytes() const`.
 template <class I>
 inline constexpr bool is_spatial_index_heap_reporting_v = detail::is_spatial_index_heap_reporting<I>::value;
+
+/// True when spatial index `I` offers the optional `prefetch(CellIndex) const`.
+template <class I>
+inline constexpr bool has_spatial_index_prefetch_v = detail::has_spatial_index_prefetch<I>::value;
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class I>

@@ -5,21 +5,13 @@
 /// Iteration over the w x w neighbourhood mask of a grid cell, shared by the
 /// continuous engine and the batch clusterer so both see the same cells.
 
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
 #include <cstdint>
 
 namespace streamclust::detail {
-
-/// Hint that `p` will be read soon (no effect on correctness). O(1).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// Calls `f(CellIndex)` once for every distinct cell within `half` rows and
 /// columns of `center` (the centre included). Rows are clamped at the grid
@@ -44,10 +36,15 @@ void for_each_mask_cell(const GridShape& grid, CellIndex center, int half, F&& f
     c0 = std::max<std::int64_t>(0, c0);
     c1 = std::min<std::int64_t>(cols - 1, c1);
   }
+  // The first column wrapped once; then one compare per cell, no division.
+  const std::int64_t first = ((c0 % cols) + cols) % cols;
+  const std::int64_t width = c1 - c0 + 1;
   for (std::int64_t r = r0; r <= r1; ++r) {
-    for (std::int64_t c = c0; c <= c1; ++c) {
-      const std::int64_t wrapped = ((c % cols) + cols) % cols;
-      f(static_cast<CellIndex>(r * cols + wrapped));
+    const std::int64_t row_start = r * cols;
+    std::int64_t wrapped = first;
+    for (std::int64_t k = 0; k < width; ++k) {
+      f(static_cast<CellIndex>(row_start + wrapped));
+      if (++wrapped == cols) wrapped = 0;
     }
   }
 }

@@ -5,6 +5,7 @@
 /// BucketGrid: unbounded per-cell buckets of point handles (C-ARC's range grid).
 
 #include <streamclust/concepts/spatial_index.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
@@ -17,17 +18,30 @@ namespace streamclust {
 /// Spatial index storing every handle of a cell (the bucket-based range grid
 /// of C-ARC): nothing is ever displaced, so `insert` always returns kNoPoint.
 ///
-/// Each cell is a `std::vector<PointHandle>` plus a head offset. Removing the
-/// front handle (the common case: the engine removes points oldest first) just
-/// advances the head, O(1); once the head passes half of the vector the live
-/// tail is moved to the front (amortised O(1)). Removing any other handle
-/// falls back to a linear search and erase, O(k); removing an absent handle is
-/// a no-op. `for_each` visits a cell in insertion order.
+/// Layout (chosen for the engine's neighbour search, docs/optimization-log.md
+/// section 8): every cell is one 32-byte, 32-byte-aligned record in ONE
+/// row-major array, holding up to `kInlineCapacity` = 6 handles inline, oldest
+/// first. A cell holding more keeps its 6 oldest handles inline and the newer
+/// ones in a spill bucket (a `std::vector` plus a head offset) taken from a
+/// recycled pool. With the C-ARC grid (about 2 points per occupied cell) the
+/// search of a cell is ONE cache line, and the cells of a mask row are
+/// contiguous; only crowded cells (the Avia rosette's centre) pay a second
+/// indirection.
 ///
-/// Memory: one vector per cell (24 bytes + 4 for the head) plus 4 bytes per
-/// stored handle. Vectors keep their capacity across `remove` and `clear`, so a
-/// steady-state window allocates nothing; `Params::reserve_per_cell` pre-sizes
-/// every bucket at `reset`.
+/// Removing the oldest handle (the engine removes points oldest first) shifts
+/// at most 5 inline handles and, for a spilled cell, moves the spill's oldest
+/// handle inline (the spill advances its head; once the head passes half of
+/// the spill the live part is moved to the front: amortised O(1)). Removing
+/// any other handle searches the cell, O(k); removing an absent handle is a
+/// no-op. `for_each` visits a cell in insertion order.
+///
+/// Memory: 32 bytes per cell, plus per spill bucket in use or pooled
+/// 32 bytes and 4 bytes per handle of capacity. Spill buckets keep their
+/// capacity when released (`remove`, `clear`, `reset`), and a full spill
+/// with removed handles at its front is compacted instead of grown, so a
+/// bucket's capacity only grows past its largest live occupancy: once every
+/// cell has seen its peak, the window allocates nothing. Heap blocks: `cells_`, `spills_` (each with its
+/// `items` vector), `free_spills_`.
 ///
 /// Thread safety: not thread-safe (one writer, no concurrent readers).
 ///
@@ -42,45 +56,49 @@ namespace streamclust {
 /// \endcode
 class BucketGrid {
  public:
+  /// Handles a cell holds without a spill bucket.
+  static constexpr std::uint32_t kInlineCapacity = 6;
+
   struct Params {
-    std::uint32_t reserve_per_cell = 0;  ///< [handles] capacity reserved in every cell at reset
+    /// [handles] expected handles of a crowded cell: a spill bucket reserves
+    /// room for `reserve_per_cell - kInlineCapacity` handles when it is first
+    /// created (0 or <= kInlineCapacity: grow on demand).
+    std::uint32_t reserve_per_cell = 0;
   };
 
   explicit BucketGrid(const Params& params) : params_(params) {}
 
-  /// Allocate `shape.cell_count()` empty cells (keeps existing bucket
-  /// capacity where cells are reused). O(cells).
+  /// Allocate `shape.cell_count()` empty cells; spill buckets return to the
+  /// pool with their capacity. O(cells + spill buckets).
   void reset(const GridShape& shape) {
-    cells_.resize(shape.cell_count());
-    for (Cell& c : cells_) {
-      c.items.clear();
-      c.head = 0;
-      if (params_.reserve_per_cell > 0) c.items.reserve(params_.reserve_per_cell);
-    }
+    cells_.assign(shape.cell_count(), Cell{});
+    release_all_spills();
     size_ = 0;
   }
 
-  /// Empty every cell, keeping the allocations. O(cells).
+  /// Empty every cell, keeping the allocations. O(cells + spill buckets).
   void clear() {
-    for (Cell& c : cells_) {
-      c.items.clear();
-      c.head = 0;
-    }
+    std::fill(cells_.begin(), cells_.end(), Cell{});
+    release_all_spills();
     size_ = 0;
   }
 
-  /// Append `h` to the cell; never displaces, returns kNoPoint. O(1) amortised.
-  /// A full bucket with removed handles at its front is compacted instead of
-  /// grown, so a bucket's capacity only grows past its largest live
-  /// occupancy (steady state: no allocation).
+  /// Append `h` to the cell; never displaces, returns kNoPoint. O(1)
+  /// amortised (a spill bucket may grow).
   PointHandle insert(CellIndex cell, PointHandle h) {
     Cell& c = cells_[cell];
-    if (c.head > 0 && c.items.size() == c.items.capacity()) {
-      c.items.erase(c.items.begin(), c.items.begin() + c.head);
-      c.head = 0;
-    }
-    c.items.push_back(h);
     ++size_;
+    if (c.count < kInlineCapacity) {  // then the cell has no spill (invariant)
+      c.items[c.count++] = h;
+      return kNoPoint;
+    }
+    if (c.spill == kNoSpill) c.spill = acquire_spill();
+    Spill& s = spills_[c.spill];
+    if (s.head > 0 && s.items.size() == s.items.capacity()) {  // compact the removed front instead of growing
+      s.items.erase(s.items.begin(), s.items.begin() + s.head);
+      s.head = 0;
+    }
+    s.items.push_back(h);
     return kNoPoint;
   }
 
@@ -88,24 +106,29 @@ class BucketGrid {
   /// O(k) otherwise; no-op when absent.
   void remove(CellIndex cell, PointHandle h) {
     Cell& c = cells_[cell];
-    const std::size_t n = c.items.size();
-    if (c.head >= n) return;
-    if (c.items[c.head] == h) {
-      ++c.head;
+    for (std::uint32_t i = 0; i < c.count; ++i) {
+      if (c.items[i] != h) continue;
+      for (std::uint32_t j = i + 1; j < c.count; ++j) c.items[j - 1] = c.items[j];
+      --c.count;
       --size_;
-      if (c.head == n) {
-        c.items.clear();
-        c.head = 0;
-      } else if (std::size_t{c.head} * 2 > n) {
-        c.items.erase(c.items.begin(), c.items.begin() + c.head);
-        c.head = 0;
+      if (c.spill != kNoSpill) {  // keep the invariant: the oldest spilled handle moves inline
+        Spill& s = spills_[c.spill];
+        c.items[c.count++] = s.items[s.head];
+        pop_front(c, s);
       }
       return;
     }
-    const auto first = c.items.begin() + c.head;
-    const auto it = std::find(first + 1, c.items.end(), h);
-    if (it == c.items.end()) return;
-    c.items.erase(it);
+    if (c.spill == kNoSpill) return;
+    Spill& s = spills_[c.spill];
+    if (s.items[s.head] == h) {
+      --size_;
+      pop_front(c, s);
+      return;
+    }
+    const auto first = s.items.begin() + static_cast<std::ptrdiff_t>(s.head);
+    const auto it = std::find(first + 1, s.items.end(), h);
+    if (it == s.items.end()) return;
+    s.items.erase(it);  // never empties the spill: its head stays
     --size_;
   }
 
@@ -113,33 +136,97 @@ class BucketGrid {
   template <class F>
   void for_each(CellIndex cell, F&& f) const {
     const Cell& c = cells_[cell];
-    for (std::size_t i = c.head, n = c.items.size(); i < n; ++i) f(c.items[i]);
+    for (std::uint32_t i = 0; i < c.count; ++i) f(c.items[i]);
+    if (c.spill == kNoSpill) return;
+    const Spill& s = spills_[c.spill];
+    for (std::size_t i = s.head, n = s.items.size(); i < n; ++i) f(s.items[i]);
   }
+
+  /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
+  /// soon (prefetches the cell's record; no effect on the contents). O(1).
+  void prefetch(CellIndex cell) const { detail::prefetch(cells_.data() + cell); }
 
   /// Handles currently stored. O(1).
   std::size_t size() const { return size_; }
 
   /// Handles stored in one cell. O(1).
-  std::size_t cell_size(CellIndex cell) const { return cells_[cell].items.size() - cells_[cell].head; }
+  std::size_t cell_size(CellIndex cell) const {
+    const Cell& c = cells_[cell];
+    if (c.spill == kNoSpill) return c.count;
+    const Spill& s = spills_[c.spill];
+    return c.count + (s.items.size() - s.head);
+  }
+
+  /// Spill buckets in use (cells holding more than kInlineCapacity handles). O(1).
+  std::size_t spilled_cells() const { return spills_.size() - free_spills_.size(); }
 
   const Params& params() const { return params_; }
 
-  /// Heap bytes held [bytes]: the cell table plus every bucket's capacity
-  /// (dead head slots and slack included). O(cells).
+  /// Heap bytes held [bytes]: the cell table, the spill pool and every spill
+  /// bucket's capacity (dead head slots and slack included). O(spill buckets).
   std::size_t heap_bytes() const {
-    std::size_t bytes = cells_.capacity() * sizeof(Cell);
-    for (const Cell& c : cells_) bytes += c.items.capacity() * sizeof(PointHandle);
+    std::size_t bytes = cells_.capacity() * sizeof(Cell) + spills_.capacity() * sizeof(Spill) +
+                        free_spills_.capacity() * sizeof(std::uint32_t);
+    for (const Spill& s : spills_) bytes += s.items.capacity() * sizeof(PointHandle);
     return bytes;
   }
 
  private:
-  struct Cell {
+  static constexpr std::uint32_t kNoSpill = 0xFFFFFFFFu;
+
+  /// One cache-line half: count, the oldest handles, the spill bucket.
+  /// Invariant: `spill != kNoSpill` implies `count == kInlineCapacity`.
+  struct alignas(32) Cell {
+    std::uint32_t count = 0;
+    PointHandle items[kInlineCapacity] = {};
+    std::uint32_t spill = kNoSpill;
+  };
+  static_assert(sizeof(Cell) == 32, "BucketGrid::Cell must stay 32 bytes");
+
+  struct Spill {
     std::vector<PointHandle> items;
     std::uint32_t head = 0;  ///< index of the oldest live handle in `items`
   };
 
+  std::uint32_t acquire_spill() {
+    if (!free_spills_.empty()) {
+      const std::uint32_t s = free_spills_.back();
+      free_spills_.pop_back();
+      return s;
+    }
+    spills_.emplace_back();
+    if (params_.reserve_per_cell > kInlineCapacity) spills_.back().items.reserve(params_.reserve_per_cell - kInlineCapacity);
+    return static_cast<std::uint32_t>(spills_.size() - 1);
+  }
+
+  /// Drops the spill's oldest handle; releases the spill when it empties.
+  void pop_front(Cell& c, Spill& s) {
+    ++s.head;
+    const std::size_t n = s.items.size();
+    if (s.head == n) {
+      s.items.clear();
+      s.head = 0;
+      free_spills_.push_back(c.spill);
+      c.spill = kNoSpill;
+    } else if (std::size_t{s.head} * 2 > n) {
+      s.items.erase(s.items.begin(), s.items.begin() + static_cast<std::ptrdiff_t>(s.head));
+      s.head = 0;
+    }
+  }
+
+  void release_all_spills() {
+    free_spills_.clear();
+    for (std::size_t i = spills_.size(); i-- > 0;) {
+      spills_[i].items.clear();
+      spills_[i].head = 0;
+      free_spills_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+
   Params params_;
   std::vector<Cell> cells_;
+  std::vector<Spill> spills_;
+  std::vector<std::uint32_t> free_spills_;
   std::size_t size_ = 0;
 };
 

@@ -5,6 +5,7 @@
 /// CappedGrid: at most K handles per cell in one contiguous array.
 
 #include <streamclust/concepts/spatial_index.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
@@ -118,6 +119,13 @@ class CappedGrid {
     const unsigned head = head_[cell];
     const unsigned count = count_[cell];
     for (unsigned i = 0; i < count; ++i) f(ring[wrap(head + i)]);
+  }
+
+  /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
+  /// soon (prefetches the cell's slots and its head/count bytes). O(1).
+  void prefetch(CellIndex cell) const {
+    detail::prefetch(slots_.data() + std::size_t{cell} * k_);
+    detail::prefetch(count_.data() + cell);
   }
 
   /// Handles currently stored. O(1).

@@ -5,6 +5,7 @@
 /// OverwriteGrid: one handle per cell, the newest wins (a range image).
 
 #include <streamclust/concepts/spatial_index.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
@@ -71,6 +72,10 @@ class OverwriteGrid {
     const PointHandle h = occupant_[cell];
     if (h != kNoPoint) f(h);
   }
+
+  /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
+  /// soon (prefetches the cell). O(1).
+  void prefetch(CellIndex cell) const { detail::prefetch(occupant_.data() + cell); }
 
   /// Occupied cells. O(1).
   std::size_t size() const { return size_; }
