@@ -42,7 +42,7 @@ def merge_md(paths):
         if line.startswith("## "):
             current = line
         out.append(line)
-        last_row = line.startswith("| ") and (i + 1 == len(lines) or not lines[i + 1].startswith("| "))
+        last_row = line.startswith("|") and (i + 1 == len(lines) or not lines[i + 1].startswith("|"))
         if current is not None and last_row:
             out.extend(extra.pop(current, []))
     return "\n".join(out) + "\n"
