@@ -530,7 +530,6 @@ class StreamClusterer {
     std::size_t i = 0;
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
       point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
-      point(h).back_begin = next_edge_;
       list_mask_cells(point(h).cell);
       link(h);
     }
@@ -582,7 +581,9 @@ class StreamClusterer {
         found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
       }
       neighbours_.resize(found);
-      for (const PointHandle n : neighbours_) detail::prefetch(&point(n));  // written when the edge is stored
+      if constexpr (stores_point_edges) {
+        for (const PointHandle n : neighbours_) detail::prefetch(&point(n));  // written when the edge is stored
+      }
     }
     if constexpr (keeps_forest) {
       // Edges go to the list of new edges, folded at the next retrieval.
