@@ -32,7 +32,8 @@
 # processes share the memory bus and L3: set BENCH_LATENCY_JOBS=1 for a
 # strictly sequential record.
 #
-# Expected duration of the latency part with the defaults (72 scenarios,
+# Expected duration of the latency part with the defaults (72 scenarios then,
+# 78 now; measured on 2026-11-22: 21 min 27 s with 2 jobs on a quiet machine),
 # 1000 cycles), on the 2-core reference VM, estimated from a 50-cycle run of
 # every scenario with bench/latency/estimate_duration.py (engine of main
 # 0596598, see docs/benchmarks.md "Run time of the full record"):
