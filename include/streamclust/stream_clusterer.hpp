@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -328,27 +329,41 @@ class StreamClusterer {
   template <class F>
   void for_each_neighbor(PointHandle h, F&& f) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    const PointRecord& r = point(h);
-    for (std::uint32_t i = 0; i < r.back_count; ++i) {
-      const PointHandle older = edge_older_at(r.back_begin + i);
-      if (is_live(older)) f(older);
+    if constexpr (stores_point_edges) {  // only the assertion's error otherwise
+      const PointRecord& r = point(h);
+      for (std::uint32_t i = 0; i < r.back_count; ++i) {
+        const PointHandle older = edge_older_at(r.back_begin + i);
+        if (is_live(older)) f(older);
+      }
+      for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
     }
-    for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
   }
   /// Back edges of `h` (to older points, possibly dead) and the head of its
   /// forward list (to newer points, all live): the raw adjacency. Not
   /// available under spanning_forest.
   EdgeHandle back_edges_begin(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).back_begin;
+    if constexpr (stores_point_edges) {
+      return point(h).back_begin;
+    } else {
+      return EdgeHandle{};
+    }
   }
   std::uint32_t back_edges_count(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).back_count;
+    if constexpr (stores_point_edges) {
+      return point(h).back_count;
+    } else {
+      return std::uint32_t{};
+    }
   }
   EdgeHandle forward_edges_head(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).fwd_head;
+    if constexpr (stores_point_edges) {
+      return point(h).fwd_head;
+    } else {
+      return EdgeHandle{};
+    }
   }
   PointHandle edge_older(EdgeHandle e) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
@@ -386,9 +401,10 @@ class StreamClusterer {
   const std::vector<Bridge>& bridges(ClusterId c) const { return clusters_[c].bridges; }
 
  private:
-  /// Per-point bookkeeping; the point's Sample is apart, in `samples_` (same
-  /// slot), so the neighbour search reads a dense 40-byte-stride ring.
-  struct PointRecord {
+  /// Per-point bookkeeping of the strategies that store point edges; the
+  /// point's Sample is apart, in `samples_` (same slot), so the neighbour
+  /// search reads a dense 40-byte-stride ring. 40 bytes.
+  struct LinkedPointRecord {
     std::uint64_t stream_index = 0;
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
@@ -398,6 +414,14 @@ class StreamClusterer {
     EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
     std::uint32_t mark = 0;         ///< BFS epoch
   };
+  /// spanning_forest: no point edges, no member lists, no BFS. 16 bytes.
+  struct ForestPointRecord {
+    std::uint64_t stream_index = 0;
+    CellIndex cell = 0;
+    ClusterId cluster = kNoCluster;
+  };
+  static_assert(sizeof(ForestPointRecord) == 16, "the forest's point record is meant to stay 16 bytes");
+  using PointRecord = std::conditional_t<stores_point_edges, LinkedPointRecord, ForestPointRecord>;
   struct EdgeRecord {  // the older endpoint is in edge_older_
     PointHandle newer = kNoPoint;
     EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
@@ -501,11 +525,13 @@ class StreamClusterer {
     samples_[h & point_mask_] = make_sample(pos, range, point_intensity, time);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
-    r.next_member = kNoPoint;
-    r.back_begin = next_edge_;
-    r.back_count = 0;
-    r.fwd_head = kNoEdge;
-    r.mark = 0;
+    if constexpr (stores_point_edges) {
+      r.next_member = kNoPoint;
+      r.back_begin = next_edge_;
+      r.back_count = 0;
+      r.fwd_head = kNoEdge;
+      r.mark = 0;
+    }
     return h;
   }
 
@@ -598,8 +624,15 @@ class StreamClusterer {
         fold_forest();
         ++stats_.forest_folds;
       }
-      return;
+    } else {
+      link_stored_edges(h);
     }
+  }
+
+  /// link()'s second half for the strategies that store point edges: the
+  /// edges go to the edge ring, then (lazy_bfs) isolation, expansion or
+  /// bridging.
+  void link_stored_edges(PointHandle h) {
     reserve_edges(neighbours_.size());
     PointRecord& r = point(h);
     r.back_begin = next_edge_;
