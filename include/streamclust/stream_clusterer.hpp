@@ -325,8 +325,10 @@ class StreamClusterer {
   const Sample& sample(PointHandle h) const { return samples_[h & point_mask_]; }
   /// The linkage payload of a live point (only with a payload linkage,
   /// `uses_payload`): `linkage_type::make_payload(sample(h))`.
+  /// (A template so that explicit instantiations of the engine skip it.)
+  template <bool Enabled = uses_payload>
   const payload_type& payload(PointHandle h) const {
-    static_assert(uses_payload, "StreamClusterer::payload: the linkage has no compact payload");
+    static_assert(Enabled, "StreamClusterer::payload: the linkage has no compact payload");
     return payloads_[h & point_mask_];
   }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
