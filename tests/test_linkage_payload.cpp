@@ -81,7 +81,8 @@ sc::ClustererParams<Config> params_for(std::uint64_t seed) {
   sc::ClustererParams<Config> p;
   p.mask_size = 3 + 2 * static_cast<int>(seed % 3);
   p.resolution = {12, 48};
-  p.window.duration = 0.05 + 0.1 * static_cast<double>(seed % 4);
+  const double durations[] = {0.05, 0.2, 0.6, 1.2};  // the longer ones grow the rings with live points
+  p.window.duration = durations[seed % 4];
   p.spatial_index.capacity = 2 + static_cast<std::uint32_t>(seed % 3);
   p.linkage.theta_deg = 10.0f + 5.0f * static_cast<float>(seed % 5);
   p.linkage.min_ray_angle_deg = seed % 2 ? 0.2f : 0.0f;
@@ -129,9 +130,10 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
   using Plain = Cfg<SampleOnlyAngular, Conn>;
   std::size_t compared = 0;
   std::size_t multi = 0;
+  std::size_t grown = 0;
   for (std::uint64_t seed = 0; seed < 24; ++seed) {
     const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
-    const auto stream = st::make_stream(kind, 400, seed, 2000.0);
+    const auto stream = st::make_stream(kind, seed % 4 < 2 ? 400 : 2600, seed, 2000.0);
     sc::StreamClusterer<Fast> fast(params_for<Fast>(seed));
     sc::StreamClusterer<Plain> plain(params_for<Plain>(seed));
     sc::BatchClusterer<Plain> batch(params_for<Plain>(seed));
@@ -163,10 +165,12 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
       }
       ++compared;
       multi += fast.last_result().components.size() > 1 ? 1u : 0u;
+      grown += fast.size() > 1024 ? 1u : 0u;
     }
   }
   CHECK(compared > 100);
   CHECK(multi > compared / 4);  // not a trivial partition
+  CHECK(grown > 0);             // rings grew (1024 -> 2048 slots or more) with live points
 }
 
 TEST_CASE("memory_usage counts the payload ring: 16 bytes per ring slot, none without a payload") {
