@@ -6,6 +6,7 @@
 
 #include <streamclust/clustering.hpp>
 #include <streamclust/config.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/detail/mask.hpp>
 #include <streamclust/memory_usage.hpp>
 #include <streamclust/point_traits.hpp>
@@ -465,6 +466,9 @@ class StreamClusterer {
     ForestEdge() noexcept {}  // NOLINT: uninitialised on purpose (radix scratch resized without a fill)
     ForestEdge(PointHandle o, PointHandle n) noexcept : older(o), newer(n) {}
   };
+  /// Points ahead whose per-component records the retrieval's passes
+  /// prefetch (rebuilding strategies) [points].
+  static constexpr std::uint32_t kResultPrefetchDistance = 16;
   /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
   static constexpr PointHandle kEvictPrefetchDistance = 8;
   /// Digit width of the radix sort of new edges [bits]: 2^11 counters (8 KB, in L1).
@@ -929,33 +933,68 @@ class StreamClusterer {
     const auto t1 = clock_now();
     const auto previous = static_cast<std::uint32_t>(result_.components.size());
     begin_result(components);
+    order_components(components, previous);
+    std::size_t labelled = 0;
     for (PointHandle h = oldest_; h != next_; ++h) {
       const PointRecord& r = point(h);
       if (r.cluster == kNoCluster) continue;  // only while calibrating
-      add_to_result(component_of_[r.cluster], h, r.stream_index);
+      add_to_result(labelled++, slot_of_[component_of_[r.cluster]], h, r.stream_index);
     }
-    finish_result(components, previous);
+    result_.points.resize(labelled);
+    finish_summaries(components);
     add_elapsed(stats_.phase_us.labelling, t1);
   }
 
-  /// Empties the result for `components` components in component order.
-  /// O(components) (amortised: the vectors only grow).
+  /// Empties the result for `components` components and room for every
+  /// window point's label. O(components) (the vectors only grow, and
+  /// `points` keeps its old elements: no fill).
   void begin_result(std::uint32_t components) {
     result_.time = last_time_;
     ++result_.cycle;
-    result_.points.clear();
     reserve_geometric(result_.points, size());
+    result_.points.resize(size());
     reserve_geometric(result_.components, components);
     result_.components.assign(components, ComponentSummary{});
     reserve_geometric(sums_, components);
     sums_.assign(components, Eigen::Vector3d::Zero());
   }
 
-  /// Appends point `h` of component `k` (in window order): its label holds
-  /// `k` until `finish_result`, the summary of `k` grows. O(1).
-  void add_to_result(std::uint32_t k, PointHandle h, std::uint64_t stream_index) {
-    result_.points.push_back(PointLabel{stream_index, k});
-    ComponentSummary& s = result_.components[k];
+  /// The result order, without a comparison sort. Requires per component
+  /// `k`, when it kept an old id, that id in `component_ids_[k]` and the
+  /// id's place in the previous result (`previous` components) in
+  /// `won_slot_[k]` (kNoSlot otherwise). The kept ids come first, in their
+  /// previous order (the previous result was sorted by id), then the fresh
+  /// ids, handed out here in component order: they exceed every id handed
+  /// out before. Leaves `slot_of_[k]` = the place of component `k` and the
+  /// ids in `result_.components`. O(components + previous).
+  void order_components(std::uint32_t components, std::uint32_t previous) {
+    reserve_geometric(by_slot_, std::max(components, previous));
+    by_slot_.assign(previous, kNoSlot);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
+    }
+    reserve_geometric(slot_of_, components);
+    slot_of_.resize(components);
+    std::uint32_t placed = 0;
+    for (std::uint32_t s = 0; s < previous; ++s) {
+      const std::uint32_t k = by_slot_[s];
+      if (k == kNoSlot) continue;
+      slot_of_[k] = placed;
+      result_.components[placed++].id = component_ids_[k];
+    }
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) continue;
+      component_ids_[k] = next_component_id_++;
+      slot_of_[k] = placed;
+      result_.components[placed++].id = component_ids_[k];
+    }
+  }
+
+  /// Writes the label of point `h` (window order `i`) and adds it to the
+  /// summary at place `slot`. O(1).
+  void add_to_result(std::size_t i, std::uint32_t slot, PointHandle h, std::uint64_t stream_index) {
+    ComponentSummary& s = result_.components[slot];
+    result_.points[i] = PointLabel{stream_index, s.id};
     const Sample& sa = sample(h);
     const Eigen::Vector3f& p = sa.position;
     if (s.size == 0) {
@@ -966,64 +1005,16 @@ class StreamClusterer {
       s.max = s.max.cwiseMax(p);
     }
     s.time_end = sa.time;
-    sums_[k] += p.template cast<double>();
+    sums_[slot] += p.template cast<double>();
     ++s.size;
   }
 
-  /// Completes the result: fresh ids, the id order, centroids, labels.
-  /// Requires per component `k` its summary at `result_.components[k]` and,
-  /// when it kept an old id, that id in `component_ids_[k]` and the id's
-  /// place in the previous result (`previous` components) in `won_slot_[k]`
-  /// (kNoSlot otherwise). The result lists the components by id without a
-  /// comparison sort: the kept ids come first, in their previous order (the
-  /// previous result was sorted by id), then the fresh ids, which are
-  /// handed out here in component order and exceed every id handed out
-  /// before. Leaves `slot_of_[k]` = the place of component `k`.
-  /// O(N + components + previous).
-  void finish_result(std::uint32_t components, std::uint32_t previous) {
-    // by_slot_: the result order, as component numbers.
-    reserve_geometric(by_slot_, std::max(components, previous));
-    by_slot_.assign(previous, kNoSlot);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
-    }
-    std::uint32_t placed = 0;
-    for (std::uint32_t s = 0; s < previous; ++s) {
-      if (by_slot_[s] != kNoSlot) by_slot_[placed++] = by_slot_[s];
-    }
-    by_slot_.resize(components);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (won_slot_[k] != kNoSlot) continue;
-      component_ids_[k] = next_component_id_++;
-      by_slot_[placed++] = k;
-    }
-    reserve_geometric(slot_of_, components);
-    slot_of_.resize(components);
-    for (std::uint32_t r = 0; r < components; ++r) slot_of_[by_slot_[r]] = r;
-    for (std::uint32_t k = 0; k < components; ++k) {
-      ComponentSummary& s = result_.components[k];
-      s.id = component_ids_[k];
-      if (s.size > 0) s.centroid = (sums_[k] / static_cast<double>(s.size)).template cast<float>();
-    }
-    // Summaries to their places: the permutation by_slot_ applied in place,
-    // cycle by cycle (a visited place gets by_slot_[r] = r).
-    ComponentSummary* const summaries = result_.components.data();
+  /// The centroids, from the sums. O(components).
+  void finish_summaries(std::uint32_t components) {
     for (std::uint32_t r = 0; r < components; ++r) {
-      if (by_slot_[r] == r) continue;
-      const ComponentSummary first = summaries[r];
-      std::uint32_t j = r;
-      for (;;) {
-        const std::uint32_t from = by_slot_[j];
-        by_slot_[j] = j;
-        if (from == r) {
-          summaries[j] = first;
-          break;
-        }
-        summaries[j] = summaries[from];
-        j = from;
-      }
+      ComponentSummary& s = result_.components[r];
+      if (s.size > 0) s.centroid = (sums_[r] / static_cast<double>(s.size)).template cast<float>();
     }
-    for (PointLabel& p : result_.points) p.label = component_ids_[p.label];
   }
 
   // Phase timing, compiled away unless the config is `timed`.
@@ -1220,12 +1211,12 @@ class StreamClusterer {
     return components;
   }
 
-  /// From the component of every window position (`parent_`): the result,
-  /// the stable ids by per-point votes, and the components as the new local
-  /// clusters. One pass over the window does the votes, the labels (as
-  /// component numbers) and the summaries; the rest is per component (the
-  /// ids, the result order by `finish_result`, no sort) or per vote.
-  /// O(N + components + votes).
+  /// From the component of every window position (`parent_`): the stable
+  /// ids by per-point votes, the components as the new local clusters, the
+  /// result. Two passes over the window: the votes (and the new local
+  /// clusters), then the labels and summaries straight to their place in id
+  /// order; between them, per component (the ids and their order, no sort)
+  /// and per vote. O(N + components + votes).
   void adopt_components(std::uint32_t n, std::uint32_t components) {
     const auto t1 = clock_now();
     // The old clusters are the previous retrieval's components: their ids
@@ -1235,21 +1226,25 @@ class StreamClusterer {
     reserve_geometric(claim_head_, old_clusters);
     claim_head_.assign(old_clusters, kNoSlot);
     votes_.clear();
-    begin_result(components);
+    reserve_geometric(cluster_size_, components);
+    cluster_size_.assign(components, 0);
     for (std::uint32_t i = 0; i < n; ++i) {
-      const PointHandle h = oldest_ + i;
-      PointRecord& r = point(h);
+      if (i + kResultPrefetchDistance < n) {
+        const ClusterId ahead = point(oldest_ + i + kResultPrefetchDistance).cluster;
+        if (ahead < old_clusters) detail::prefetch(&claim_head_[ahead]);
+      }
+      PointRecord& r = point(oldest_ + i);
       const ClusterId old = r.cluster;
       const std::uint32_t k = parent_[i];
       r.cluster = k;
-      add_to_result(k, h, r.stream_index);
+      ++cluster_size_[k];
       if (old < old_clusters) vote(old, k);  // else inserted since the last retrieval
     }
     // Stable ids: resolve_claims' rule in linear time. Each (component, old
     // cluster) pair is one vote and the old clusters carry distinct ids, so:
     // each old id goes to its heaviest vote (ties: the lower component), and
     // each component keeps the heaviest id it won (ties: the older id); the
-    // others get fresh ids (finish_result). O(votes + components).
+    // others get fresh ids (order_components). O(votes + components).
     reserve_geometric(component_ids_, components);
     component_ids_.assign(components, kNoComponent);
     reserve_geometric(won_weight_, components);
@@ -1274,13 +1269,23 @@ class StreamClusterer {
         won_slot_[k] = slot_of_[c];
       }
     }
-    // The components become the local clusters.
-    reserve_geometric(cluster_size_, components);
-    cluster_size_.resize(components);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      cluster_size_[k] = static_cast<std::uint32_t>(result_.components[k].size);
+    const auto previous = static_cast<std::uint32_t>(result_.components.size());
+    begin_result(components);
+    order_components(components, previous);
+    ComponentSummary* const summaries = result_.components.data();
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (i + kResultPrefetchDistance < n) {
+        // The summary's lines (72 bytes may straddle two) and sum: scattered
+        // over the components, likely misses.
+        const std::uint32_t ahead = slot_of_[parent_[i + kResultPrefetchDistance]];
+        detail::prefetch(&summaries[ahead]);
+        detail::prefetch(&summaries[ahead].time_end);
+        detail::prefetch(&sums_[ahead]);
+      }
+      const PointHandle h = oldest_ + i;
+      add_to_result(i, slot_of_[parent_[i]], h, point(h).stream_index);
     }
-    finish_result(components, old_clusters);
+    finish_summaries(components);
     add_elapsed(stats_.phase_us.labelling, t1);
   }
 
