@@ -294,7 +294,7 @@ class StreamClusterer {
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
                 capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
                 capacity_bytes(sums_) + capacity_bytes(won_weight_) + capacity_bytes(won_slot_) +
-                capacity_bytes(previous_ids_) + capacity_bytes(by_slot_) + capacity_bytes(slot_of_) + capacity_bytes(sorted_) + capacity_bytes(merged_) +
+                capacity_bytes(by_slot_) + capacity_bytes(slot_of_) + capacity_bytes(sorted_) + capacity_bytes(merged_) +
                 capacity_bytes(radix_counts_);
     m.result = capacity_bytes(result_.points) + capacity_bytes(result_.components);
     return m;
@@ -442,7 +442,8 @@ class StreamClusterer {
   };
   /// A local cluster of the paper's strategy (lazy_bfs). The rebuilding
   /// strategies keep none: their local clusters are the last retrieval's
-  /// components, described by `cluster_size_`, `component_ids_` and `slot_of_`.
+  /// components: their sizes in `cluster_size_`, their places in the last
+  /// result (which holds their ids) in `slot_of_`.
   struct Cluster {
     std::uint32_t size = 0;
     PointHandle head = kNoPoint;  ///< oldest member
@@ -920,19 +921,18 @@ class StreamClusterer {
     for (ClusterId c = 0; c < slots; ++c) {
       Cluster& cl = clusters_[c];
       if (!cl.alive) continue;
-      const std::uint32_t k = component_of_[c];
-      cl.stable_id = component_ids_[k];
-      cl.result_slot = slot_of_[k];
+      const std::uint32_t r = slot_of_[component_of_[c]];
+      cl.stable_id = result_.components[r].id;
+      cl.result_slot = r;
     }
   }
 
-  /// Labels and summaries of every window point from `component_of_`,
-  /// `component_ids_` (kNoComponent: fresh) and `won_slot_` (lazy_bfs).
-  /// O(N + components).
+  /// Labels and summaries of every window point from `component_of_` and
+  /// `won_slot_` (lazy_bfs). O(N + components).
   void write_result(std::uint32_t components) {
     const auto t1 = clock_now();
     const auto previous = static_cast<std::uint32_t>(result_.components.size());
-    begin_result(components);
+    begin_result(components, previous);
     order_components(components, previous);
     std::size_t labelled = 0;
     for (PointHandle h = oldest_; h != next_; ++h) {
@@ -945,49 +945,58 @@ class StreamClusterer {
     add_elapsed(stats_.phase_us.labelling, t1);
   }
 
-  /// Empties the result for `components` components and room for every
-  /// window point's label. O(components) (the vectors only grow, and
-  /// `points` keeps its old elements: no fill).
-  void begin_result(std::uint32_t components) {
+  /// Room for every window point's label and `components` summaries; the
+  /// previous result's summaries stay (order_components reads their ids and
+  /// then clears them). O(1) amortised: the vectors only grow, and no
+  /// element is filled here.
+  void begin_result(std::uint32_t components, std::uint32_t previous) {
     result_.time = last_time_;
     ++result_.cycle;
     reserve_geometric(result_.points, size());
     result_.points.resize(size());
-    reserve_geometric(result_.components, components);
-    result_.components.assign(components, ComponentSummary{});
+    reserve_geometric(result_.components, std::max(components, previous));
+    result_.components.resize(std::max(components, previous));
     reserve_geometric(sums_, components);
-    sums_.assign(components, Eigen::Vector3d::Zero());
+    sums_.resize(components);
   }
 
-  /// The result order, without a comparison sort. Requires per component
-  /// `k`, when it kept an old id, that id in `component_ids_[k]` and the
-  /// id's place in the previous result (`previous` components) in
-  /// `won_slot_[k]` (kNoSlot otherwise). The kept ids come first, in their
-  /// previous order (the previous result was sorted by id), then the fresh
-  /// ids, handed out here in component order: they exceed every id handed
-  /// out before. Leaves `slot_of_[k]` = the place of component `k` and the
-  /// ids in `result_.components`. O(components + previous).
+  /// The result order, without a comparison sort, and empty summaries
+  /// carrying the ids. Requires `begin_result` and per component `k` the
+  /// place in the previous result (`previous` components, still in
+  /// `result_.components`) of the old id it kept in `won_slot_[k]`
+  /// (kNoSlot: none). The kept ids come first, in their previous order (the
+  /// previous result was sorted by id), then the fresh ids, handed out here
+  /// in component order: they exceed every id handed out before. Leaves
+  /// `slot_of_[k]` = the place of component `k`. O(components + previous).
   void order_components(std::uint32_t components, std::uint32_t previous) {
-    reserve_geometric(by_slot_, std::max(components, previous));
+    reserve_geometric(by_slot_, previous);
     by_slot_.assign(previous, kNoSlot);
     for (std::uint32_t k = 0; k < components; ++k) {
       if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
     }
     reserve_geometric(slot_of_, components);
     slot_of_.resize(components);
+    ComponentSummary* const summaries = result_.components.data();
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
     std::uint32_t placed = 0;
+    // Compaction in place: place `placed` <= s, whose old id was read already.
     for (std::uint32_t s = 0; s < previous; ++s) {
       const std::uint32_t k = by_slot_[s];
       if (k == kNoSlot) continue;
+      const ComponentId id = summaries[s].id;
       slot_of_[k] = placed;
-      result_.components[placed++].id = component_ids_[k];
+      summaries[placed] = ComponentSummary{};
+      summaries[placed].id = id;
+      sums_[placed++] = zero;
     }
     for (std::uint32_t k = 0; k < components; ++k) {
       if (won_slot_[k] != kNoSlot) continue;
-      component_ids_[k] = next_component_id_++;
       slot_of_[k] = placed;
-      result_.components[placed++].id = component_ids_[k];
+      summaries[placed] = ComponentSummary{};
+      summaries[placed].id = next_component_id_++;
+      sums_[placed++] = zero;
     }
+    result_.components.resize(components);
   }
 
   /// Writes the label of point `h` (window order `i`) and adds it to the
@@ -1054,7 +1063,7 @@ class StreamClusterer {
 
   /// lazy_bfs: the old ids claimed by the clusters, weighted by their
   /// current size, resolved by `resolve_claims`; fills `component_ids_`
-  /// (kNoComponent: fresh, handed out by `finish_result`) and `won_slot_`.
+  /// (kNoComponent: fresh, handed out by `order_components`) and `won_slot_`.
   void assign_stable_ids(std::uint32_t components) {
     claims_.clear();
     for (ClusterId c = 0; c < clusters_.size(); ++c) {
@@ -1219,10 +1228,9 @@ class StreamClusterer {
   /// and per vote. O(N + components + votes).
   void adopt_components(std::uint32_t n, std::uint32_t components) {
     const auto t1 = clock_now();
-    // The old clusters are the previous retrieval's components: their ids
-    // (component_ids_) and places in the previous result (slot_of_).
-    const auto old_clusters = static_cast<std::uint32_t>(component_ids_.size());
-    previous_ids_.swap(component_ids_);
+    // The old clusters are the previous retrieval's components, at places
+    // slot_of_[c] in the previous result, which holds their ids.
+    const auto old_clusters = static_cast<std::uint32_t>(cluster_size_.size());
     reserve_geometric(claim_head_, old_clusters);
     claim_head_.assign(old_clusters, kNoSlot);
     votes_.clear();
@@ -1243,10 +1251,9 @@ class StreamClusterer {
     // Stable ids: resolve_claims' rule in linear time. Each (component, old
     // cluster) pair is one vote and the old clusters carry distinct ids, so:
     // each old id goes to its heaviest vote (ties: the lower component), and
-    // each component keeps the heaviest id it won (ties: the older id); the
+    // each component keeps the heaviest id it won (ties: the older id, that
+    // is the lower place in the previous result, which is sorted by id); the
     // others get fresh ids (order_components). O(votes + components).
-    reserve_geometric(component_ids_, components);
-    component_ids_.assign(components, kNoComponent);
     reserve_geometric(won_weight_, components);
     won_weight_.resize(components);  // read only where an id was won
     reserve_geometric(won_slot_, components);
@@ -1260,18 +1267,16 @@ class StreamClusterer {
           best = v;
         }
       }
-      const ComponentId id = previous_ids_[c];
+      const std::uint32_t slot = slot_of_[c];
       const std::uint32_t k = votes_[best].component;
       const std::uint32_t w = votes_[best].weight;
-      if (component_ids_[k] == kNoComponent || w > won_weight_[k] || (w == won_weight_[k] && id < component_ids_[k])) {
-        component_ids_[k] = id;
+      if (won_slot_[k] == kNoSlot || w > won_weight_[k] || (w == won_weight_[k] && slot < won_slot_[k])) {
         won_weight_[k] = w;
-        won_slot_[k] = slot_of_[c];
+        won_slot_[k] = slot;
       }
     }
-    const auto previous = static_cast<std::uint32_t>(result_.components.size());
-    begin_result(components);
-    order_components(components, previous);
+    begin_result(components, old_clusters);
+    order_components(components, old_clusters);
     ComponentSummary* const summaries = result_.components.data();
     for (std::uint32_t i = 0; i < n; ++i) {
       if (i + kResultPrefetchDistance < n) {
@@ -1518,17 +1523,14 @@ class StreamClusterer {
   std::vector<std::size_t> fragment_begin_;
   std::vector<std::uint32_t> component_of_;
   std::vector<ClusterId> queue_;
-  // Per component: its stable id (rebuilding strategies: kept to the next
-  // retrieval as the local clusters' ids).
-  std::vector<ComponentId> component_ids_;
+  std::vector<ComponentId> component_ids_;  // lazy_bfs, per component: the old id it keeps, or kNoComponent
   std::vector<Claim> claims_;
   std::vector<std::uint32_t> parent_;       // rebuilding strategies: union-find, then component per point
   std::vector<std::uint32_t> claim_head_;   // rebuilding strategies: most recent vote per old cluster
   std::vector<Vote> votes_;
   std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won
   std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot
-  std::vector<ComponentId> previous_ids_;   // rebuilding strategies: the old clusters' ids during an adoption
-  std::vector<std::uint32_t> by_slot_;      // finish_result: place in the result -> component
+  std::vector<std::uint32_t> by_slot_;      // order_components: place in the previous result -> component
   std::vector<std::uint32_t> slot_of_;      // component -> place in the result (rebuilding: kept, per local cluster)
   std::vector<std::uint32_t> cluster_size_; // rebuilding strategies: points of each local cluster still in the window
   std::vector<Bridge> no_bridges_;          // rebuilding strategies: what bridges() returns (always empty)
