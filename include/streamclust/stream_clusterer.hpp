@@ -470,6 +470,8 @@ class StreamClusterer {
   /// Points ahead whose per-component records the retrieval's passes
   /// prefetch (rebuilding strategies) [points].
   static constexpr std::uint32_t kResultPrefetchDistance = 16;
+  /// Components from which those passes prefetch: 4096 summaries are 288 KB.
+  static constexpr std::uint32_t kResultPrefetchMinComponents = 4096;
   /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
   static constexpr PointHandle kEvictPrefetchDistance = 8;
   /// Digit width of the radix sort of new edges [bits]: 2^11 counters (8 KB, in L1).
@@ -1236,8 +1238,11 @@ class StreamClusterer {
     votes_.clear();
     reserve_geometric(cluster_size_, components);
     cluster_size_.assign(components, 0);
+    // Prefetch only when the per-cluster records outgrow the L1/L2 caches
+    // (a fragmented window); otherwise it only costs instructions.
+    const bool scattered_old = old_clusters >= kResultPrefetchMinComponents;
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (i + kResultPrefetchDistance < n) {
+      if (scattered_old && i + kResultPrefetchDistance < n) {
         const ClusterId ahead = point(oldest_ + i + kResultPrefetchDistance).cluster;
         if (ahead < old_clusters) detail::prefetch(&claim_head_[ahead]);
       }
@@ -1278,8 +1283,9 @@ class StreamClusterer {
     begin_result(components, old_clusters);
     order_components(components, old_clusters);
     ComponentSummary* const summaries = result_.components.data();
+    const bool scattered = components >= kResultPrefetchMinComponents;
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (i + kResultPrefetchDistance < n) {
+      if (scattered && i + kResultPrefetchDistance < n) {
         // The summary's lines (72 bytes may straddle two) and sum: scattered
         // over the components, likely misses.
         const std::uint32_t ahead = slot_of_[parent_[i + kResultPrefetchDistance]];
