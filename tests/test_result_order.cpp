@@ -121,17 +121,16 @@ Tally run_fragmented(std::uint32_t seed) {
   return tally;
 }
 
-struct LazyConfig : sc::CArcFixedConfig {};
-struct RebuildConfig : sc::CArcFixedConfig {
-  using connectivity = sc::UnionFindRebuildConnectivity;
+/// CArcFixedConfig with another connectivity strategy and spatial index.
+template <class Connectivity, class Index = sc::config_traits<sc::CArcFixedConfig>::spatial_index>
+struct Fixed : sc::CArcFixedConfig {
+  using connectivity = Connectivity;
+  using spatial_index = Index;
 };
-struct ForestConfig : sc::CArcFixedConfig {
-  using connectivity = sc::SpanningForestConnectivity;
-};
-struct CappedForestConfig : sc::CArcFixedConfig {
-  using spatial_index = sc::CappedGrid;
-  using connectivity = sc::SpanningForestConnectivity;
-};
+using LazyConfig = Fixed<sc::LazyBfsConnectivity>;
+using RebuildConfig = Fixed<sc::UnionFindRebuildConnectivity>;
+using ForestConfig = Fixed<sc::SpanningForestConnectivity>;
+using CappedForestConfig = Fixed<sc::SpanningForestConnectivity, sc::CappedGrid>;
 
 }  // namespace
 
