@@ -36,7 +36,7 @@
 // Usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K]
 //                      [--timed-cycles N] [--filter TEXT] [--out DIR]
 //                      [--scenario NAME] [--data DIR] [--smoke] [--list]
-//                      [--trace-allocs]
+//                      [--trace-allocs] [--spin-up SECONDS]
 // (--scenario: exactly one scenario, by its --list name; bench/run.sh runs
 // every scenario as its own process, two at a time, and merges the outputs
 // with merge_summaries.py.)
@@ -192,6 +192,7 @@ struct Options {
   bool smoke = false;
   bool list = false;
   bool trace_allocs = false;       ///< print the stacks of steady-state engine allocations to stderr
+  std::size_t spin_up_s = 3;       ///< busy seconds before each scenario (CPU frequency ramp), 0 = none
 };
 
 // ------------------------------------------------------------------- inputs
@@ -544,8 +545,22 @@ void with_sensor(const Scenario& s, const Options& o, F&& f) {
   }
 }
 
+/// Keeps the core busy for `seconds` [s]. On this VM a process's first
+/// seconds of work run up to 1.4x slower than the rest (a step, not a
+/// drift: measured on avia-office-capfast-tb0.5, about 45 measured cycles
+/// at 21 ms then 15 ms; a 4 s busy loop before the run removed the step),
+/// which put start-up, not the engine, into the P99 of the slower scenarios.
+void spin_up(std::size_t seconds) {
+  const auto end = Clock::now() + std::chrono::seconds(seconds);
+  volatile std::uint64_t sink = 0;
+  while (Clock::now() < end) {
+    for (int i = 0; i < 4096; ++i) sink = sink + static_cast<std::uint64_t>(i);
+  }
+}
+
 template <class Config>
 ScenarioResult run_scenario(const Scenario& s, const Options& o) {
+  spin_up(o.spin_up_s);
   ScenarioResult r;
   r.name = s.name();
   r.rss_reset = reset_peak_rss();
@@ -768,7 +783,7 @@ std::size_t parse_count(const std::string& flag, const std::string& value, std::
 
 Options parse(int argc, char** argv) {
   Options o;
-  bool cycles_given = false, timed_given = false, peer_given = false, pcl_given = false;
+  bool cycles_given = false, timed_given = false, peer_given = false, pcl_given = false, spin_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -801,10 +816,13 @@ Options parse(int argc, char** argv) {
       o.list = true;
     } else if (a == "--trace-allocs") {
       o.trace_allocs = true;
+    } else if (a == "--spin-up") {
+      o.spin_up_s = parse_count(a, value(), 0);
+      spin_given = true;
     } else if (a == "--help" || a == "-h") {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
                    "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
-                   "                     [--list] [--trace-allocs]\n";
+                   "                     [--list] [--trace-allocs] [--spin-up SECONDS]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");
@@ -815,6 +833,7 @@ Options parse(int argc, char** argv) {
     if (!timed_given) o.timed_cycles = 3;
     if (!peer_given) o.peer_every = 2;
     if (!pcl_given) o.pcl_every = 3;
+    if (!spin_given) o.spin_up_s = 0;
   }
   return o;
 }

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -330,27 +331,41 @@ class StreamClusterer {
   template <class F>
   void for_each_neighbor(PointHandle h, F&& f) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    const PointRecord& r = point(h);
-    for (std::uint32_t i = 0; i < r.back_count; ++i) {
-      const PointHandle older = edge_older_at(r.back_begin + i);
-      if (is_live(older)) f(older);
+    if constexpr (stores_point_edges) {  // only the assertion's error otherwise
+      const PointRecord& r = point(h);
+      for (std::uint32_t i = 0; i < r.back_count; ++i) {
+        const PointHandle older = edge_older_at(r.back_begin + i);
+        if (is_live(older)) f(older);
+      }
+      for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
     }
-    for (EdgeHandle e = r.fwd_head; e != kNoEdge; e = edge(e).next_fwd) f(edge(e).newer);
   }
   /// Back edges of `h` (to older points, possibly dead) and the head of its
   /// forward list (to newer points, all live): the raw adjacency. Not
   /// available under spanning_forest.
   EdgeHandle back_edges_begin(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).back_begin;
+    if constexpr (stores_point_edges) {
+      return point(h).back_begin;
+    } else {
+      return EdgeHandle{};
+    }
   }
   std::uint32_t back_edges_count(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).back_count;
+    if constexpr (stores_point_edges) {
+      return point(h).back_count;
+    } else {
+      return std::uint32_t{};
+    }
   }
   EdgeHandle forward_edges_head(PointHandle h) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
-    return point(h).fwd_head;
+    if constexpr (stores_point_edges) {
+      return point(h).fwd_head;
+    } else {
+      return EdgeHandle{};
+    }
   }
   PointHandle edge_older(EdgeHandle e) const {
     static_assert(stores_point_edges, STREAMCLUST_NO_POINT_EDGES_MESSAGE);
@@ -424,9 +439,10 @@ class StreamClusterer {
   }
 
  private:
-  /// Per-point bookkeeping; the point's Sample is apart, in `samples_` (same
-  /// slot), so the neighbour search reads a dense 40-byte-stride ring.
-  struct PointRecord {
+  /// Per-point bookkeeping of the strategies that store point edges; the
+  /// point's Sample is apart, in `samples_` (same slot), so the neighbour
+  /// search reads a dense 40-byte-stride ring. 40 bytes.
+  struct LinkedPointRecord {
     std::uint64_t stream_index = 0;
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
@@ -436,6 +452,14 @@ class StreamClusterer {
     EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
     std::uint32_t mark = 0;         ///< BFS epoch
   };
+  /// spanning_forest: no point edges, no member lists, no BFS. 16 bytes.
+  struct ForestPointRecord {
+    std::uint64_t stream_index = 0;
+    CellIndex cell = 0;
+    ClusterId cluster = kNoCluster;
+  };
+  static_assert(sizeof(ForestPointRecord) == 16, "the forest's point record is meant to stay 16 bytes");
+  using PointRecord = std::conditional_t<stores_point_edges, LinkedPointRecord, ForestPointRecord>;
   struct EdgeRecord {  // the older endpoint is in edge_older_
     PointHandle newer = kNoPoint;
     EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
@@ -551,11 +575,13 @@ class StreamClusterer {
     samples_[h & point_mask_] = make_sample(pos, range, point_intensity, time);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
-    r.next_member = kNoPoint;
-    r.back_begin = next_edge_;
-    r.back_count = 0;
-    r.fwd_head = kNoEdge;
-    r.mark = 0;
+    if constexpr (stores_point_edges) {
+      r.next_member = kNoPoint;
+      r.back_begin = next_edge_;
+      r.back_count = 0;
+      r.fwd_head = kNoEdge;
+      r.mark = 0;
+    }
     return h;
   }
 
@@ -648,8 +674,15 @@ class StreamClusterer {
         fold_forest();
         ++stats_.forest_folds;
       }
-      return;
+    } else {
+      link_stored_edges(h);
     }
+  }
+
+  /// link()'s second half for the strategies that store point edges: the
+  /// edges go to the edge ring, then (lazy_bfs) isolation, expansion or
+  /// bridging.
+  void link_stored_edges(PointHandle h) {
     reserve_edges(neighbours_.size());
     PointRecord& r = point(h);
     r.back_begin = next_edge_;
@@ -1137,6 +1170,8 @@ class StreamClusterer {
     if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 2));
   }
 
+  /// union_find_rebuild: root of `x` (every parent older than its child),
+  /// halving the path.
   std::uint32_t find_root(std::uint32_t x) {
     while (parent_[x] != x) {
       parent_[x] = parent_[parent_[x]];
@@ -1145,19 +1180,70 @@ class StreamClusterer {
     return x;
   }
 
-  /// Unites the sets of window positions `a` and `b`, hanging the younger
-  /// root under the older, so every parent is older than its child. False
-  /// when they were already one set. Amortised near O(1) (path halving).
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t ra = find_root(a);
-    const std::uint32_t rb = find_root(b);
-    if (ra == rb) return false;
-    if (ra < rb) {
-      parent_[rb] = ra;
-    } else {
-      parent_[ra] = rb;
+  // spanning_forest: a union-find by rank with path halving over window
+  // positions. parent_[x] < kRankedRoot: x's parent; >= kRankedRoot: x is a
+  // root, the low bits its rank (< 32). Needs fewer than 2^31 window points
+  // (a 2^31-point window would take more than 100 GiB).
+  static constexpr std::uint32_t kRankedRoot = std::uint32_t{1} << 31;
+  static constexpr std::uint32_t kMaxRank = 32;
+
+  /// All `n` window positions as singletons of rank 0. O(n).
+  void reset_ranked(std::uint32_t n) {
+    reserve_geometric(parent_, n);
+    parent_.assign(n, kRankedRoot);
+  }
+
+  /// Root of `x` in the ranked union-find, halving the path. Amortised
+  /// near O(1): by rank, trees are at most log2(n) deep.
+  std::uint32_t find_ranked(std::uint32_t x) {
+    for (;;) {
+      const std::uint32_t p = parent_[x];
+      if (p >= kRankedRoot) return x;
+      const std::uint32_t g = parent_[p];
+      if (g >= kRankedRoot) return p;
+      parent_[x] = g;
+      x = g;
     }
+  }
+
+  /// Unites the sets of window positions `a` and `b` by rank. False when
+  /// they were already one set. Amortised near O(1).
+  bool unite_ranked(std::uint32_t a, std::uint32_t b) {
+    std::uint32_t ra = find_ranked(a);
+    std::uint32_t rb = find_ranked(b);
+    if (ra == rb) return false;
+    if (parent_[ra] < parent_[rb]) std::swap(ra, rb);  // ra: the higher rank
+    if (parent_[ra] == parent_[rb]) ++parent_[ra];
+    parent_[rb] = ra;
     return true;
+  }
+
+  /// Turns the ranked union-find into dense component numbers in order of
+  /// each component's oldest point, as `number_components` does for the
+  /// age-ordered one: afterwards parent_[i] is the component of window
+  /// position i. Returns the number of components. O(n): one pass of finds
+  /// (short after Kruskal's halving) that points every position at its
+  /// root, then one pass in window order in which a root, until numbered,
+  /// keeps the root flag and holds kMaxRank + its number once numbered.
+  std::uint32_t number_ranked_components(std::uint32_t n) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (parent_[i] < kRankedRoot) parent_[i] = find_ranked(i);
+    }
+    constexpr std::uint32_t kNumbered = kRankedRoot + kMaxRank;
+    std::uint32_t components = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t v = parent_[i];
+      if (v >= kRankedRoot) {  // a root: numbered already by an older member, or the component's oldest point
+        parent_[i] = v >= kNumbered ? v - kNumbered : components++;
+      } else if (v < i) {  // the root was older: it holds its number now
+        parent_[i] = parent_[v];
+      } else {  // the root is younger: number it at its oldest point, i
+        std::uint32_t& root = parent_[v];
+        if (root < kNumbered) root = kNumbered + components++;
+        parent_[i] = root - kNumbered;
+      }
+    }
+    return components;
   }
 
   /// The union-find over window positions as `n` singletons. O(n).
@@ -1176,10 +1262,11 @@ class StreamClusterer {
     stats_.points_validated += n;
     if constexpr (keeps_forest) {
       fold_forest();
+      adopt_components(n, number_ranked_components(n));
     } else {
       unite_ring_edges(n);
+      adopt_components(n, number_components(n));
     }
-    adopt_components(n, number_components(n));
   }
 
   /// union_find_rebuild: one union-find pass over the live edges (window
@@ -1328,10 +1415,12 @@ class StreamClusterer {
 
   /// spanning_forest: folds the edges inserted since the last fold
   /// (`fresh_`) into the forest (`forest_`) and leaves in `parent_` a
-  /// union-find over the window positions (every parent older than its
-  /// child) whose sets are the window's connected components.
+  /// ranked union-find over the window positions whose sets are the
+  /// window's connected components (`number_ranked_components` numbers them).
   /// O(N + forest + new edges): a radix sort of the new edges, one merge,
-  /// Kruskal with path halving.
+  /// Kruskal with union by rank and path halving. (Hanging the younger root
+  /// under the older, as the rebuild does, built long chains here: Kruskal
+  /// takes the newest edges first, and the finds were 40 % of the fold.)
   ///
   /// Why it is exact. Give every edge (a, b), a older than b, the weight a:
   /// FIFO eviction kills the edge exactly when a leaves, so a is its expiry
@@ -1364,7 +1453,7 @@ class StreamClusterer {
   void fold_forest() {
     const auto n = static_cast<std::uint32_t>(size());
     const PointHandle newest = next_ - 1;
-    reset_parents(n);
+    reset_ranked(n);
     const ForestEdge* added = sort_fresh_by_age(n);
     const std::size_t added_count = fresh_.size();
     const ForestEdge* kept = forest_.data();
@@ -1386,7 +1475,7 @@ class StreamClusterer {
       } else {
         e = &added[j++];
       }
-      if (unite(static_cast<std::uint32_t>(e->older - oldest_), static_cast<std::uint32_t>(e->newer - oldest_))) {
+      if (unite_ranked(static_cast<std::uint32_t>(e->older - oldest_), static_cast<std::uint32_t>(e->newer - oldest_))) {
         merged_.push_back(*e);
       }
     }
