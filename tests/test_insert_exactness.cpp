@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: MIT
-// The insertion fast paths (docs/optimization-log.md, section 8) against
-// their reference formulations: the branch-free AngularLinkage against the
-// original branchy code, bit for bit (the reference below is that code,
-// kept on purpose), and the division-free mask iteration against the
-// definition of the mask, cell for cell and in order.
+// The insertion fast paths (docs/optimization-log.md, sections 8 and 10)
+// against their reference formulations: the branch-free AngularLinkage, on
+// Samples and on its compact payload, against the original branchy code, bit
+// for bit (the reference below is that code, kept on purpose); the
+// EuclideanLinkage payload against the distance on Samples; and the
+// division-free mask iteration against the definition of the mask, cell for
+// cell and in order.
 
 #include <doctest/doctest.h>
 
 #include <streamclust/detail/mask.hpp>
 #include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/combinators.hpp>
+#include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/types.hpp>
 
 #include <Eigen/Core>
@@ -36,10 +40,11 @@ struct ReferenceAngular {
     sin_min = static_cast<float>(std::sin(static_cast<double>(params.min_ray_angle_deg) * deg));
     cos_min = static_cast<float>(std::cos(static_cast<double>(params.min_ray_angle_deg) * deg));
   }
+  // Equal ranges are ordered by direction alone since the compact payload
+  // (optimization log, section 10; the payload holds no position). Without
+  // FMA contraction the order of tied operands does not change the result.
   static bool precedes(const Sample& a, const Sample& b) {
     if (a.range != b.range) return a.range > b.range;
-    for (int i = 0; i < 3; ++i)
-      if (a.position[i] != b.position[i]) return a.position[i] > b.position[i];
     for (int i = 0; i < 3; ++i)
       if (a.direction[i] != b.direction[i]) return a.direction[i] > b.direction[i];
     return true;
@@ -72,11 +77,12 @@ Sample sample_at(const Eigen::Vector3f& p) {
 
 }  // namespace
 
-TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as the reference, both orders") {
+TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as the reference, both orders, "
+          "on Samples and on payloads") {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<float> coord(-20.0f, 20.0f);
   std::uniform_real_distribution<float> jitter(-0.05f, 0.05f);
-  std::uniform_int_distribution<int> kind(0, 5);
+  std::uniform_int_distribution<int> kind(0, 6);
   const AngularLinkage::Params settings[] = {{10.0f, 0.2f}, {30.0f, 0.2f}, {80.0f, 0.0f}, {45.0f, 5.0f}, {1.0f, 0.0f}};
   std::size_t linked = 0;
   std::size_t ties = 0;
@@ -95,7 +101,7 @@ TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as th
         case 1:  // a close neighbour (the common case in the engine)
           b = sample_at(pa + Eigen::Vector3f(jitter(rng), jitter(rng), jitter(rng)));
           break;
-        case 2:  // equal ranges, positions differ: the tie is broken by position
+        case 2:  // equal ranges, positions differ: the tie is broken by direction
           b = sample_at(Eigen::Vector3f(pa.y(), pa.x(), pa.z()));
           b.range = a.range;
           ++ties;
@@ -109,6 +115,12 @@ TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as th
           b = a;
           ++ties;
           break;
+        case 5:  // on an axis: the same ray with +0 and -0 components, equal or noisy range
+          a = sample_at(Eigen::Vector3f(pa.x(), 0.0f, 0.0f));
+          b = sample_at(Eigen::Vector3f(pa.x() * (1.0f + jitter(rng) * 0.01f * static_cast<float>(rng() % 2u)), -0.0f,
+                                        -0.0f));
+          ties += a.range == b.range ? 1u : 0u;
+          break;
         default:  // near-coincident rays (the floor on alpha), range differs by noise
           b = sample_at(pa * (1.0f + jitter(rng) * 0.01f));
           break;
@@ -117,6 +129,11 @@ TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as th
       const bool ba = fast(b, a);
       REQUIRE(ab == reference(a, b));
       REQUIRE(ba == reference(b, a));
+      // the engine's path: the same decisions on the compact payloads
+      const AngularLinkage::Payload qa = AngularLinkage::make_payload(a);
+      const AngularLinkage::Payload qb = AngularLinkage::make_payload(b);
+      REQUIRE(fast(qa, qb) == ab);
+      REQUIRE(fast(qb, qa) == ba);
       linked += ab ? 1u : 0u;
       ++pairs;
     }
@@ -125,6 +142,60 @@ TEST_CASE("AngularLinkage: the branch-free canonical order decides exactly as th
   CHECK(linked > pairs / 10);
   CHECK(linked < pairs - pairs / 10);
   CHECK(ties > pairs / 3);
+}
+
+TEST_CASE("EuclideanLinkage and the combinators: the payload decides exactly as the Samples, both orders") {
+  using streamclust::AllOf;
+  using streamclust::AnyOf;
+  using streamclust::EuclideanLinkage;
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<float> coord(-20.0f, 20.0f);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::size_t linked = 0;
+  std::size_t pairs = 0;
+  for (const float d : {0.05f, 0.3f, 1.0f}) {
+    const EuclideanLinkage link{{d}};
+    const AllOf<AngularLinkage, AngularLinkage> band{{{5.0f, 0.2f}, {40.0f, 0.0f}}};
+    const AnyOf<EuclideanLinkage, EuclideanLinkage> either{{{d}, {2.0f * d}}};
+    for (int i = 0; i < 40000; ++i) {
+      const Eigen::Vector3f pa(coord(rng), coord(rng), coord(rng));
+      const Sample a = sample_at(pa);
+      Sample b;
+      switch (i % 4) {
+        case 0:  // identical
+          b = a;
+          break;
+        case 1:  // at about the threshold distance: rounding decides
+          b = sample_at(pa + Eigen::Vector3f(unit(rng), unit(rng), unit(rng)).normalized() * d);
+          break;
+        case 2:  // within a few thresholds
+          b = sample_at(pa + 3.0f * d * Eigen::Vector3f(unit(rng), unit(rng), unit(rng)));
+          break;
+        default:  // equal ranges, other ray
+          b = sample_at(Eigen::Vector3f(pa.y(), pa.x(), pa.z()));
+          b.range = a.range;
+          break;
+      }
+      // the reference: the criterion on the Samples' Eigen positions
+      const bool expected = (a.position - b.position).squaredNorm() <= d * d;
+      const EuclideanLinkage::Payload qa = EuclideanLinkage::make_payload(a);
+      const EuclideanLinkage::Payload qb = EuclideanLinkage::make_payload(b);
+      REQUIRE(link(a, b) == expected);
+      REQUIRE(link(qa, qb) == expected);
+      REQUIRE(link(qb, qa) == link(b, a));
+      // combinators of one payload type: payload == children on the Samples
+      const AngularLinkage::Payload ra = AngularLinkage::make_payload(a);
+      const AngularLinkage::Payload rb = AngularLinkage::make_payload(b);
+      REQUIRE(band(ra, rb) == (band.child<0>()(a, b) && band.child<1>()(a, b)));
+      REQUIRE(band(b, a) == band(rb, ra));
+      REQUIRE(either(qa, qb) == (either.child<0>()(a, b) || either.child<1>()(a, b)));
+      REQUIRE(either(b, a) == either(qb, qa));
+      linked += expected ? 1u : 0u;
+      ++pairs;
+    }
+  }
+  CHECK(linked > pairs / 10);
+  CHECK(linked < pairs - pairs / 10);
 }
 
 TEST_CASE("for_each_mask_cell visits exactly the mask's cells, each once, in row-major order from col - half") {

@@ -103,7 +103,8 @@ struct RetrievalStats {
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
 /// windowed point (a 40-byte Sample and a 40-byte record, in two rings with
-/// the same slots; both rings are powers of two, so up to twice that) plus
+/// the same slots; both rings are powers of two, so up to twice that; 16
+/// more in a third ring when the linkage has a compact payload) plus
 /// the index, plus the point graph: the paper's strategy and the rebuild keep
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
 /// endpoint leaves (about 14 live edges per point on a simulated Mid-360 at
@@ -165,6 +166,12 @@ class StreamClusterer {
   static constexpr bool keeps_forest = connectivity_type::strategy == ConnectivityStrategy::spanning_forest;
   /// False under spanning_forest: the point-level edge accessors then do not compile.
   static constexpr bool stores_point_edges = !keeps_forest;
+  /// True when the linkage has the compact payload (concepts/linkage.hpp):
+  /// the engine then keeps a ring of payloads and the neighbour search reads
+  /// it instead of the Samples.
+  static constexpr bool uses_payload = has_linkage_payload_v<linkage_type>;
+  /// The linkage's payload (`detail::NoPayload` without the capability).
+  using payload_type = linkage_payload_t<linkage_type>;
 
   /// Throws std::invalid_argument when a parameter is out of range.
   explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
@@ -278,7 +285,7 @@ class StreamClusterer {
   /// BucketGrid); allocates nothing.
   MemoryUsage memory_usage() const {
     MemoryUsage m;
-    m.point_ring = capacity_bytes(samples_) + capacity_bytes(points_);
+    m.point_ring = capacity_bytes(samples_) + capacity_bytes(points_) + capacity_bytes(payloads_);
     m.edge_storage = capacity_bytes(edges_) + capacity_bytes(edge_older_) + capacity_bytes(forest_) +
                      capacity_bytes(fresh_);
     if constexpr (is_spatial_index_heap_reporting_v<spatial_index_type>) {
@@ -318,6 +325,14 @@ class StreamClusterer {
   /// True when `h` is in the window.
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
   const Sample& sample(PointHandle h) const { return samples_[h & point_mask_]; }
+  /// The linkage payload of a live point (only with a payload linkage,
+  /// `uses_payload`): `linkage_type::make_payload(sample(h))`.
+  /// (A template so that explicit instantiations of the engine skip it.)
+  template <bool Enabled = uses_payload>
+  const payload_type& payload(PointHandle h) const {
+    static_assert(Enabled, "StreamClusterer::payload: the linkage has no compact payload");
+    return payloads_[h & point_mask_];
+  }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
   /// Local cluster of a live point (kNoCluster while calibrating; with
   /// union_find_rebuild or spanning_forest, also for a point inserted after
@@ -572,7 +587,9 @@ class StreamClusterer {
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
-    samples_[h & point_mask_] = make_sample(pos, range, point_intensity, time);
+    const std::uint32_t slot = h & point_mask_;
+    samples_[slot] = make_sample(pos, range, point_intensity, time);
+    if constexpr (uses_payload) payloads_[slot] = linkage_type::make_payload(samples_[slot]);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
     if constexpr (stores_point_edges) {
@@ -635,26 +652,40 @@ class StreamClusterer {
       // Three passes, so that the cache misses overlap instead of stalling
       // one by one: (1) the caller listed the mask's cells and prefetched
       // them (list_mask_cells); (2) gather their handles, prefetching each
-      // candidate's sample (scattered in the ring: each is a likely miss);
-      // (3) test the linkage.
+      // candidate's payload, or sample without one (scattered in the ring:
+      // each is a likely miss); (3) test the linkage. A payload linkage reads
+      // the dense 16-byte payload ring, the others the 40-byte Samples.
       candidates_.clear();
       for (std::size_t i = 0; i < mask_count_; ++i) {
         index_.for_each(mask_cells_[i], [&](PointHandle n) {
           candidates_.push_back(n);
-          detail::prefetch(&sample(n));
+          if constexpr (uses_payload) {
+            detail::prefetch(&payloads_[n & point_mask_]);
+          } else {
+            detail::prefetch(&sample(n));
+          }
         });
       }
       // Branch-free compaction: whether a candidate links is close to a
       // coin flip, a branch on it would mispredict often.
-      const Sample& s = sample(h);
-      const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
       const std::uint32_t slot_mask = point_mask_;
       neighbours_.resize(candidates_.size());
       PointHandle* const out = neighbours_.data();
       std::size_t found = 0;
-      for (const PointHandle n : candidates_) {
-        out[found] = n;
-        found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+      if constexpr (uses_payload) {
+        const payload_type s = payloads_[h & slot_mask];  // a copy: the stores below cannot alias it
+        const payload_type* const ring = payloads_.data();
+        for (const PointHandle n : candidates_) {
+          out[found] = n;
+          found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+        }
+      } else {
+        const Sample& s = sample(h);
+        const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
+        for (const PointHandle n : candidates_) {
+          out[found] = n;
+          found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+        }
       }
       neighbours_.resize(found);
       if constexpr (stores_point_edges) {
@@ -1541,13 +1572,16 @@ class StreamClusterer {
     while (capacity < needed) capacity *= 2;
     std::vector<PointRecord> grown(capacity);
     std::vector<Sample> grown_samples(capacity);
+    std::vector<payload_type> grown_payloads(uses_payload ? capacity : 0);  // no ring without a payload
     const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
     for (PointHandle h = oldest_; h != next_; ++h) {
       grown[h & new_mask] = point(h);
       grown_samples[h & new_mask] = sample(h);
+      if constexpr (uses_payload) grown_payloads[h & new_mask] = payloads_[h & point_mask_];
     }
     points_.swap(grown);
     samples_.swap(grown_samples);
+    payloads_.swap(grown_payloads);
     point_mask_ = new_mask;
   }
 
@@ -1584,6 +1618,7 @@ class StreamClusterer {
   // Ring buffers of the window (same slots): live handles are [oldest_, next_).
   std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
   std::vector<PointRecord> points_;  // the bookkeeping
+  std::vector<payload_type> payloads_;  // with a payload linkage: what it reads (16 bytes); else empty
   std::uint32_t point_mask_ = 0;
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;

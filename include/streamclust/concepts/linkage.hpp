@@ -13,9 +13,33 @@
 ///
 /// Must be symmetric (`l(a, b) == l(b, a)`), deterministic, const and
 /// thread-safe. It sees position, unit direction, range, intensity and time.
+///
+/// Optional capability: a compact geometric payload (detected, never
+/// required; a linkage without it works unchanged, on the Sample path).
+///
+/// | expression               | type     | meaning                                                        | complexity |
+/// |--------------------------|----------|----------------------------------------------------------------|------------|
+/// | `typename L::Payload`    | struct   | what the predicate reads of a point; trivially copyable, <= 16 bytes | |
+/// | `L::make_payload(s)`     | Payload  | static: the payload of Sample `s` (a pure function of `s`)     | O(1)       |
+/// | `l(pa, pb)`              | bool     | the predicate on two payloads (const Payload&)                 | O(1)       |
+///
+/// Contract: `l(a, b)` on Samples MUST be implemented as
+/// `l(L::make_payload(a), L::make_payload(b))`, so that both decide the same
+/// bit for bit by construction (the batch oracle calls the Sample version,
+/// the engine the payload one). The engine then keeps a ring of payloads
+/// beside its ring of Samples (16 bytes per point, counted in
+/// `MemoryUsage::point_ring`) and reads candidates from it: 16 dense bytes per
+/// candidate instead of a 40-byte Sample, and with a 16-byte (or smaller
+/// power-of-two) payload never a candidate straddling two cache lines.
+/// `has_linkage_payload_v<L>` detects the capability, `linkage_payload_t<L>`
+/// names the payload (`detail::NoPayload` without it).
+/// `make_payload` is static so that the payload does not depend on the
+/// parameters: combinators can share it between children (AllOf/AnyOf of
+/// children with the same Payload type have the capability too).
 
 #include <streamclust/types.hpp>
 
+#include <cstddef>
 #include <type_traits>
 #include <utility>
 
@@ -30,10 +54,55 @@ struct is_linkage_policy<
     : std::is_convertible<decltype(std::declval<const L&>()(std::declval<const Sample&>(),
                                                               std::declval<const Sample&>())),
                           bool> {};
+
+/// The payload of a linkage without the capability: empty, never stored.
+struct NoPayload {};
+
+template <class L, class = void>
+struct has_linkage_payload : std::false_type {};
+template <class L>
+struct has_linkage_payload<
+    L, std::void_t<typename L::Payload, decltype(L::make_payload(std::declval<const Sample&>())),
+                   decltype(std::declval<const L&>()(std::declval<const typename L::Payload&>(),
+                                                     std::declval<const typename L::Payload&>()))>>
+    : std::bool_constant<
+          std::is_same_v<decltype(L::make_payload(std::declval<const Sample&>())), typename L::Payload> &&
+          std::is_convertible_v<decltype(std::declval<const L&>()(std::declval<const typename L::Payload&>(),
+                                                                  std::declval<const typename L::Payload&>())),
+                                bool>> {};
+
+template <class L, bool = has_linkage_payload<L>::value>
+struct linkage_payload {
+  using type = NoPayload;
+};
+template <class L>
+struct linkage_payload<L, true> {
+  using type = typename L::Payload;
+};
 }  // namespace detail
 
 template <class L>
 inline constexpr bool is_linkage_policy_v = detail::is_linkage_policy<L>::value;
+
+/// True when linkage `L` declares the optional compact payload: `L::Payload`,
+/// `static Payload make_payload(const Sample&)` and
+/// `bool operator()(const Payload&, const Payload&) const`.
+template <class L>
+inline constexpr bool has_linkage_payload_v = detail::has_linkage_payload<L>::value;
+
+/// `L::Payload` when `has_linkage_payload_v<L>`, else `detail::NoPayload`.
+template <class L>
+using linkage_payload_t = typename detail::linkage_payload<L>::type;
+
+/// Largest payload the engine accepts [bytes].
+inline constexpr std::size_t kMaxLinkagePayloadBytes = 16;
+
+/// True when `L` has no payload, or a payload the engine can store densely:
+/// trivially copyable and at most kMaxLinkagePayloadBytes bytes.
+template <class L>
+inline constexpr bool is_linkage_payload_valid_v =
+    !has_linkage_payload_v<L> || (std::is_trivially_copyable_v<linkage_payload_t<L>> &&
+                                  sizeof(linkage_payload_t<L>) <= kMaxLinkagePayloadBytes);
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class L>
@@ -46,4 +115,7 @@ concept LinkagePolicy = is_linkage_policy_v<L>;
   static_assert(::streamclust::is_linkage_policy_v<L>,                                                       \
                 "STREAMCLUST_LINKAGE_POLICY_INVALID: the linkage slot needs a nested Params aggregate, a "     \
                 "constructor from Params and `bool operator()(const Sample&, const Sample&) const` "           \
-                "(see docs/policies.md)")
+                "(see docs/policies.md)");                                                                   \
+  static_assert(::streamclust::is_linkage_payload_valid_v<L>,                                                \
+                "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: a linkage's optional Payload must be trivially "         \
+                "copyable and at most 16 bytes (or drop Payload/make_payload to stay on the Sample path)")

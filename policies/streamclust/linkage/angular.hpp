@@ -49,10 +49,19 @@ namespace streamclust {
 /// (combinators.hpp): angular OR a small Euclidean distance.
 ///
 /// Exactly symmetric: the operands are put in a canonical order (larger range
-/// first, ties broken by position then direction) before any arithmetic, so
+/// first, equal ranges ordered by direction) before any arithmetic, so
 /// l(a, b) and l(b, a) evaluate the same float operations even when the
 /// compiler contracts `x*y - z*w` into an FMA (which makes a x b and b x a
-/// round differently).
+/// round differently). Any strict order works for equal ranges: operands
+/// tied by it have equal payloads (same range, same direction), and then
+/// both orders perform the same arithmetic on the same values (equal as
+/// floats: +0 and -0 components only flip the sign of zero terms, which no
+/// comparison below can see).
+///
+/// Compact payload (concepts/linkage.hpp): the criterion reads only the unit
+/// direction and the range, 16 bytes (`Payload`), which the engine keeps in a
+/// dense ring beside its Samples. The Sample operator is the payload operator
+/// on `make_payload(a)`, `make_payload(b)`, so both agree bit for bit.
 ///
 /// Complexity: O(1): a dot and a cross product, one sqrt, no trigonometry.
 /// Samples are assumed finite (the projection rejects NaN/inf).
@@ -88,6 +97,24 @@ class AngularLinkage {
     cos_min_ = static_cast<float>(std::cos(floor));
   }
 
+  /// What the criterion reads of a point: unit direction and range. 16 bytes,
+  /// 16-aligned (never straddles a cache line), trivially copyable.
+  struct alignas(16) Payload {
+    float direction[3];  ///< unit ray (Sample::direction)
+    float range;         ///< [m] (Sample::range)
+  };
+
+  /// The payload of `s`: copies of its direction and range. O(1).
+  static Payload make_payload(const Sample& s) {
+    return Payload{{s.direction.x(), s.direction.y(), s.direction.z()}, s.range};
+  }
+
+  /// True iff beta > theta (with alpha floored at min_ray_angle). O(1).
+  /// Defined as the payload operator on the two payloads.
+  STREAMCLUST_ALWAYS_INLINE bool operator()(const Sample& a, const Sample& b) const {
+    return (*this)(make_payload(a), make_payload(b));
+  }
+
   /// True iff beta > theta (with alpha floored at min_ray_angle). O(1).
   ///
   /// The canonical order is applied by selecting operand pointers through a
@@ -96,14 +123,18 @@ class AngularLinkage {
   /// every other pair. Same float operations on the same operands as
   /// `p = precedes(a, b) ? a : b`. Forced inline: it runs ~20-30 times per
   /// inserted point, in the engine's innermost loop.
-  STREAMCLUST_ALWAYS_INLINE bool operator()(const Sample& a, const Sample& b) const {
-    const Sample* const operands[2] = {&a, &b};
+  STREAMCLUST_ALWAYS_INLINE bool operator()(const Payload& a, const Payload& b) const {
+    const Payload* const operands[2] = {&a, &b};
     const unsigned first = precedes(a, b) ? 0u : 1u;
-    const Sample& p = *operands[first];       // larger range: d1
-    const Sample& q = *operands[first ^ 1u];  // d2
+    const Payload& p = *operands[first];       // larger range: d1
+    const Payload& q = *operands[first ^ 1u];  // d2
     const float d1 = p.range;
     const float d2 = q.range;
-    float cos_a = p.direction.dot(q.direction);
+    // Eigen's dot on mapped arrays: the same float operations, in the same
+    // order, as on the Samples' Eigen::Vector3f directions.
+    const Eigen::Map<const Eigen::Vector3f> u(p.direction);
+    const Eigen::Map<const Eigen::Vector3f> v(q.direction);
+    float cos_a = u.dot(v);
     float sin_a = cross_norm(p.direction, q.direction);
     if (sin_a < sin_min_ && cos_a > 0.0f) {
       sin_a = sin_min_;
@@ -132,28 +163,26 @@ class AngularLinkage {
   const Params& params() const { return params_; }
 
  private:
-  /// Strict canonical order: larger range first, then position, then direction
-  /// (lexicographic). Equal keys mean equal operands, so either order is fine.
-  /// The range test is written branch-free (ties are rare and predicted).
-  static bool precedes(const Sample& a, const Sample& b) {
+  /// Strict canonical order: larger range first, then direction
+  /// (lexicographic). Equal keys mean equal payloads, so either order is
+  /// fine. The range test is written branch-free (ties are rare and predicted).
+  static bool precedes(const Payload& a, const Payload& b) {
     const bool larger = a.range > b.range;
     if (a.range != b.range) return larger;
     return precedes_tie(a, b);
   }
-  /// precedes() for equal ranges: position, then direction.
-  static bool precedes_tie(const Sample& a, const Sample& b) {
-    for (int i = 0; i < 3; ++i)
-      if (a.position[i] != b.position[i]) return a.position[i] > b.position[i];
+  /// precedes() for equal ranges: direction, lexicographic.
+  static bool precedes_tie(const Payload& a, const Payload& b) {
     for (int i = 0; i < 3; ++i)
       if (a.direction[i] != b.direction[i]) return a.direction[i] > b.direction[i];
     return true;
   }
 
   /// |u x v| written out (Eigen's cross() lives in <Eigen/Geometry>).
-  static float cross_norm(const Eigen::Vector3f& u, const Eigen::Vector3f& v) {
-    const float x = u.y() * v.z() - u.z() * v.y();
-    const float y = u.z() * v.x() - u.x() * v.z();
-    const float z = u.x() * v.y() - u.y() * v.x();
+  static float cross_norm(const float* u, const float* v) {
+    const float x = u[1] * v[2] - u[2] * v[1];
+    const float y = u[2] * v[0] - u[0] * v[2];
+    const float z = u[0] * v[1] - u[1] * v[0];
     return std::sqrt(x * x + y * y + z * z);
   }
 
@@ -175,3 +204,7 @@ class AngularLinkage {
 
 static_assert(streamclust::is_linkage_policy_v<streamclust::AngularLinkage>,
               "STREAMCLUST_LINKAGE_POLICY_INVALID: AngularLinkage");
+static_assert(streamclust::has_linkage_payload_v<streamclust::AngularLinkage> &&
+                  streamclust::is_linkage_payload_valid_v<streamclust::AngularLinkage> &&
+                  sizeof(streamclust::AngularLinkage::Payload) == 16,
+              "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: AngularLinkage");

@@ -12,9 +12,40 @@
 
 #include <cstddef>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 namespace streamclust {
+namespace detail {
+/// The payload shared by linkages `Ls...`: their common `Payload` type when
+/// every one has the compact-payload capability with the SAME payload type
+/// (then `make_payload` is the same static function of the Sample for all),
+/// else void. `first` is the first linkage (void for none).
+template <class... Ls>
+struct common_linkage_payload {
+  using type = void;
+  using first = void;
+};
+template <class L, class... Ls>
+struct common_linkage_payload<L, Ls...> {
+  static constexpr bool shared = (has_linkage_payload_v<L> && ... && has_linkage_payload_v<Ls>)&&(
+      std::is_same_v<linkage_payload_t<L>, linkage_payload_t<Ls>> && ...);
+  using type = std::conditional_t<shared, linkage_payload_t<L>, void>;
+  using first = L;
+};
+
+/// Declares `Payload` and `make_payload` for a combinator whose children
+/// share payload type P (nothing when P is void: the combinator then stays
+/// on the Sample path).
+template <class P, class First>
+struct CombinatorPayload {
+  using Payload = P;
+  /// The children's common payload of `s`. O(1).
+  static Payload make_payload(const Sample& s) { return First::make_payload(s); }
+};
+template <class First>
+struct CombinatorPayload<void, First> {};
+}  // namespace detail
 
 /// Links a and b iff EVERY child linkage does (short-circuit, left to right).
 ///
@@ -23,6 +54,11 @@ namespace streamclust {
 /// Children are held by value and built from their Params (each validates its
 /// own and throws std::invalid_argument). Symmetric if every child is.
 /// `AllOf<>` links everything.
+///
+/// Compact payload: when every child has it with the same `Payload` type
+/// (e.g. `AllOf<AngularLinkage, AngularLinkage>`), AllOf has it too and its
+/// Sample operator is its payload operator on the two payloads; otherwise
+/// (mixed payloads, or a child without one) it stays on the Sample path.
 ///
 /// Complexity: the sum of the children's, at most. Thread safety: as the
 /// children (the standard ones are immutable and thread-safe).
@@ -33,7 +69,10 @@ namespace streamclust {
 ///   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.2f}, {1.0f}}};
 /// \endcode
 template <class... Ls>
-class AllOf {
+class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_payload<Ls...>::type,
+                                               typename detail::common_linkage_payload<Ls...>::first> {
+  using payload_type = typename detail::common_linkage_payload<Ls...>::type;  // void: none
+
  public:
   using Params = std::tuple<typename Ls::Params...>;
 
@@ -41,6 +80,17 @@ class AllOf {
 
   /// True iff all children link a and b. Short-circuits.
   bool operator()(const Sample& a, const Sample& b) const {
+    if constexpr (!std::is_void_v<payload_type>) {
+      return (*this)(this->make_payload(a), this->make_payload(b));
+    } else {
+      return std::apply([&](const auto&... l) { return (true && ... && static_cast<bool>(l(a, b))); }, children_);
+    }
+  }
+
+  /// True iff all children link the two payloads. Short-circuits. Only when
+  /// the children share a payload type P.
+  template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
+  bool operator()(const P& a, const P& b) const {
     return std::apply([&](const auto&... l) { return (true && ... && static_cast<bool>(l(a, b))); }, children_);
   }
 
@@ -64,6 +114,11 @@ class AllOf {
 /// brace-constructible. Children held by value. Symmetric if every child is.
 /// `AnyOf<>` links nothing.
 ///
+/// Compact payload: as AllOf (only when every child has one, of the same
+/// type). `AngularOrEuclidean` mixes two payloads (direction + range,
+/// position): together 28 bytes, over the 16-byte limit, so it stays on the
+/// Sample path.
+///
 /// Complexity: the sum of the children's, at most. Thread safety: as the children.
 ///
 /// Usage:
@@ -71,7 +126,10 @@ class AllOf {
 ///   streamclust::AnyOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.0f}, {0.1f}}};
 /// \endcode
 template <class... Ls>
-class AnyOf {
+class AnyOf : public detail::CombinatorPayload<typename detail::common_linkage_payload<Ls...>::type,
+                                               typename detail::common_linkage_payload<Ls...>::first> {
+  using payload_type = typename detail::common_linkage_payload<Ls...>::type;  // void: none
+
  public:
   using Params = std::tuple<typename Ls::Params...>;
 
@@ -79,6 +137,17 @@ class AnyOf {
 
   /// True iff at least one child links a and b. Short-circuits.
   bool operator()(const Sample& a, const Sample& b) const {
+    if constexpr (!std::is_void_v<payload_type>) {
+      return (*this)(this->make_payload(a), this->make_payload(b));
+    } else {
+      return std::apply([&](const auto&... l) { return (false || ... || static_cast<bool>(l(a, b))); }, children_);
+    }
+  }
+
+  /// True iff at least one child links the two payloads. Short-circuits.
+  /// Only when the children share a payload type P.
+  template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
+  bool operator()(const P& a, const P& b) const {
     return std::apply([&](const auto&... l) { return (false || ... || static_cast<bool>(l(a, b))); }, children_);
   }
 
@@ -103,7 +172,8 @@ class AnyOf {
 /// EuclideanLinkage default and is large for this purpose: pick a few times
 /// the range noise, e.g.
 /// `AngularOrEuclidean{{{10.0f, 0.0f}, {0.1f}}}` (theta 10 deg, no alpha floor,
-/// 10 cm). The angular child is evaluated first.
+/// 10 cm). The angular child is evaluated first. No compact payload (the
+/// children's payloads differ, 28 bytes together): the Sample path.
 using AngularOrEuclidean = AnyOf<AngularLinkage, EuclideanLinkage>;
 
 }  // namespace streamclust
@@ -113,3 +183,8 @@ static_assert(streamclust::is_linkage_policy_v<streamclust::AngularOrEuclidean>,
 static_assert(streamclust::is_linkage_policy_v<
                   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage>>,
               "STREAMCLUST_LINKAGE_POLICY_INVALID: AllOf");
+static_assert(!streamclust::has_linkage_payload_v<streamclust::AngularOrEuclidean>,
+              "AngularOrEuclidean mixes two payloads: the Sample path");
+static_assert(streamclust::has_linkage_payload_v<
+                  streamclust::AllOf<streamclust::AngularLinkage, streamclust::AngularLinkage>>,
+              "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: AllOf of one payload type");

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: MIT
+// The optional compact linkage payload (concepts/linkage.hpp, optimization
+// log section 10): detection, the engine's payload path against its Sample
+// path (a linkage without the capability) on the same streams, and the
+// memory of the payload ring.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/union_find_rebuild.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/combinators.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/runtime_linkage.hpp>
+#include <streamclust/projection/spherical.hpp>
+#include <streamclust/resolution/fixed.hpp>
+#include <streamclust/stream_clusterer.hpp>
+#include <streamclust/window/time_window.hpp>
+
+#include "support/partition.hpp"
+#include "support/streams.hpp"
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace sc = streamclust;
+namespace st = streamclust::test;
+
+namespace {
+
+/// A linkage WITHOUT the payload capability: AngularLinkage behind the
+/// Sample operator only. The engine must take its Sample path and decide the
+/// same as with AngularLinkage (whose Sample operator is its payload one).
+struct SampleOnlyAngular {
+  using Params = sc::AngularLinkage::Params;
+  explicit SampleOnlyAngular(const Params& p) : inner(p) {}
+  bool operator()(const sc::Sample& a, const sc::Sample& b) const { return inner(a, b); }
+  sc::AngularLinkage inner;
+};
+
+/// A payload over the 16-byte limit: detected, but invalid.
+struct WidePayloadLinkage {
+  struct Params {};
+  struct Payload {
+    float v[5];
+  };
+  explicit WidePayloadLinkage(const Params&) {}
+  static Payload make_payload(const sc::Sample& s) { return Payload{{s.position.x(), 0.0f, 0.0f, 0.0f, 0.0f}}; }
+  bool operator()(const Payload& a, const Payload& b) const { return a.v[0] == b.v[0]; }
+  bool operator()(const sc::Sample& a, const sc::Sample& b) const { return (*this)(make_payload(a), make_payload(b)); }
+};
+
+/// make_payload returning another type than Payload: not the capability.
+struct MismatchedPayloadLinkage {
+  struct Params {};
+  struct Payload {
+    float x;
+  };
+  explicit MismatchedPayloadLinkage(const Params&) {}
+  static float make_payload(const sc::Sample& s) { return s.range; }
+  bool operator()(const Payload&, const Payload&) const { return true; }
+  bool operator()(const sc::Sample&, const sc::Sample&) const { return true; }
+};
+
+template <class Linkage, class Connectivity = sc::LazyBfsConnectivity>
+struct Cfg {
+  using projection = sc::SphericalProjection;
+  using spatial_index = sc::CappedGrid;
+  using linkage = Linkage;
+  using window = sc::TimeWindow;
+  using resolution = sc::FixedResolution;
+  using connectivity = Connectivity;
+};
+
+template <class Config>
+sc::ClustererParams<Config> params_for(std::uint64_t seed) {
+  sc::ClustererParams<Config> p;
+  p.mask_size = 3 + 2 * static_cast<int>(seed % 3);
+  p.resolution = {12, 48};
+  const double durations[] = {0.05, 0.2, 0.6, 1.2};  // the longer ones grow the rings with live points
+  p.window.duration = durations[seed % 4];
+  p.spatial_index.capacity = 2 + static_cast<std::uint32_t>(seed % 3);
+  p.linkage.theta_deg = 10.0f + 5.0f * static_cast<float>(seed % 5);
+  p.linkage.min_ray_angle_deg = seed % 2 ? 0.2f : 0.0f;
+  return p;
+}
+
+/// Labels of the last retrieval, in window order.
+template <class Engine>
+std::vector<sc::ComponentId> labels(const Engine& engine) {
+  std::vector<sc::ComponentId> out;
+  for (const sc::PointLabel& l : engine.last_result().points) out.push_back(l.label);
+  return out;
+}
+
+}  // namespace
+
+static_assert(sc::has_linkage_payload_v<sc::AngularLinkage>);
+static_assert(sc::has_linkage_payload_v<sc::EuclideanLinkage>);
+static_assert(std::is_same_v<sc::linkage_payload_t<sc::AngularLinkage>, sc::AngularLinkage::Payload>);
+static_assert(sizeof(sc::AngularLinkage::Payload) == 16 && alignof(sc::AngularLinkage::Payload) == 16);
+static_assert(sizeof(sc::EuclideanLinkage::Payload) == 16 && alignof(sc::EuclideanLinkage::Payload) == 16);
+static_assert(std::is_trivially_copyable_v<sc::AngularLinkage::Payload>);
+static_assert(std::is_trivially_copyable_v<sc::EuclideanLinkage::Payload>);
+// combinators: only children sharing one payload type
+static_assert(sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
+static_assert(sc::has_linkage_payload_v<sc::AnyOf<sc::EuclideanLinkage>>);
+static_assert(!sc::has_linkage_payload_v<sc::AngularOrEuclidean>);
+static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, SampleOnlyAngular>>);
+static_assert(!sc::has_linkage_payload_v<sc::AllOf<>>);
+static_assert(!sc::has_linkage_payload_v<sc::RuntimeLinkage>);
+// without the capability: the Sample path, NoPayload, no ring
+static_assert(!sc::has_linkage_payload_v<SampleOnlyAngular>);
+static_assert(std::is_same_v<sc::linkage_payload_t<SampleOnlyAngular>, sc::detail::NoPayload>);
+static_assert(sc::is_linkage_payload_valid_v<SampleOnlyAngular>);
+static_assert(!sc::has_linkage_payload_v<MismatchedPayloadLinkage>);
+// detected but too wide: the engine's config check rejects it
+static_assert(sc::has_linkage_payload_v<WidePayloadLinkage>);
+static_assert(!sc::is_linkage_payload_valid_v<WidePayloadLinkage>);
+static_assert(sc::StreamClusterer<Cfg<sc::AngularLinkage>>::uses_payload);
+static_assert(!sc::StreamClusterer<Cfg<SampleOnlyAngular>>::uses_payload);
+
+TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal to the batch clusterer", Conn,
+                   sc::LazyBfsConnectivity, sc::UnionFindRebuildConnectivity) {
+  using Fast = Cfg<sc::AngularLinkage, Conn>;
+  using Plain = Cfg<SampleOnlyAngular, Conn>;
+  std::size_t compared = 0;
+  std::size_t multi = 0;
+  std::size_t grown = 0;
+  for (std::uint64_t seed = 0; seed < 24; ++seed) {
+    const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
+    const auto stream = st::make_stream(kind, seed % 4 < 2 ? 400 : 2600, seed, 2000.0);
+    sc::StreamClusterer<Fast> fast(params_for<Fast>(seed));
+    sc::StreamClusterer<Plain> plain(params_for<Plain>(seed));
+    sc::BatchClusterer<Plain> batch(params_for<Plain>(seed));
+    for (std::size_t i = 0; i < stream.size(); ++i) {
+      fast.insert(stream[i]);
+      plain.insert(stream[i]);
+      if (i % 37 != 36) continue;
+      fast.retrieve();
+      plain.retrieve();
+      INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i);
+      REQUIRE(fast.size() == plain.size());
+      // the same point ids and the same labels: ids follow the same history
+      REQUIRE(labels(fast) == labels(plain));
+      const auto& fp = fast.last_result().points;
+      const auto& pp = plain.last_result().points;
+      for (std::size_t k = 0; k < fp.size(); ++k) REQUIRE(fp[k].stream_index == pp[k].stream_index);
+      // and the partition of the Sample-path batch oracle
+      std::vector<sc::Sample> window;
+      fast.for_each_point([&](const sc::Sample& s, std::uint64_t) { window.push_back(s); });
+      batch.set_grid({fast.grid().rows, fast.grid().cols});
+      REQUIRE(st::partition_mismatch(labels(fast), batch.cluster(window).labels) == "");
+      // the payload ring holds make_payload of every live sample
+      for (std::size_t pos = 0; pos < fast.size(); ++pos) {
+        const sc::PointHandle h = fast.handle_at(pos);
+        const sc::AngularLinkage::Payload expected = sc::AngularLinkage::make_payload(fast.sample(h));
+        const sc::AngularLinkage::Payload& stored = fast.payload(h);
+        for (int c = 0; c < 3; ++c) REQUIRE(stored.direction[c] == expected.direction[c]);
+        REQUIRE(stored.range == expected.range);
+      }
+      ++compared;
+      multi += fast.last_result().components.size() > 1 ? 1u : 0u;
+      grown += fast.size() > 1024 ? 1u : 0u;
+    }
+  }
+  CHECK(compared > 100);
+  CHECK(multi > compared / 4);  // not a trivial partition
+  CHECK(grown > 0);             // rings grew (1024 -> 2048 slots or more) with live points
+}
+
+TEST_CASE("memory_usage counts the payload ring: 16 bytes per ring slot, none without a payload") {
+  using Fast = Cfg<sc::AngularLinkage>;
+  using Plain = Cfg<SampleOnlyAngular>;
+  sc::StreamClusterer<Fast> fast(params_for<Fast>(3));
+  sc::StreamClusterer<Plain> plain(params_for<Plain>(3));
+  CHECK(fast.memory_usage().point_ring == 0);
+  const auto stream = st::make_stream(st::StreamKind::blobs, 3000, 5, 2000.0);
+  for (const auto& p : stream) {
+    fast.insert(p);
+    plain.insert(p);
+  }
+  REQUIRE(fast.size() == plain.size());
+  const sc::MemoryUsage mf = fast.memory_usage();
+  const sc::MemoryUsage mp = plain.memory_usage();
+  REQUIRE(mp.point_ring > 0);
+  // the same ring capacity (a power of two, >= 1024): the difference is the payload ring
+  CHECK(mf.point_ring > mp.point_ring);
+  const std::size_t extra = mf.point_ring - mp.point_ring;
+  CHECK(extra % sizeof(sc::AngularLinkage::Payload) == 0);
+  const std::size_t ring_slots = extra / sizeof(sc::AngularLinkage::Payload);
+  CHECK(ring_slots >= fast.size());
+  CHECK((ring_slots & (ring_slots - 1)) == 0);  // a power of two, as the other rings
+  CHECK(mp.point_ring % ring_slots == 0);       // the Sample and record rings have as many slots
+  CHECK(mf.total() == mp.total() + extra);
+}
