@@ -6,6 +6,7 @@
 
 #include <streamclust/clustering.hpp>
 #include <streamclust/config.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/detail/mask.hpp>
 #include <streamclust/memory_usage.hpp>
 #include <streamclust/point_traits.hpp>
@@ -292,15 +293,16 @@ class StreamClusterer {
     } else {
       m.spatial_index_known = false;
     }
-    m.clusters = capacity_bytes(clusters_) + capacity_bytes(free_clusters_) + capacity_bytes(pending_);
+    m.clusters = capacity_bytes(clusters_) + capacity_bytes(free_clusters_) + capacity_bytes(pending_) +
+                 capacity_bytes(cluster_size_);
     for (const Cluster& c : clusters_) m.clusters += capacity_bytes(c.bridges);
     m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(mask_cells_) +
                 capacity_bytes(touched_) +
                 capacity_bytes(order_) + capacity_bytes(fragment_begin_) + capacity_bytes(component_of_) +
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
                 capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
-                capacity_bytes(sums_) + capacity_bytes(won_weight_) + capacity_bytes(id_order_) +
-                capacity_bytes(slot_of_) + capacity_bytes(sorted_) + capacity_bytes(merged_) +
+                capacity_bytes(sums_) + capacity_bytes(won_weight_) + capacity_bytes(won_slot_) +
+                capacity_bytes(by_slot_) + capacity_bytes(slot_of_) + capacity_bytes(sorted_) + capacity_bytes(merged_) +
                 capacity_bytes(radix_counts_);
     m.result = capacity_bytes(result_.points) + capacity_bytes(result_.components);
     return m;
@@ -393,27 +395,63 @@ class StreamClusterer {
     return edge(e).next_fwd;
   }
 
-  /// Size of the cluster table (live and recycled slots).
-  std::size_t cluster_slots() const { return clusters_.size(); }
-  bool cluster_alive(ClusterId c) const { return c < clusters_.size() && clusters_[c].alive; }
-  /// Live clusters.
+  /// Size of the cluster table (live and recycled slots; rebuilding
+  /// strategies: the last retrieval's components).
+  std::size_t cluster_slots() const {
+    if constexpr (rebuilds_components) {
+      return cluster_size_.size();
+    } else {
+      return clusters_.size();
+    }
+  }
+  bool cluster_alive(ClusterId c) const {
+    if constexpr (rebuilds_components) {
+      return c < cluster_size_.size() && cluster_size_[c] > 0;
+    } else {
+      return c < clusters_.size() && clusters_[c].alive;
+    }
+  }
+  /// Live clusters. O(1); O(clusters) for the rebuilding strategies.
   std::size_t cluster_count() const {
     if constexpr (rebuilds_components) {
-      return static_cast<std::size_t>(std::count_if(clusters_.begin(), clusters_.end(), [](const Cluster& c) { return c.alive; }));
+      return static_cast<std::size_t>(
+          std::count_if(cluster_size_.begin(), cluster_size_.end(), [](std::uint32_t n) { return n > 0; }));
     } else {
       return clusters_.size() - free_clusters_.size();
     }
   }
   /// Points of a live cluster.
-  std::size_t cluster_size(ClusterId c) const { return clusters_[c].size; }
-  bool cluster_pending(ClusterId c) const { return clusters_[c].pending; }
+  std::size_t cluster_size(ClusterId c) const {
+    if constexpr (rebuilds_components) {
+      return cluster_size_[c];
+    } else {
+      return clusters_[c].size;
+    }
+  }
+  /// Always false for the rebuilding strategies (nothing is validated lazily).
+  bool cluster_pending(ClusterId c) const {
+    if constexpr (rebuilds_components) {
+      (void)c;
+      return false;
+    } else {
+      return clusters_[c].pending;
+    }
+  }
   /// Bridge edges of cluster `c`: (other cluster, multiplicity = live
   /// point-level edges between the two). Valid until the next mutation.
+  /// Always empty for the rebuilding strategies (no bridges).
   struct Bridge {
     ClusterId other;
     std::uint32_t multiplicity;
   };
-  const std::vector<Bridge>& bridges(ClusterId c) const { return clusters_[c].bridges; }
+  const std::vector<Bridge>& bridges(ClusterId c) const {
+    if constexpr (rebuilds_components) {
+      (void)c;
+      return no_bridges_;
+    } else {
+      return clusters_[c].bridges;
+    }
+  }
 
  private:
   /// Per-point bookkeeping of the strategies that store point edges; the
@@ -441,10 +479,15 @@ class StreamClusterer {
     PointHandle newer = kNoPoint;
     EdgeHandle next_fwd = kNoEdge;  ///< next edge in `older`'s forward list
   };
+  /// A local cluster of the paper's strategy (lazy_bfs). The rebuilding
+  /// strategies keep none: their local clusters are the last retrieval's
+  /// components: their sizes in `cluster_size_`, their places in the last
+  /// result (which holds their ids) in `slot_of_`.
   struct Cluster {
     std::uint32_t size = 0;
     PointHandle head = kNoPoint;  ///< oldest member
     PointHandle tail = kNoPoint;  ///< newest member
+    std::uint32_t result_slot = 0;  ///< place of its stable id's component in the last result (valid with stable_id)
     std::uint64_t created = 0;    ///< creation order, for the bridging rule
     ComponentId stable_id = kNoComponent;  ///< id of its component at the last retrieval
     bool alive = false;
@@ -463,6 +506,13 @@ class StreamClusterer {
     ForestEdge() noexcept {}  // NOLINT: uninitialised on purpose (radix scratch resized without a fill)
     ForestEdge(PointHandle o, PointHandle n) noexcept : older(o), newer(n) {}
   };
+  /// Points ahead whose per-component records the retrieval's passes
+  /// prefetch (rebuilding strategies) [points].
+  static constexpr std::uint32_t kResultPrefetchDistance = 16;
+  /// Components from which those passes prefetch: 4096 summaries are 288 KB.
+  static constexpr std::uint32_t kResultPrefetchMinComponents = 4096;
+  /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
+  static constexpr PointHandle kEvictPrefetchDistance = 8;
   /// Digit width of the radix sort of new edges [bits]: 2^11 counters (8 KB, in L1).
   static constexpr unsigned kRadixBits = 11;
   /// Points inserted between two folds at most, so that edge ages (newest
@@ -777,14 +827,17 @@ class StreamClusterer {
   void evict_oldest() {
     const PointHandle h = oldest_;
     PointRecord& r = point(h);
+    if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) {
+      // The index cell of a later eviction: its line has long left L1/L2 (it
+      // was last touched when that point was linked, a window ago).
+      const PointHandle ahead = h + kEvictPrefetchDistance;
+      if (static_cast<PointHandle>(ahead - oldest_) < size()) index_.prefetch(point(ahead).cell);
+    }
     if constexpr (rebuilds_components) {
       if (r.cluster != kNoCluster) {
         ++stats_.evicted;
         index_.remove(r.cell, h);
-        if (r.cluster < clusters_.size()) {
-          Cluster& cl = clusters_[r.cluster];
-          if (--cl.size == 0) cl.alive = false;
-        }
+        if (r.cluster < cluster_size_.size()) --cluster_size_[r.cluster];
       }
     } else if (r.cluster != kNoCluster) {
       ++stats_.evicted;
@@ -873,6 +926,7 @@ class StreamClusterer {
       if (f == keeper) continue;
       const ClusterId piece = create_cluster();
       clusters_[piece].stable_id = inherited;
+      clusters_[piece].result_slot = clusters_[c].result_slot;
       for (std::size_t q = fragment_begin_[f]; q < fragment_begin_[f + 1]; ++q) point(order_[q]).cluster = piece;
       ++stats_.clusters_split;
     }
@@ -903,7 +957,8 @@ class StreamClusterer {
   }
 
   /// BFS over the component graph, stable-id assignment, then one pass over
-  /// the window for labels and summaries. O(N + clusters + bridges).
+  /// the window for labels and summaries. O(N + clusters + bridges) plus
+  /// the claims' sort.
   void label_components() {
     const auto t0 = clock_now();
     const std::size_t slots = clusters_.size();
@@ -928,56 +983,113 @@ class StreamClusterer {
     assign_stable_ids(components);
     add_elapsed(stats_.phase_us.component_update, t0);
     write_result(components);
+    // The clusters carry their component's id and place to the next retrieval.
+    for (ClusterId c = 0; c < slots; ++c) {
+      Cluster& cl = clusters_[c];
+      if (!cl.alive) continue;
+      const std::uint32_t r = slot_of_[component_of_[c]];
+      cl.stable_id = result_.components[r].id;
+      cl.result_slot = r;
+    }
   }
 
   /// Labels and summaries of every window point from `component_of_` and
-  /// `component_ids_`. O(N + components log components).
+  /// `won_slot_` (lazy_bfs). O(N + components).
   void write_result(std::uint32_t components) {
     const auto t1 = clock_now();
-    result_.time = last_time_;
-    ++result_.cycle;
-    result_.points.clear();
-    reserve_geometric(result_.points, size());
-    reserve_geometric(result_.components, components);
-    result_.components.assign(components, ComponentSummary{});
-    reserve_geometric(sums_, components);
-    sums_.assign(components, Eigen::Vector3d::Zero());
-    // Summaries go straight to their place in id order: sort (id, component)
-    // pairs, not the 64-byte summaries.
-    reserve_geometric(id_order_, components);
-    id_order_.resize(components);
-    for (std::uint32_t k = 0; k < components; ++k) id_order_[k] = IdSlot{component_ids_[k], k};
-    std::sort(id_order_.begin(), id_order_.end(), [](const IdSlot& a, const IdSlot& b) { return a.id < b.id; });
-    reserve_geometric(slot_of_, components);
-    slot_of_.resize(components);
-    for (std::uint32_t r = 0; r < components; ++r) {
-      slot_of_[id_order_[r].component] = r;
-      result_.components[r].id = id_order_[r].id;
-    }
+    const auto previous = static_cast<std::uint32_t>(result_.components.size());
+    begin_result(components, previous);
+    order_components(components, previous);
+    std::size_t labelled = 0;
     for (PointHandle h = oldest_; h != next_; ++h) {
       const PointRecord& r = point(h);
       if (r.cluster == kNoCluster) continue;  // only while calibrating
-      const std::uint32_t k = slot_of_[component_of_[r.cluster]];
-      ComponentSummary& s = result_.components[k];
-      result_.points.push_back(PointLabel{r.stream_index, s.id});
-      const Sample& sa = sample(h);
-      const Eigen::Vector3f& p = sa.position;
-      if (s.size == 0) {
-        s.min = s.max = p;
-        s.time_begin = sa.time;
-      } else {
-        s.min = s.min.cwiseMin(p);
-        s.max = s.max.cwiseMax(p);
-      }
-      s.time_end = sa.time;
-      sums_[k] += p.template cast<double>();
-      ++s.size;
+      add_to_result(labelled++, slot_of_[component_of_[r.cluster]], h, r.stream_index);
+    }
+    result_.points.resize(labelled);
+    finish_summaries(components);
+    add_elapsed(stats_.phase_us.labelling, t1);
+  }
+
+  /// Room for every window point's label and `components` summaries; the
+  /// previous result's summaries stay (order_components reads their ids and
+  /// then clears them). O(1) amortised: the vectors only grow, and no
+  /// element is filled here.
+  void begin_result(std::uint32_t components, std::uint32_t previous) {
+    result_.time = last_time_;
+    ++result_.cycle;
+    reserve_geometric(result_.points, size());
+    result_.points.resize(size());
+    reserve_geometric(result_.components, std::max(components, previous));
+    result_.components.resize(std::max(components, previous));
+    reserve_geometric(sums_, components);
+    sums_.resize(components);
+  }
+
+  /// The result order, without a comparison sort, and empty summaries
+  /// carrying the ids. Requires `begin_result` and per component `k` the
+  /// place in the previous result (`previous` components, still in
+  /// `result_.components`) of the old id it kept in `won_slot_[k]`
+  /// (kNoSlot: none). The kept ids come first, in their previous order (the
+  /// previous result was sorted by id), then the fresh ids, handed out here
+  /// in component order: they exceed every id handed out before. Leaves
+  /// `slot_of_[k]` = the place of component `k`. O(components + previous).
+  void order_components(std::uint32_t components, std::uint32_t previous) {
+    reserve_geometric(by_slot_, previous);
+    by_slot_.assign(previous, kNoSlot);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
+    }
+    reserve_geometric(slot_of_, components);
+    slot_of_.resize(components);
+    ComponentSummary* const summaries = result_.components.data();
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    std::uint32_t placed = 0;
+    // Compaction in place: place `placed` <= s, whose old id was read already.
+    for (std::uint32_t s = 0; s < previous; ++s) {
+      const std::uint32_t k = by_slot_[s];
+      if (k == kNoSlot) continue;
+      const ComponentId id = summaries[s].id;
+      slot_of_[k] = placed;
+      summaries[placed] = ComponentSummary{};
+      summaries[placed].id = id;
+      sums_[placed++] = zero;
     }
     for (std::uint32_t k = 0; k < components; ++k) {
-      ComponentSummary& s = result_.components[k];
-      if (s.size > 0) s.centroid = (sums_[k] / static_cast<double>(s.size)).template cast<float>();
+      if (won_slot_[k] != kNoSlot) continue;
+      slot_of_[k] = placed;
+      summaries[placed] = ComponentSummary{};
+      summaries[placed].id = next_component_id_++;
+      sums_[placed++] = zero;
     }
-    add_elapsed(stats_.phase_us.labelling, t1);
+    result_.components.resize(components);
+  }
+
+  /// Writes the label of point `h` (window order `i`) and adds it to the
+  /// summary at place `slot`. O(1).
+  void add_to_result(std::size_t i, std::uint32_t slot, PointHandle h, std::uint64_t stream_index) {
+    ComponentSummary& s = result_.components[slot];
+    result_.points[i] = PointLabel{stream_index, s.id};
+    const Sample& sa = sample(h);
+    const Eigen::Vector3f& p = sa.position;
+    if (s.size == 0) {
+      s.min = s.max = p;
+      s.time_begin = sa.time;
+    } else {
+      s.min = s.min.cwiseMin(p);
+      s.max = s.max.cwiseMax(p);
+    }
+    s.time_end = sa.time;
+    sums_[slot] += p.template cast<double>();
+    ++s.size;
+  }
+
+  /// The centroids, from the sums. O(components).
+  void finish_summaries(std::uint32_t components) {
+    for (std::uint32_t r = 0; r < components; ++r) {
+      ComponentSummary& s = result_.components[r];
+      if (s.size > 0) s.centroid = (sums_[r] / static_cast<double>(s.size)).template cast<float>();
+    }
   }
 
   // Phase timing, compiled away unless the config is `timed`.
@@ -999,22 +1111,25 @@ class StreamClusterer {
     }
   }
 
-  struct IdSlot {
-    ComponentId id;
-    std::uint32_t component;
-  };
   struct Claim {
     std::uint32_t component;
     ComponentId id;
     std::uint64_t weight;
   };
+  /// One (new component, old cluster) pair of the rebuilding strategies'
+  /// per-point votes; the old cluster is the list it is chained in. The
+  /// weight counts points, at most the window size (< 2^32).
   struct Vote {
     std::uint32_t component;
-    ClusterId old;
-    std::uint64_t weight;
+    std::uint32_t weight;
     std::uint32_t next;  ///< next vote of the same old cluster
   };
+  /// No place in the last result / no vote.
+  static constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
 
+  /// lazy_bfs: the old ids claimed by the clusters, weighted by their
+  /// current size, resolved by `resolve_claims`; fills `component_ids_`
+  /// (kNoComponent: fresh, handed out by `order_components`) and `won_slot_`.
   void assign_stable_ids(std::uint32_t components) {
     claims_.clear();
     for (ClusterId c = 0; c < clusters_.size(); ++c) {
@@ -1022,15 +1137,22 @@ class StreamClusterer {
       if (cl.alive && cl.stable_id != kNoComponent) claims_.push_back(Claim{component_of_[c], cl.stable_id, cl.size});
     }
     resolve_claims(components);
+    // A kept id's place in the previous result: the clusters that carry it
+    // (the pieces of one old component share it) all know it.
+    reserve_geometric(won_slot_, components);
+    won_slot_.assign(components, kNoSlot);
     for (ClusterId c = 0; c < clusters_.size(); ++c) {
-      if (clusters_[c].alive) clusters_[c].stable_id = component_ids_[component_of_[c]];
+      const Cluster& cl = clusters_[c];
+      if (!cl.alive || cl.stable_id == kNoComponent) continue;
+      const std::uint32_t k = component_of_[c];
+      if (component_ids_[k] == cl.stable_id) won_slot_[k] = cl.result_slot;
     }
   }
 
   /// From `claims_` (component, old id, weight), possibly with repeated
   /// pairs: each old id goes to its heaviest claimant, each component keeps
-  /// its heaviest old id, the others get fresh ids. Fills `component_ids_`.
-  /// O(claims log claims).
+  /// its heaviest old id; fills `component_ids_` (kNoComponent for the
+  /// others). O(claims log claims).
   void resolve_claims(std::uint32_t components) {
     // Sum the weight of each (component, old id) pair.
     std::sort(claims_.begin(), claims_.end(), [](const Claim& a, const Claim& b) {
@@ -1064,9 +1186,6 @@ class StreamClusterer {
     component_ids_.assign(components, kNoComponent);
     for (const Claim& cl : claims_) {
       if (component_ids_[cl.component] == kNoComponent) component_ids_[cl.component] = cl.id;
-    }
-    for (auto& id : component_ids_) {
-      if (id == kNoComponent) id = next_component_id_++;
     }
   }
 
@@ -1221,90 +1340,108 @@ class StreamClusterer {
     return components;
   }
 
-  /// From the component of every window position (`parent_`): per-point
-  /// votes for the stable ids, the components as the new local clusters,
-  /// the result. O(N + components) plus the claims.
+  /// From the component of every window position (`parent_`): the stable
+  /// ids by per-point votes, the components as the new local clusters, the
+  /// result. Two passes over the window: the votes (and the new local
+  /// clusters), then the labels and summaries straight to their place in id
+  /// order; between them, per component (the ids and their order, no sort)
+  /// and per vote. O(N + components + votes).
   void adopt_components(std::uint32_t n, std::uint32_t components) {
-    // Votes: (component, old cluster).
-    const auto old_clusters = static_cast<std::uint32_t>(clusters_.size());
+    const auto t1 = clock_now();
+    // The old clusters are the previous retrieval's components, at places
+    // slot_of_[c] in the previous result, which holds their ids.
+    const auto old_clusters = static_cast<std::uint32_t>(cluster_size_.size());
     reserve_geometric(claim_head_, old_clusters);
-    claim_head_.assign(old_clusters, kNoCluster);
+    claim_head_.assign(old_clusters, kNoSlot);
     votes_.clear();
+    reserve_geometric(cluster_size_, components);
+    cluster_size_.assign(components, 0);
+    // Prefetch only when the per-cluster records outgrow the L1/L2 caches
+    // (a fragmented window); otherwise it only costs instructions.
+    const bool scattered_old = old_clusters >= kResultPrefetchMinComponents;
     for (std::uint32_t i = 0; i < n; ++i) {
-      ClusterId& cluster = point(oldest_ + i).cluster;
-      const ClusterId old = cluster;
+      if (scattered_old && i + kResultPrefetchDistance < n) {
+        const ClusterId ahead = point(oldest_ + i + kResultPrefetchDistance).cluster;
+        if (ahead < old_clusters) detail::prefetch(&claim_head_[ahead]);
+      }
+      PointRecord& r = point(oldest_ + i);
+      const ClusterId old = r.cluster;
       const std::uint32_t k = parent_[i];
-      cluster = k;
-      if (old >= old_clusters) continue;  // inserted since the last retrieval
-      std::uint32_t before = kNoCluster;
-      std::uint32_t v = claim_head_[old];
-      while (v != kNoCluster && votes_[v].component != k) {
-        before = v;
-        v = votes_[v].next;
-      }
-      if (v != kNoCluster) {
-        ++votes_[v].weight;
-        if (before != kNoCluster) {
-          // Move to front: the next points of `old` most likely vote the same
-          // way. Without it, an old component that shed many small pieces
-          // made each of its points walk past all their votes (O(N x pieces),
-          // 7 ms per retrieval on the Mid-360 office).
-          votes_[before].next = votes_[v].next;
-          votes_[v].next = claim_head_[old];
-          claim_head_[old] = v;
-        }
-      } else {
-        votes_.push_back(Vote{k, old, 1, claim_head_[old]});
-        claim_head_[old] = static_cast<std::uint32_t>(votes_.size() - 1);
-      }
+      r.cluster = k;
+      ++cluster_size_[k];
+      if (old < old_clusters) vote(old, k);  // else inserted since the last retrieval
     }
     // Stable ids: resolve_claims' rule in linear time. Each (component, old
     // cluster) pair is one vote and the old clusters carry distinct ids, so:
     // each old id goes to its heaviest vote (ties: the lower component), and
-    // each component keeps the heaviest id it won (ties: the older id); the
-    // others get fresh ids in component order. O(votes + components).
-    reserve_geometric(component_ids_, components);
-    component_ids_.assign(components, kNoComponent);
+    // each component keeps the heaviest id it won (ties: the older id, that
+    // is the lower place in the previous result, which is sorted by id); the
+    // others get fresh ids (order_components). O(votes + components).
     reserve_geometric(won_weight_, components);
-    won_weight_.assign(components, 0);
+    won_weight_.resize(components);  // read only where an id was won
+    reserve_geometric(won_slot_, components);
+    won_slot_.assign(components, kNoSlot);
     for (ClusterId c = 0; c < old_clusters; ++c) {
-      const ComponentId id = clusters_[c].stable_id;
       std::uint32_t best = claim_head_[c];
-      if (id == kNoComponent || best == kNoCluster) continue;
-      for (std::uint32_t v = votes_[best].next; v != kNoCluster; v = votes_[v].next) {
+      if (best == kNoSlot) continue;  // evicted entirely
+      for (std::uint32_t v = votes_[best].next; v != kNoSlot; v = votes_[v].next) {
         if (votes_[v].weight > votes_[best].weight ||
             (votes_[v].weight == votes_[best].weight && votes_[v].component < votes_[best].component)) {
           best = v;
         }
       }
+      const std::uint32_t slot = slot_of_[c];
       const std::uint32_t k = votes_[best].component;
-      const std::uint64_t w = votes_[best].weight;
-      if (component_ids_[k] == kNoComponent || w > won_weight_[k] || (w == won_weight_[k] && id < component_ids_[k])) {
-        component_ids_[k] = id;
+      const std::uint32_t w = votes_[best].weight;
+      if (won_slot_[k] == kNoSlot || w > won_weight_[k] || (w == won_weight_[k] && slot < won_slot_[k])) {
         won_weight_[k] = w;
+        won_slot_[k] = slot;
       }
     }
-    for (auto& id : component_ids_) {
-      if (id == kNoComponent) id = next_component_id_++;
+    begin_result(components, old_clusters);
+    order_components(components, old_clusters);
+    ComponentSummary* const summaries = result_.components.data();
+    const bool scattered = components >= kResultPrefetchMinComponents;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (scattered && i + kResultPrefetchDistance < n) {
+        // The summary's lines (72 bytes may straddle two) and sum: scattered
+        // over the components, likely misses.
+        const std::uint32_t ahead = slot_of_[parent_[i + kResultPrefetchDistance]];
+        detail::prefetch(&summaries[ahead]);
+        detail::prefetch(&summaries[ahead].time_end);
+        detail::prefetch(&sums_[ahead]);
+      }
+      const PointHandle h = oldest_ + i;
+      add_to_result(i, slot_of_[parent_[i]], h, point(h).stream_index);
     }
-    // The components become the local clusters.
-    reserve_geometric(clusters_, components);
-    clusters_.resize(components);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      Cluster& c = clusters_[k];
-      c.size = 0;
-      c.head = c.tail = kNoPoint;
-      c.created = k;
-      c.stable_id = component_ids_[k];
-      c.alive = true;
-      c.pending = false;
-      c.bridges.clear();
+    finish_summaries(components);
+    add_elapsed(stats_.phase_us.labelling, t1);
+  }
+
+  /// One point of old cluster `old` votes for component `k`. O(votes of
+  /// `old`), in practice O(1): the list is kept most recent first.
+  void vote(ClusterId old, std::uint32_t k) {
+    std::uint32_t before = kNoSlot;
+    std::uint32_t v = claim_head_[old];
+    while (v != kNoSlot && votes_[v].component != k) {
+      before = v;
+      v = votes_[v].next;
     }
-    for (std::uint32_t i = 0; i < n; ++i) ++clusters_[parent_[i]].size;
-    reserve_geometric(component_of_, components);
-    component_of_.resize(components);
-    for (std::uint32_t k = 0; k < components; ++k) component_of_[k] = k;
-    write_result(components);
+    if (v == kNoSlot) {
+      votes_.push_back(Vote{k, 1, claim_head_[old]});
+      claim_head_[old] = static_cast<std::uint32_t>(votes_.size() - 1);
+      return;
+    }
+    ++votes_[v].weight;
+    if (before != kNoSlot) {
+      // Move to front: the next points of `old` most likely vote the same
+      // way. Without it, an old component that shed many small pieces made
+      // each of its points walk past all their votes (O(N x pieces), 7 ms
+      // per retrieval on the Mid-360 office).
+      votes_[before].next = votes_[v].next;
+      votes_[v].next = claim_head_[old];
+      claim_head_[old] = v;
+    }
   }
 
   /// spanning_forest: folds the edges inserted since the last fold
@@ -1516,15 +1653,18 @@ class StreamClusterer {
   std::vector<std::size_t> fragment_begin_;
   std::vector<std::uint32_t> component_of_;
   std::vector<ClusterId> queue_;
-  std::vector<ComponentId> component_ids_;
+  std::vector<ComponentId> component_ids_;  // lazy_bfs, per component: the old id it keeps, or kNoComponent
   std::vector<Claim> claims_;
-  std::vector<std::uint32_t> parent_;      // union_find_rebuild: union-find, then component per point
-  std::vector<std::uint32_t> claim_head_;  // union_find_rebuild: first vote per old cluster
+  std::vector<std::uint32_t> parent_;       // rebuilding strategies: union-find, then component per point
+  std::vector<std::uint32_t> claim_head_;   // rebuilding strategies: most recent vote per old cluster
   std::vector<Vote> votes_;
-  std::vector<std::uint64_t> won_weight_;  // per component: weight of the id it won
-  std::vector<IdSlot> id_order_;           // write_result: components in id order
-  std::vector<std::uint32_t> slot_of_;     // write_result: component -> place in the result
-  std::vector<Eigen::Vector3d> sums_;
+  std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won
+  std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot
+  std::vector<std::uint32_t> by_slot_;      // order_components: place in the previous result -> component
+  std::vector<std::uint32_t> slot_of_;      // component -> place in the result (rebuilding: kept, per local cluster)
+  std::vector<std::uint32_t> cluster_size_; // rebuilding strategies: points of each local cluster still in the window
+  std::vector<Bridge> no_bridges_;          // rebuilding strategies: what bridges() returns (always empty)
+  std::vector<Eigen::Vector3d> sums_;       // per component: sum of the positions, for the centroid
   // spanning_forest: the maximum spanning forest of the window in Kruskal's
   // order (non-increasing older endpoint; expired edges form a suffix), the
   // edges inserted since the last fold, and the fold's scratch.

@@ -60,15 +60,13 @@ class CappedGrid {
   void reset(const GridShape& shape) {
     const std::size_t cells = shape.cell_count();
     slots_.assign(cells * k_, kNoPoint);
-    head_.assign(cells, 0);
-    count_.assign(cells, 0);
+    state_.assign(cells, CellState{});
     size_ = 0;
   }
 
   /// Empty every cell, keeping the allocation. O(cells).
   void clear() {
-    std::fill(head_.begin(), head_.end(), std::uint8_t{0});
-    std::fill(count_.begin(), count_.end(), std::uint8_t{0});
+    std::fill(state_.begin(), state_.end(), CellState{});
     size_ = 0;
   }
 
@@ -76,8 +74,8 @@ class CappedGrid {
   /// returned; otherwise returns kNoPoint. O(1).
   PointHandle insert(CellIndex cell, PointHandle h) {
     PointHandle* ring = slots_.data() + std::size_t{cell} * k_;
-    std::uint8_t& head = head_[cell];
-    std::uint8_t& count = count_[cell];
+    std::uint8_t& head = state_[cell].head;
+    std::uint8_t& count = state_[cell].count;
     if (count < k_) {
       ring[wrap(head + count)] = h;
       ++count;
@@ -94,8 +92,8 @@ class CappedGrid {
   /// otherwise; no-op when absent.
   void remove(CellIndex cell, PointHandle h) {
     PointHandle* ring = slots_.data() + std::size_t{cell} * k_;
-    std::uint8_t& head = head_[cell];
-    std::uint8_t& count = count_[cell];
+    std::uint8_t& head = state_[cell].head;
+    std::uint8_t& count = state_[cell].count;
     if (count == 0) return;
     if (ring[head] == h) {
       head = static_cast<std::uint8_t>(wrap(head + 1u));
@@ -116,29 +114,30 @@ class CappedGrid {
   template <class F>
   void for_each(CellIndex cell, F&& f) const {
     const PointHandle* ring = slots_.data() + std::size_t{cell} * k_;
-    const unsigned head = head_[cell];
-    const unsigned count = count_[cell];
+    const unsigned head = state_[cell].head;
+    const unsigned count = state_[cell].count;
     for (unsigned i = 0; i < count; ++i) f(ring[wrap(head + i)]);
   }
 
-  /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
-  /// soon (prefetches the cell's slots and its head/count bytes). O(1).
+  /// Optional SpatialIndex capability: hint that `for_each(cell, ...)`,
+  /// `insert` or `remove` on the cell follows soon (prefetches the cell's
+  /// slots and its head/count pair). O(1).
   void prefetch(CellIndex cell) const {
     detail::prefetch(slots_.data() + std::size_t{cell} * k_);
-    detail::prefetch(count_.data() + cell);
+    detail::prefetch(state_.data() + cell);
   }
 
   /// Handles currently stored. O(1).
   std::size_t size() const { return size_; }
 
   /// Handles stored in one cell (<= capacity). O(1).
-  std::size_t cell_size(CellIndex cell) const { return count_[cell]; }
+  std::size_t cell_size(CellIndex cell) const { return state_[cell].count; }
 
   const Params& params() const { return params_; }
 
   /// Heap bytes held [bytes]: cells x (4 K + 2) after `reset`. O(1).
   std::size_t heap_bytes() const {
-    return slots_.capacity() * sizeof(PointHandle) + head_.capacity() + count_.capacity();
+    return slots_.capacity() * sizeof(PointHandle) + state_.capacity() * sizeof(CellState);
   }
 
  private:
@@ -147,8 +146,14 @@ class CappedGrid {
   Params params_;
   std::uint8_t k_ = 1;
   std::vector<PointHandle> slots_;
-  std::vector<std::uint8_t> head_;
-  std::vector<std::uint8_t> count_;
+  /// A cell's ring state, head and count side by side: one cache line
+  /// holds both (a lookup misses once, not twice).
+  struct CellState {
+    std::uint8_t head = 0;   ///< slot of the oldest handle
+    std::uint8_t count = 0;  ///< handles stored
+  };
+  static_assert(sizeof(CellState) == 2, "CellState: two bytes per cell");
+  std::vector<CellState> state_;
   std::size_t size_ = 0;
 };
 
