@@ -102,8 +102,9 @@ struct RetrievalStats {
 ///
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
-/// windowed point (a 40-byte Sample and a 40-byte record, in two rings with
-/// the same slots; both rings are powers of two, so up to twice that; 16
+/// windowed point (a 40-byte Sample and a 40-byte record, 16 bytes under
+/// spanning_forest, in two rings with the same slots; both rings are powers
+/// of two, so up to twice that; 16
 /// more in a third ring when the linkage has a compact payload) plus
 /// the index, plus the point graph: the paper's strategy and the rebuild keep
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
