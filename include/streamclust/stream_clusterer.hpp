@@ -325,14 +325,14 @@ class StreamClusterer {
   std::size_t position_of(PointHandle h) const { return static_cast<PointHandle>(h - oldest_); }
   /// True when `h` is in the window.
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
-  const Sample& sample(PointHandle h) const { return samples_[h & point_mask_]; }
+  const Sample& sample(PointHandle h) const { return samples_[ring_slot(h)]; }
   /// The linkage payload of a live point (only with a payload linkage,
   /// `uses_payload`): `linkage_type::make_payload(sample(h))`.
   /// (A template so that explicit instantiations of the engine skip it.)
   template <bool Enabled = uses_payload>
   const payload_type& payload(PointHandle h) const {
     static_assert(Enabled, "StreamClusterer::payload: the linkage has no compact payload");
-    return payloads_[h & point_mask_];
+    return payloads_[ring_slot(h)];
   }
   std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
   /// Local cluster of a live point (kNoCluster while calibrating; with
@@ -516,12 +516,23 @@ class StreamClusterer {
   static constexpr PointHandle kEvictPrefetchDistance = 8;
   /// Digit width of the radix sort of new edges [bits]: 2^11 counters (8 KB, in L1).
   static constexpr unsigned kRadixBits = 11;
+  /// Smallest point ring [slots].
+  static constexpr std::size_t kMinRingCapacity = 1024;
   /// Points inserted between two folds at most, so that edge ages (newest
   /// handle - older endpoint) never wrap around 2^32.
   static constexpr PointHandle kMaxFoldSpan = PointHandle{1} << 30;
 
-  PointRecord& point(PointHandle h) { return points_[h & point_mask_]; }
-  const PointRecord& point(PointHandle h) const { return points_[h & point_mask_]; }
+  PointRecord& point(PointHandle h) { return points_[ring_slot(h)]; }
+  const PointRecord& point(PointHandle h) const { return points_[ring_slot(h)]; }
+  /// Slot of a live handle (or of `next_`) in the point rings: h - origin,
+  /// wrapped once. oldest_ - ring_origin_ < ring_capacity_ and the window
+  /// holds at most ring_capacity_ points, so h - origin < 2 x capacity; all
+  /// handle arithmetic is modulo 2^32. O(1), no division.
+  static std::uint32_t ring_slot(PointHandle h, PointHandle origin, std::uint32_t capacity) {
+    const std::uint32_t d = static_cast<std::uint32_t>(h - origin);
+    return d >= capacity ? d - capacity : d;
+  }
+  std::uint32_t ring_slot(PointHandle h) const { return ring_slot(h, ring_origin_, ring_capacity_); }
   EdgeRecord& edge(EdgeHandle e) { return edges_[e & edge_mask_]; }
   const EdgeRecord& edge(EdgeHandle e) const { return edges_[e & edge_mask_]; }
   PointHandle& edge_older_at(EdgeHandle e) { return edge_older_[e & edge_mask_]; }
@@ -588,7 +599,7 @@ class StreamClusterer {
     reserve_points(size() + 1);
     const PointHandle h = next_++;
     PointRecord& r = point(h);
-    const std::uint32_t slot = h & point_mask_;
+    const std::uint32_t slot = ring_slot(h);
     samples_[slot] = make_sample(pos, range, point_intensity, time);
     if constexpr (uses_payload) payloads_[slot] = linkage_type::make_payload(samples_[slot]);
     r.stream_index = stream_index;
@@ -661,7 +672,7 @@ class StreamClusterer {
         index_.for_each(mask_cells_[i], [&](PointHandle n) {
           candidates_.push_back(n);
           if constexpr (uses_payload) {
-            detail::prefetch(&payloads_[n & point_mask_]);
+            detail::prefetch(&payloads_[ring_slot(n)]);
           } else {
             detail::prefetch(&sample(n));
           }
@@ -669,23 +680,24 @@ class StreamClusterer {
       }
       // Branch-free compaction: whether a candidate links is close to a
       // coin flip, a branch on it would mispredict often.
-      const std::uint32_t slot_mask = point_mask_;
+      const PointHandle origin = ring_origin_;
+      const std::uint32_t ring_capacity = ring_capacity_;
       neighbours_.resize(candidates_.size());
       PointHandle* const out = neighbours_.data();
       std::size_t found = 0;
       if constexpr (uses_payload) {
-        const payload_type s = payloads_[h & slot_mask];  // a copy: the stores below cannot alias it
+        const payload_type s = payloads_[ring_slot(h, origin, ring_capacity)];  // a copy: the stores below cannot alias it
         const payload_type* const ring = payloads_.data();
         for (const PointHandle n : candidates_) {
           out[found] = n;
-          found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+          found += linkage_(s, ring[ring_slot(n, origin, ring_capacity)]) ? 1u : 0u;
         }
       } else {
         const Sample& s = sample(h);
         const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
         for (const PointHandle n : candidates_) {
           out[found] = n;
-          found += linkage_(s, ring[n & slot_mask]) ? 1u : 0u;
+          found += linkage_(s, ring[ring_slot(n, origin, ring_capacity)]) ? 1u : 0u;
         }
       }
       neighbours_.resize(found);
@@ -869,6 +881,7 @@ class StreamClusterer {
       }
     }
     ++oldest_;
+    if (static_cast<std::uint32_t>(oldest_ - ring_origin_) == ring_capacity_) ring_origin_ += ring_capacity_;
     if constexpr (stores_point_edges) oldest_edge_ = size() > 0 ? point(oldest_).back_begin : next_edge_;
   }
 
@@ -1566,24 +1579,30 @@ class StreamClusterer {
     return from;
   }
 
-  /// Grows the point ring (doubling) so it can hold `needed` points.
+  /// Grows the point rings so they can hold `needed` points: to needed +
+  /// needed / 8 slots (at least kMinRingCapacity), not to a power of two, so
+  /// a steady window of N points holds at most 1.125 N slots (a power of two
+  /// held up to 2 N). The live points move to slots [0, size) and the origin
+  /// to the oldest point. O(1) when `needed` fits, else O(size); a window
+  /// growing from empty reallocates O(log N) times (factor 1.125).
   void reserve_points(std::size_t needed) {
-    if (needed <= points_.size()) return;
-    std::size_t capacity = std::max<std::size_t>(points_.size() * 2, 1024);
-    while (capacity < needed) capacity *= 2;
+    if (needed <= ring_capacity_) return;
+    const std::size_t capacity = std::max<std::size_t>(needed + needed / 8, kMinRingCapacity);
     std::vector<PointRecord> grown(capacity);
     std::vector<Sample> grown_samples(capacity);
     std::vector<payload_type> grown_payloads(uses_payload ? capacity : 0);  // no ring without a payload
-    const auto new_mask = static_cast<std::uint32_t>(capacity - 1);
-    for (PointHandle h = oldest_; h != next_; ++h) {
-      grown[h & new_mask] = point(h);
-      grown_samples[h & new_mask] = sample(h);
-      if constexpr (uses_payload) grown_payloads[h & new_mask] = payloads_[h & point_mask_];
+    std::uint32_t slot = 0;
+    for (PointHandle h = oldest_; h != next_; ++h, ++slot) {
+      const std::uint32_t from = ring_slot(h);
+      grown[slot] = points_[from];
+      grown_samples[slot] = samples_[from];
+      if constexpr (uses_payload) grown_payloads[slot] = payloads_[from];
     }
     points_.swap(grown);
     samples_.swap(grown_samples);
     payloads_.swap(grown_payloads);
-    point_mask_ = new_mask;
+    ring_capacity_ = static_cast<std::uint32_t>(capacity);
+    ring_origin_ = oldest_;
   }
 
   /// Grows the edge ring so `extra` more edges fit.
@@ -1620,7 +1639,8 @@ class StreamClusterer {
   std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
   std::vector<PointRecord> points_;  // the bookkeeping
   std::vector<payload_type> payloads_;  // with a payload linkage: what it reads (16 bytes); else empty
-  std::uint32_t point_mask_ = 0;
+  std::uint32_t ring_capacity_ = 0;  // slots of each point ring
+  PointHandle ring_origin_ = 0;      // the handle in slot 0: oldest_ - ring_origin_ < ring_capacity_ (mod 2^32)
   PointHandle oldest_ = 0;
   PointHandle next_ = 0;
   // Ring buffer of edges, freed in the same FIFO order: live handles are [oldest_edge_, next_edge_).
