@@ -23,11 +23,10 @@
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
 
-#include "support/partition.hpp"
+#include "support/oracle.hpp"
 #include "support/streams.hpp"
 
 #include <random>
-#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -92,33 +91,6 @@ sc::ClustererParams<Config> random_params(std::mt19937_64& rng) {
   return p;
 }
 
-// Compares the engine's last retrieval with a from-scratch batch run on the
-// same window. Returns an empty string on agreement.
-template <class Config>
-std::string compare_with_batch(const sc::StreamClusterer<Config>& engine, sc::BatchClusterer<Config>& batch) {
-  std::vector<sc::Sample> window;
-  std::vector<std::uint64_t> indices;
-  engine.for_each_point([&](const sc::Sample& s, std::uint64_t i) {
-    window.push_back(s);
-    indices.push_back(i);
-  });
-  const sc::Clustering& result = engine.last_result();
-  if (result.points.size() != window.size()) return "engine labelled a different number of points than its window";
-  std::vector<sc::ComponentId> continuous;
-  for (std::size_t i = 0; i < window.size(); ++i) {
-    if (result.points[i].stream_index != indices[i]) return "stream index mismatch";
-    continuous.push_back(result.points[i].label);
-  }
-  batch.set_grid({engine.grid().rows, engine.grid().cols});
-  const sc::BatchResult& reference = batch.cluster(window);
-  if (reference.rejections.rejected() != 0) return "batch rejected a point the engine accepted";
-  std::string mismatch = st::partition_mismatch(continuous, reference.labels);
-  if (!mismatch.empty()) return mismatch;
-  std::set<sc::ComponentId> ids(continuous.begin(), continuous.end());
-  if (ids.size() != result.components.size()) return "component summaries do not match the labels";
-  return {};
-}
-
 /// When the oracle retrieves: after a random 1-40 points, after every
 /// point, or only once at the end of the stream.
 enum class Schedule { random, every_point, at_end };
@@ -152,7 +124,7 @@ std::uint64_t run_oracle(std::uint64_t seed, Schedule schedule = Schedule::rando
       engine.retrieve();
       ++retrievals;
       folds += engine.last_stats().forest_folds;
-      const std::string mismatch = compare_with_batch(engine, batch);
+      const std::string mismatch = st::compare_with_batch(engine, batch);
       INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i << ", retrieval "
                    << retrievals << ", grid " << engine.grid().rows << "x" << engine.grid().cols << ", mask "
                    << params.mask_size << ", window size " << engine.size());
@@ -306,7 +278,7 @@ TEST_CASE_TEMPLATE("the C-ARC presets with adaptive resolution agree with the ba
           CHECK(engine.calibrating());   // and a retrieval does not end the calibration
           continue;
         }
-        REQUIRE(compare_with_batch(engine, batch) == "");
+        REQUIRE(st::compare_with_batch(engine, batch) == "");
         ++compared;
       }
     }

@@ -303,7 +303,7 @@ class StreamClusterer {
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
                 capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
                 capacity_bytes(sums_) + capacity_bytes(won_weight_) + capacity_bytes(won_slot_) +
-                capacity_bytes(by_slot_) + capacity_bytes(slot_of_) + capacity_bytes(sorted_) + capacity_bytes(merged_) +
+                capacity_bytes(by_slot_) + capacity_bytes(slot_of_) +
                 capacity_bytes(radix_counts_);
     m.result = capacity_bytes(result_.points) + capacity_bytes(result_.components);
     return m;
@@ -1495,72 +1495,89 @@ class StreamClusterer {
   /// end of a fold holds the window's components. F is kept in Kruskal's
   /// order (non-increasing weight = increasing age): its expired edges are
   /// a suffix and the new edges are merged into it, not re-sorted with it.
+  ///
+  /// Memory: no second forest. The expired suffix is cut off first; the new
+  /// edges are radix-sorted with the spare tail of `forest_` as the buffer
+  /// (sort_fresh_by_age); the kept forest then moves back by the number of
+  /// added edges a, and Kruskal writes the edges it accepts over the front
+  /// of `forest_`. The writes never overtake the reads: when an edge is
+  /// accepted, i kept and j added edges have been read (it included), the w
+  /// accepted before it are fewer than the i + j read, so it goes to
+  /// w <= i + j - 1 <= a + i - 1, below a + i, where the next kept edge to
+  /// read lies (the added edges are in `fresh_`, apart); it was copied out
+  /// before the write. So `forest_` holds live forest + new edges at the
+  /// fold's peak and `fresh_` the new edges.
   void fold_forest() {
     const auto n = static_cast<std::uint32_t>(size());
     const PointHandle newest = next_ - 1;
-    reset_ranked(n);
-    const ForestEdge* added = sort_fresh_by_age(n);
-    const std::size_t added_count = fresh_.size();
-    const ForestEdge* kept = forest_.data();
-    const std::size_t kept_count = forest_.size();
-    merged_.clear();
-    reserve_geometric(merged_, n);  // a forest over n points has fewer than n edges
     const auto age = [newest](const ForestEdge& e) { return static_cast<std::uint32_t>(newest - e.older); };
+    reset_ranked(n);
+    // The expired edges are a suffix (increasing age; ages do not wrap, see kMaxFoldSpan).
+    forest_.erase(std::partition_point(forest_.begin(), forest_.end(), [&](const ForestEdge& e) { return age(e) < n; }),
+                  forest_.end());
+    const std::size_t kept_count = forest_.size();
+    const std::size_t added_count = sort_fresh_by_age(n);  // now in fresh_; forest_ grew by added_count
+    ForestEdge* const out = forest_.data();
+    std::copy_backward(out, out + kept_count, out + kept_count + added_count);
+    const ForestEdge* const kept = out + added_count;
+    const ForestEdge* const added = fresh_.data();
     std::size_t i = 0;
     std::size_t j = 0;
+    std::size_t written = 0;
     for (;;) {
-      // Age n: the kept edge has expired (and so has the rest of the
-      // forest) or a list is exhausted. The added edges are all live.
-      const std::uint32_t kept_age = i < kept_count ? std::min(age(kept[i]), n) : n;
+      // Age n: a list is exhausted (every remaining edge is live).
+      const std::uint32_t kept_age = i < kept_count ? age(kept[i]) : n;
       const std::uint32_t added_age = j < added_count ? age(added[j]) : n;
-      const ForestEdge* e;
+      ForestEdge e;
       if (kept_age <= added_age) {
         if (kept_age >= n) break;
-        e = &kept[i++];
+        e = kept[i++];
       } else {
-        e = &added[j++];
+        e = added[j++];
       }
-      if (unite_ranked(static_cast<std::uint32_t>(e->older - oldest_), static_cast<std::uint32_t>(e->newer - oldest_))) {
-        merged_.push_back(*e);
+      if (unite_ranked(static_cast<std::uint32_t>(e.older - oldest_), static_cast<std::uint32_t>(e.newer - oldest_))) {
+        out[written++] = e;
       }
     }
-    forest_.swap(merged_);
+    forest_.resize(written);
     fresh_.clear();
     fold_mark_ = next_;
   }
 
   /// Drops the expired edges from `fresh_` and sorts the others by age
   /// (newest - older endpoint, increasing: Kruskal's order) with an LSD radix
-  /// sort of ceil(bits / kRadixBits) passes over the bits of the largest age
-  /// (2 passes for windows of 2^11 to 2^22 points), between `fresh_` and
-  /// `sorted_`. Returns the sorted edges (`fresh_.size()` of them).
+  /// sort of an even number of passes (2 for windows up to 2^22 points, 4
+  /// beyond) over the bits of the largest age, so that the sorted edges end
+  /// in `fresh_`. The other buffer of the ping-pong is the tail of `forest_`,
+  /// which grows by the live new edges (fold_forest writes there next).
+  /// Returns the live new edges (`fresh_.size()`).
   /// O(passes x (new edges + 2^digit)).
-  const ForestEdge* sort_fresh_by_age(std::uint32_t n) {
+  std::size_t sort_fresh_by_age(std::uint32_t n) {
     const PointHandle newest = next_ - 1;
     std::size_t live = 0;
     for (std::size_t k = 0; k < fresh_.size(); ++k) {
       if (static_cast<PointHandle>(fresh_[k].older - oldest_) < n) fresh_[live++] = fresh_[k];
     }
     fresh_.resize(live);
-    if (live < 2 || n < 2) return fresh_.data();
+    const std::size_t kept = forest_.size();
+    reserve_geometric(forest_, kept + live);
+    forest_.resize(kept + live);  // ForestEdge's constructor leaves the tail uninitialised: no fill
+    if (live < 2 || n < 2) return live;
     unsigned bits = 0;  // ages are in [0, n)
     while (bits < 32 && ((n - 1) >> bits) != 0) ++bits;
-    const unsigned passes = (bits + kRadixBits - 1) / kRadixBits;
+    unsigned passes = (bits + kRadixBits - 1) / kRadixBits;
+    passes += passes % 2;  // even: the result lands back in fresh_
     const unsigned digit = (bits + passes - 1) / passes;
     const std::uint32_t mask = (std::uint32_t{1} << digit) - 1;
     const std::size_t buckets = std::size_t{1} << digit;
-    radix_counts_.reserve(std::size_t{3} << kRadixBits);  // once: 3 passes cover 32 bits
+    radix_counts_.reserve(std::size_t{2} << kRadixBits);  // once: 2 passes of kRadixBits or 4 of 8 bits
     radix_counts_.assign(passes * buckets, 0);
     for (const ForestEdge& e : fresh_) {
       const std::uint32_t a = newest - e.older;
       for (unsigned p = 0; p < passes; ++p) ++radix_counts_[p * buckets + ((a >> (p * digit)) & mask)];
     }
-    if (sorted_.size() < live) {
-      reserve_geometric(sorted_, live);
-      sorted_.resize(sorted_.capacity());  // ForestEdge's constructor leaves it uninitialised: no fill
-    }
     ForestEdge* from = fresh_.data();
-    ForestEdge* to = sorted_.data();
+    ForestEdge* to = forest_.data() + kept;
     for (unsigned p = 0; p < passes; ++p) {
       std::uint32_t* start = &radix_counts_[p * buckets];
       std::uint32_t sum = 0;
@@ -1576,7 +1593,7 @@ class StreamClusterer {
       }
       std::swap(from, to);
     }
-    return from;
+    return live;
   }
 
   /// Grows the point rings so they can hold `needed` points: to needed +
@@ -1687,12 +1704,11 @@ class StreamClusterer {
   std::vector<Bridge> no_bridges_;          // rebuilding strategies: what bridges() returns (always empty)
   std::vector<Eigen::Vector3d> sums_;       // per component: sum of the positions, for the centroid
   // spanning_forest: the maximum spanning forest of the window in Kruskal's
-  // order (non-increasing older endpoint; expired edges form a suffix), the
-  // edges inserted since the last fold, and the fold's scratch.
+  // order (non-increasing older endpoint; expired edges form a suffix; during
+  // a fold also the radix buffer and the new forest, see fold_forest), the
+  // edges inserted since the last fold, and the radix counters.
   std::vector<ForestEdge> forest_;
   std::vector<ForestEdge> fresh_;
-  std::vector<ForestEdge> sorted_;  // radix sort ping-pong (size = capacity)
-  std::vector<ForestEdge> merged_;  // the next forest
   std::vector<std::uint32_t> radix_counts_;
   PointHandle fold_mark_ = 0;  // next_ at the last fold
   Clustering result_;
