@@ -633,11 +633,13 @@ class StreamClusterer {
     for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(sample(h).position));
     set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
     std::size_t i = 0;
+    replaying_ = true;
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
       point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
       list_mask_cells(point(h).cell);
       link(h);
     }
+    replaying_ = false;
   }
 
   /// Lists the mask cells around `cell` into `mask_cells_` for the next
@@ -714,7 +716,11 @@ class StreamClusterer {
       index_.insert(r.cell, h);
       // Bound the new edges (memory) and the handle span since the last fold
       // (so that edge ages never wrap): fold without labelling.
-      if (fresh_.size() > connectivity_.fold_threshold(size()) || static_cast<PointHandle>(next_ - fold_mark_) >= kMaxFoldSpan) {
+      // The calibration replay links a whole window at once: it folds at the
+      // threshold of a quarter window, so that it does not set the capacity
+      // of fresh_ and forest_ (which never shrink) above what a cycle needs.
+      const std::size_t threshold = connectivity_.fold_threshold(replaying_ ? size() / 4 : size());
+      if (fresh_.size() > threshold || static_cast<PointHandle>(next_ - fold_mark_) >= kMaxFoldSpan) {
         fold_forest();
         ++stats_.forest_folds;
       }
@@ -1654,6 +1660,7 @@ class StreamClusterer {
   int half_;
   GridShape grid_{};
   bool calibrating_ = true;
+  bool replaying_ = false;  // finish_calibration is linking the buffered window
 
   // Ring buffers of the window (same slots): live handles are [oldest_, next_).
   std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
