@@ -640,6 +640,14 @@ class StreamClusterer {
       link(h);
     }
     replaying_ = false;
+    if constexpr (keeps_forest) {
+      // And leaves no replayed edge to the next retrieval's fold, which
+      // would otherwise carry them on top of the cycle's own.
+      if (!fresh_.empty()) {
+        fold_forest();
+        ++stats_.forest_folds;
+      }
+    }
   }
 
   /// Lists the mask cells around `cell` into `mask_cells_` for the next
