@@ -103,17 +103,19 @@ struct RetrievalStats {
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
 /// windowed point (a 40-byte Sample and a 40-byte record, 16 bytes under
-/// spanning_forest, in two rings with the same slots; both rings are powers
-/// of two, so up to twice that; 16
-/// more in a third ring when the linkage has a compact payload) plus
+/// spanning_forest, in two rings with the same slots; 16 more in a third
+/// ring when the linkage has a compact payload; the rings hold the peak
+/// window plus at most 1/8, not a power of two) plus
 /// the index, plus the point graph: the paper's strategy and the rebuild keep
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
 /// endpoint leaves (about 14 live edges per point on a simulated Mid-360 at
 /// w = 5, T_M = 2, and as many dead ones); the spanning forest keeps 8 bytes
-/// per forest edge (< 1 per point) and per edge inserted since the last
-/// fold, twice (sort and merge scratch). `memory_usage()` reports the parts.
-/// The rings grow by doubling, the scratch and result vectors geometrically,
-/// none shrinks. Steady-state heap allocations: none with the capped grid
+/// per forest edge (< 1 per point) and, twice, per edge inserted since the
+/// last fold (the new edges, and room in the forest's buffer, which the
+/// fold uses as radix buffer and writes the new forest into in place).
+/// `memory_usage()` reports the parts. The point rings grow to the needed
+/// size + 1/8, the edge ring by doubling, the scratch and result vectors to
+/// the needed size + 1/8; none shrinks. Steady-state heap allocations: none with the capped grid
 /// and a rebuilding strategy; a bucket-grid cell allocates when it first
 /// exceeds its previous peak occupancy; the paper's strategy allocates bridge
 /// lists.
