@@ -114,8 +114,8 @@ struct RetrievalStats {
 /// last fold (the new edges, and room in the forest's buffer, which the
 /// fold uses as radix buffer and writes the new forest into in place).
 /// `memory_usage()` reports the parts. The point rings grow to the needed
-/// size + 1/8, the edge ring by doubling, the scratch and result vectors to
-/// the needed size + 1/8; none shrinks. Steady-state heap allocations: none with the capped grid
+/// size + 1/8, the edge ring by doubling, the scratch and result vectors
+/// geometrically; none shrinks. Steady-state heap allocations: none with the capped grid
 /// and a rebuilding strategy; a bucket-grid cell allocates when it first
 /// exceeds its previous peak occupancy; the paper's strategy allocates bridge
 /// lists.
@@ -1221,17 +1221,14 @@ class StreamClusterer {
 
   // ------------------------------------ union_find_rebuild, spanning_forest
 
-  /// Grows `v`'s capacity to n + n / 8 when it cannot hold `n` elements.
+  /// Grows `v`'s capacity by at least half when it cannot hold `n` elements.
   /// The scratch and result vectors are assign()ed or resize()d to the
   /// window or component count; exact growth would reallocate at every new
-  /// maximum (a trickle of allocations per cycle). The 1/8 headroom absorbs
-  /// the cycle-to-cycle jitter of a steady window (about 1 % of the points,
-  /// a few % of the components) and holds at most 1.125 x the peak
-  /// (growing by half from the old capacity held up to 1.5 x). O(1) when
-  /// `n` fits, else O(size).
+  /// maximum (a trickle of allocations per cycle), this a few times in all.
+  /// O(1) when `n` fits, else O(size).
   template <class T, class A>
   static void reserve_geometric(std::vector<T, A>& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(n + n / 8);
+    if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 2));
   }
 
   /// union_find_rebuild: root of `x` (every parent older than its child),
