@@ -1576,7 +1576,14 @@ class StreamClusterer {
     }
     fresh_.resize(live);
     const std::size_t kept = forest_.size();
-    reserve_geometric(forest_, kept + live);
+    if (kept + live > forest_.capacity()) {
+      // Room for any forest of the window (fewer than n edges) plus these
+      // new edges, + 1/8: growth then follows the peaks of the window and of
+      // the new edges per fold, not of their sum, and the jitter of the new
+      // edges from cycle to cycle does not reallocate in a steady stream.
+      const std::size_t room = std::size_t{n} + live;
+      forest_.reserve(room + room / 8);
+    }
     forest_.resize(kept + live);  // ForestEdge's constructor leaves the tail uninitialised: no fill
     if (live < 2 || n < 2) return live;
     unsigned bits = 0;  // ages are in [0, n)
