@@ -1406,8 +1406,15 @@ class StreamClusterer {
     result_.points.resize(n);
     reserve_geometric(result_.components, components);
     result_.components.resize(components);
-    reserve_geometric(sums_, components);
-    sums_.resize(components);
+    // A sum per component of two or more points only (few of them in a
+    // fragmented window), numbered in `won_weight_` (free once the ids are
+    // resolved).
+    std::uint32_t summed = 0;
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (cluster_size_[k] > 1) won_weight_[k] = summed++;
+    }
+    reserve_geometric(sums_, summed);
+    sums_.resize(summed);
     // Labels and summaries in window order. The components are numbered by
     // their oldest point (number_components, number_ranked_components), so a
     // point opens its component's summary exactly when its number is the
@@ -1427,7 +1434,6 @@ class StreamClusterer {
         const std::uint32_t ahead = slot_of_[parent_[i + kResultPrefetchDistance]];
         detail::prefetch(&summaries[ahead]);
         detail::prefetch(&summaries[ahead].time_end);
-        detail::prefetch(&sums_[ahead]);
       }
       const PointHandle h = oldest_ + i;
       const std::uint32_t k = parent_[i];
@@ -1446,12 +1452,12 @@ class StreamClusterer {
         sm.centroid = p;  // (double(p) / 1) as float is p: final for a single point
         sm.time_begin = sa.time;
         sm.time_end = sa.time;
-        if (cluster_size_[k] > 1) sums_[slot] = p.template cast<double>();
+        if (cluster_size_[k] > 1) sums_[won_weight_[k]] = p.template cast<double>();
       } else {
         sm.min = sm.min.cwiseMin(p);
         sm.max = sm.max.cwiseMax(p);
         sm.time_end = sa.time;
-        sums_[slot] += p.template cast<double>();
+        sums_[won_weight_[k]] += p.template cast<double>();
         ++sm.size;
       }
     }
@@ -1460,7 +1466,7 @@ class StreamClusterer {
       if (cluster_size_[k] < 2) continue;
       const std::uint32_t slot = slot_of_[k];
       ComponentSummary& sm = summaries[slot];
-      sm.centroid = (sums_[slot] / static_cast<double>(sm.size)).template cast<float>();
+      sm.centroid = (sums_[won_weight_[k]] / static_cast<double>(sm.size)).template cast<float>();
     }
     add_elapsed(stats_.phase_us.labelling, t1);
   }
@@ -1739,13 +1745,13 @@ class StreamClusterer {
   std::vector<std::uint32_t> parent_;       // rebuilding strategies: union-find, then component per point
   std::vector<std::uint32_t> claim_head_;   // rebuilding strategies: most recent vote per old cluster
   std::vector<Vote> votes_;
-  std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won
+  std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won, then the index of its sum
   std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot
   std::vector<std::uint32_t> by_slot_;      // order_components: place in the previous result -> component
   std::vector<std::uint32_t> slot_of_;      // component -> place in the result (rebuilding: kept, per local cluster)
   std::vector<std::uint32_t> cluster_size_; // rebuilding strategies: points of each local cluster still in the window
   std::vector<Bridge> no_bridges_;          // rebuilding strategies: what bridges() returns (always empty)
-  std::vector<Eigen::Vector3d> sums_;       // per component: sum of the positions, for the centroid
+  std::vector<Eigen::Vector3d> sums_;       // per component (rebuilding: per component of 2+ points): sum of the positions, for the centroid
   // spanning_forest: the maximum spanning forest of the window in Kruskal's
   // order (non-increasing older endpoint; expired edges form a suffix), the
   // edges inserted since the last fold, and the fold's scratch.
