@@ -1036,13 +1036,7 @@ class StreamClusterer {
   /// in component order: they exceed every id handed out before. Leaves
   /// `slot_of_[k]` = the place of component `k`. O(components + previous).
   void order_components(std::uint32_t components, std::uint32_t previous) {
-    reserve_geometric(by_slot_, previous);
-    by_slot_.assign(previous, kNoSlot);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
-    }
-    reserve_geometric(slot_of_, components);
-    slot_of_.resize(components);
+    index_kept_places(components, previous);
     ComponentSummary* const summaries = result_.components.data();
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
     std::uint32_t placed = 0;
@@ -1064,6 +1058,19 @@ class StreamClusterer {
       sums_[placed++] = zero;
     }
     result_.components.resize(components);
+  }
+
+  /// `by_slot_[s]` = the component that kept the id at place `s` of the
+  /// previous result (kNoSlot: none), from `won_slot_`; `slot_of_` sized
+  /// for `components`. O(components + previous).
+  void index_kept_places(std::uint32_t components, std::uint32_t previous) {
+    reserve_geometric(by_slot_, previous);
+    by_slot_.assign(previous, kNoSlot);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
+    }
+    reserve_geometric(slot_of_, components);
+    slot_of_.resize(components);
   }
 
   /// Writes the label of point `h` (window order `i`) and adds it to the
@@ -1479,13 +1486,7 @@ class StreamClusterer {
   /// in their previous order, then fresh ones in component order, as
   /// `order_components`). O(components + previous), 12 bytes per component.
   void order_ids(std::uint32_t components, std::uint32_t previous) {
-    reserve_geometric(by_slot_, previous);
-    by_slot_.assign(previous, kNoSlot);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
-    }
-    reserve_geometric(slot_of_, components);
-    slot_of_.resize(components);
+    index_kept_places(components, previous);
     reserve_geometric(component_ids_, std::max(components, previous));
     component_ids_.resize(std::max(components, previous));
     ComponentId* const ids = component_ids_.data();
