@@ -1065,13 +1065,7 @@ class StreamClusterer {
   /// in component order: they exceed every id handed out before. Leaves
   /// `slot_of_[k]` = the place of component `k`. O(components + previous).
   void order_components(std::uint32_t components, std::uint32_t previous) {
-    reserve_geometric(by_slot_, previous);
-    by_slot_.assign(previous, kNoSlot);
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
-    }
-    reserve_geometric(slot_of_, components);
-    slot_of_.resize(components);
+    index_kept_places(components, previous);
     ComponentSummary* const summaries = result_.components.data();
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
     std::uint32_t placed = 0;
@@ -1093,6 +1087,19 @@ class StreamClusterer {
       sums_[placed++] = zero;
     }
     result_.components.resize(components);
+  }
+
+  /// `by_slot_[s]` = the component that kept the id at place `s` of the
+  /// previous result (kNoSlot: none), from `won_slot_`; `slot_of_` sized
+  /// for `components`. O(components + previous).
+  void index_kept_places(std::uint32_t components, std::uint32_t previous) {
+    reserve_geometric(by_slot_, previous);
+    by_slot_.assign(previous, kNoSlot);
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) by_slot_[won_slot_[k]] = k;
+    }
+    reserve_geometric(slot_of_, components);
+    slot_of_.resize(components);
   }
 
   /// Writes the label of point `h` (window order `i`) and adds it to the
@@ -1428,10 +1435,34 @@ class StreamClusterer {
         won_slot_[k] = slot;
       }
     }
-    begin_result(components, old_clusters);
-    order_components(components, old_clusters);
+    order_ids(components, old_clusters);
+    result_.time = last_time_;
+    ++result_.cycle;
+    reserve_geometric(result_.points, n);
+    result_.points.resize(n);
+    reserve_geometric(result_.components, components);
+    result_.components.resize(components);
+    // A sum per component of two or more points only (few of them in a
+    // fragmented window), numbered in `won_weight_` (free once the ids are
+    // resolved).
+    std::uint32_t summed = 0;
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (cluster_size_[k] > 1) won_weight_[k] = summed++;
+    }
+    reserve_geometric(sums_, summed);
+    sums_.resize(summed);
+    // Labels and summaries in window order. The components are numbered by
+    // their oldest point (number_components, number_ranked_components), so a
+    // point opens its component's summary exactly when its number is the
+    // next one not seen yet: the first point writes the whole summary (no
+    // zeroing pass before, no read of a stale one), the others update it. A
+    // single point (most components of a fragmented window) is its own
+    // centroid and needs no sum.
     ComponentSummary* const summaries = result_.components.data();
+    PointLabel* const labels = result_.points.data();
+    const ComponentId* const ids = component_ids_.data();
     const bool scattered = components >= kResultPrefetchMinComponents;
+    std::uint32_t unseen = 0;  // the next component number to open
     for (std::uint32_t i = 0; i < n; ++i) {
       if (scattered && i + kResultPrefetchDistance < n) {
         // The summary's lines (72 bytes may straddle two) and sum: scattered
@@ -1439,13 +1470,69 @@ class StreamClusterer {
         const std::uint32_t ahead = slot_of_[parent_[i + kResultPrefetchDistance]];
         detail::prefetch(&summaries[ahead]);
         detail::prefetch(&summaries[ahead].time_end);
-        detail::prefetch(&sums_[ahead]);
       }
       const PointHandle h = oldest_ + i;
-      add_to_result(i, slot_of_[parent_[i]], h, point(h).stream_index);
+      const std::uint32_t k = parent_[i];
+      const std::uint32_t slot = slot_of_[k];
+      const ComponentId id = ids[slot];
+      labels[i] = PointLabel{point(h).stream_index, id};
+      const Sample& sa = sample(h);
+      const Eigen::Vector3f& p = sa.position;
+      ComponentSummary& sm = summaries[slot];
+      if (k == unseen) {
+        ++unseen;
+        sm.id = id;
+        sm.size = 1;
+        sm.min = p;
+        sm.max = p;
+        sm.centroid = p;  // (double(p) / 1) as float is p: final for a single point
+        sm.time_begin = sa.time;
+        sm.time_end = sa.time;
+        if (cluster_size_[k] > 1) sums_[won_weight_[k]] = p.template cast<double>();
+      } else {
+        sm.min = sm.min.cwiseMin(p);
+        sm.max = sm.max.cwiseMax(p);
+        sm.time_end = sa.time;
+        sums_[won_weight_[k]] += p.template cast<double>();
+        ++sm.size;
+      }
     }
-    finish_summaries(components);
+    // The centroids of the components of two or more points.
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (cluster_size_[k] < 2) continue;
+      const std::uint32_t slot = slot_of_[k];
+      ComponentSummary& sm = summaries[slot];
+      sm.centroid = (sums_[won_weight_[k]] / static_cast<double>(sm.size)).template cast<float>();
+    }
     add_elapsed(stats_.phase_us.labelling, t1);
+  }
+
+  /// The rebuilding strategies' `order_components` on the ids alone: the
+  /// last result's ids by place are in `component_ids_` (written here at the
+  /// previous retrieval), so the 72-byte summaries are neither read nor
+  /// zeroed. Requires `won_slot_`; leaves `slot_of_[k]` = the place of
+  /// component `k` and `component_ids_[r]` = the id at place `r` (kept ids
+  /// in their previous order, then fresh ones in component order, as
+  /// `order_components`). O(components + previous), 12 bytes per component.
+  void order_ids(std::uint32_t components, std::uint32_t previous) {
+    index_kept_places(components, previous);
+    reserve_geometric(component_ids_, std::max(components, previous));
+    component_ids_.resize(std::max(components, previous));
+    ComponentId* const ids = component_ids_.data();
+    std::uint32_t placed = 0;
+    // Compaction in place: place `placed` <= s, whose old id was read already.
+    for (std::uint32_t s = 0; s < previous; ++s) {
+      const std::uint32_t k = by_slot_[s];
+      if (k == kNoSlot) continue;
+      slot_of_[k] = placed;
+      ids[placed++] = ids[s];
+    }
+    for (std::uint32_t k = 0; k < components; ++k) {
+      if (won_slot_[k] != kNoSlot) continue;
+      slot_of_[k] = placed;
+      ids[placed++] = next_component_id_++;
+    }
+    component_ids_.resize(components);
   }
 
   /// One point of old cluster `old` votes for component `k`. O(votes of
@@ -1715,18 +1802,18 @@ class StreamClusterer {
   std::vector<std::size_t> fragment_begin_;
   std::vector<std::uint32_t> component_of_;
   std::vector<ClusterId> queue_;
-  std::vector<ComponentId> component_ids_;  // lazy_bfs, per component: the old id it keeps, or kNoComponent
+  std::vector<ComponentId> component_ids_;  // lazy_bfs, per component: the old id it keeps, or kNoComponent; rebuilding: the last result's id per place
   std::vector<Claim> claims_;
   std::vector<std::uint32_t> parent_;       // rebuilding strategies: union-find, then component per point
   std::vector<std::uint32_t> claim_head_;   // rebuilding strategies: most recent vote per old cluster
   std::vector<Vote> votes_;
-  std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won
+  std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won, then the index of its sum
   std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot
   std::vector<std::uint32_t> by_slot_;      // order_components: place in the previous result -> component
   std::vector<std::uint32_t> slot_of_;      // component -> place in the result (rebuilding: kept, per local cluster)
   std::vector<std::uint32_t> cluster_size_; // rebuilding strategies: points of each local cluster still in the window
   std::vector<Bridge> no_bridges_;          // rebuilding strategies: what bridges() returns (always empty)
-  std::vector<Eigen::Vector3d> sums_;       // per component: sum of the positions, for the centroid
+  std::vector<Eigen::Vector3d> sums_;       // per component (rebuilding: per component of 2+ points): sum of the positions, for the centroid
   // spanning_forest: the maximum spanning forest of the window in Kruskal's
   // order (non-increasing older endpoint; expired edges form a suffix; during
   // a fold also the radix buffer and the new forest, see fold_forest), the
