@@ -33,8 +33,9 @@ namespace streamclust {
 /// When the client rarely retrieves, the new edges are folded into F without
 /// labelling once they outnumber max(`fold_edges_per_point` x window points,
 /// `min_fold_edges`), which bounds the edges held at (1 + r) x 8 bytes per
-/// point for r = fold_edges_per_point (plus the sort and merge scratch, up to
-/// as much again). The default r = 2 keeps a 20 Hz client on a Mid-360
+/// point for r = fold_edges_per_point (plus the radix sort's second buffer,
+/// kept in the forest's spare tail: the merge is in place). The default
+/// r = 2 keeps a 20 Hz client on a Mid-360
 /// (T_B = 0.5 s: about 1.4 new edges per window point per cycle) at one fold
 /// per retrieval; r = 1 folds mid-cycle as well, which cost as much as the
 /// forest saved (docs/optimization-log.md, section 7).
