@@ -553,6 +553,14 @@ class StreamClusterer {
     grid_ = GridShape{size.rows, size.cols, projection_.wraps_horizontally()};
     index_.reset(grid_);
     calibrating_ = false;
+    if constexpr (has_spatial_index_cell_bound_v<spatial_index_type>) {
+      // Bounded cells: the neighbour search's scratch gets its final size
+      // now, so no later (denser) mask makes it grow in steady state.
+      const auto width = static_cast<std::size_t>(2 * half_ + 1);
+      const std::size_t most_candidates = width * width * index_.max_cell_size();
+      candidates_.reserve(most_candidates);
+      neighbours_.reserve(most_candidates);
+    }
   }
 
   RejectReason reject(RejectReason r) {
@@ -694,6 +702,8 @@ class StreamClusterer {
       // coin flip, a branch on it would mispredict often.
       const PointHandle origin = ring_origin_;
       const std::uint32_t ring_capacity = ring_capacity_;
+      // Same capacity as candidates_: it grows only when they do.
+      if (neighbours_.capacity() < candidates_.capacity()) neighbours_.reserve(candidates_.capacity());
       neighbours_.resize(candidates_.size());
       PointHandle* const out = neighbours_.data();
       std::size_t found = 0;

@@ -22,10 +22,12 @@
 /// |----------------------------|-------------|----------------------------------------------------------------------|------------|
 /// | `ci.prefetch(cell)`        | any         | hint that `for_each(cell, f)` follows soon (e.g. prefetch the cell's memory); must not change the contents | O(1) |
 /// | `ci.heap_bytes()`          | std::size_t | heap bytes held (capacities, not sizes), for `StreamClusterer::memory_usage()`; without it the index's memory is reported as unknown | any |
+/// | `ci.max_cell_size()`       | std::size_t | the most handles one cell can ever hold (a bounded index); the engine then sizes its neighbour-search scratch once (w^2 x this) instead of growing it with the densest mask seen so far | O(1) |
 ///
 /// The engine calls `prefetch` for every cell of the mask before it visits
 /// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`);
-/// `is_spatial_index_heap_reporting_v` detects `heap_bytes`.
+/// `is_spatial_index_heap_reporting_v` detects `heap_bytes`,
+/// `has_spatial_index_cell_bound_v` detects `max_cell_size`.
 ///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
@@ -80,6 +82,19 @@ struct is_spatial_index_heap_reporting<I, std::void_t<decltype(std::declval<cons
 /// True when index `I` has the optional `std::size_t heap_bytes() const`.
 template <class I>
 inline constexpr bool is_spatial_index_heap_reporting_v = detail::is_spatial_index_heap_reporting<I>::value;
+
+namespace detail {
+template <class I, class = void>
+struct has_spatial_index_cell_bound : std::false_type {};
+template <class I>
+struct has_spatial_index_cell_bound<I, std::void_t<decltype(std::declval<const I&>().max_cell_size())>>
+    : std::is_convertible<decltype(std::declval<const I&>().max_cell_size()), std::size_t> {};
+}  // namespace detail
+
+/// True when index `I` has the optional `std::size_t max_cell_size() const`
+/// (its cells are bounded).
+template <class I>
+inline constexpr bool has_spatial_index_cell_bound_v = detail::has_spatial_index_cell_bound<I>::value;
 
 /// True when spatial index `I` offers the optional `prefetch(CellIndex) const`.
 template <class I>

@@ -130,6 +130,9 @@ class CappedGrid {
   /// Handles currently stored. O(1).
   std::size_t size() const { return size_; }
 
+  /// Optional SpatialIndex capability: the most handles a cell holds, K. O(1).
+  std::size_t max_cell_size() const { return k_; }
+
   /// Handles stored in one cell (<= capacity). O(1).
   std::size_t cell_size(CellIndex cell) const { return state_[cell].count; }
 

@@ -80,6 +80,9 @@ class OverwriteGrid {
   /// Occupied cells. O(1).
   std::size_t size() const { return size_; }
 
+  /// Optional SpatialIndex capability: the most handles a cell holds, 1. O(1).
+  std::size_t max_cell_size() const { return 1; }
+
   /// Heap bytes held [bytes]: 4 per cell after `reset`. O(1).
   std::size_t heap_bytes() const { return occupant_.capacity() * sizeof(PointHandle); }
 

@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Heap allocations of the engine in steady state (issue 5, target 6): once a
+// window of the same size has been through it, the capped-grid presets
+// allocate nothing, however crowded the masks become (the capped grid bounds
+// the neighbour search: w^2 x K candidates, reserved when the grid is set).
+//
+// This file replaces the global operator new/delete of the test program with
+// a counting version (malloc-based; it counts only inside `CountingScope`).
+
+#include <doctest/doctest.h>
+
+#include <streamclust/streamclust.hpp>
+
+#include "support/streams.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
+namespace {
+bool g_counting = false;         // single-threaded tests: no atomics needed
+std::uint64_t g_allocations = 0;  // operator new calls while counting
+
+void* counted_allocation(std::size_t n) {
+  if (g_counting) ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+}  // namespace
+
+void* operator new(std::size_t n) { return counted_allocation(n); }
+void* operator new[](std::size_t n) { return counted_allocation(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  if (g_counting) ++g_allocations;
+  return std::malloc(n == 0 ? 1 : n);
+}
+void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+
+namespace sc = streamclust;
+
+namespace {
+
+/// Counts the operator new calls made while it lives.
+class CountingScope {
+ public:
+  CountingScope() : start_(g_allocations) { g_counting = true; }
+  ~CountingScope() { g_counting = false; }
+  CountingScope(const CountingScope&) = delete;
+  CountingScope& operator=(const CountingScope&) = delete;
+  std::uint64_t allocations() const { return g_allocations - start_; }
+
+ private:
+  std::uint64_t start_;
+};
+
+/// Capped grid, fixed 32 x 256 grid, a count window, Euclidean linkage: the
+/// stream below decides exactly how crowded each mask is.
+template <class Connectivity>
+struct CappedCountConfig : sc::CArcFixedConfig {
+  using spatial_index = sc::CappedGrid;
+  using linkage = sc::EuclideanLinkage;
+  using window = sc::CountWindow;
+  using connectivity = Connectivity;
+};
+
+constexpr std::uint32_t kRows = 32;   // 5.625 degrees of elevation per row
+constexpr std::uint32_t kCols = 256;  // 1.40625 degrees of azimuth per column
+constexpr std::size_t kWindow = 256;  // [points]
+constexpr std::size_t kPerCycle = 64;  // points between retrievals
+
+template <class Config>
+sc::ClustererParams<Config> params() {
+  sc::ClustererParams<Config> p;
+  p.resolution = {kRows, kCols};
+  p.window.capacity = kWindow;
+  p.spatial_index.capacity = 4;
+  p.linkage.max_distance = 0.05f;  // [m]: below the 0.12 m between neighbouring cells at 5 m
+  p.mask_size = 5;
+  return p;
+}
+
+/// The centre of cell (row, col) [deg].
+float azimuth_of(std::uint32_t col) { return -180.0f + (static_cast<float>(col) + 0.5f) * 1.40625f; }
+float elevation_of(std::uint32_t row) { return -90.0f + (static_cast<float>(row) + 0.5f) * 5.625f; }
+
+/// Point i of the sparse pattern: 256 cells four rows and four columns
+/// apart, one point each per window: every mask holds at most the point itself.
+sc::Point sparse_point(std::size_t i, double t) {
+  const std::size_t k = i % 256;
+  const auto row = static_cast<std::uint32_t>(8 + 4 * (k / 64));
+  const auto col = static_cast<std::uint32_t>(4 * (k % 64));
+  return sc::test::point_at(azimuth_of(col), elevation_of(row), 5.0f, t);
+}
+
+/// Point i of the crowded pattern: a 5 x 5 block of cells, every cell full
+/// (K = 4), so the centre cell's mask lists 100 candidates. Ranges step by
+/// 1 m per visit of a cell and repeat only after 16 visits (400 points, more
+/// than the window): no two points link, every point stays a singleton, and
+/// the window's components, edges and result keep their sizes.
+sc::Point crowded_point(std::size_t i, double t) {
+  const std::size_t cell = i % 25;
+  const auto row = static_cast<std::uint32_t>(14 + cell / 5);
+  const auto col = static_cast<std::uint32_t>(100 + cell % 5);
+  const float range = 5.0f + static_cast<float>((i / 25) % 16);
+  return sc::test::point_at(azimuth_of(col), elevation_of(row), range, t);
+}
+
+template <class Engine, class Pattern>
+void run_cycles(Engine& engine, Pattern pattern, std::size_t cycles, std::size_t& i, double& t) {
+  for (std::size_t c = 0; c < cycles; ++c) {
+    for (std::size_t k = 0; k < kPerCycle; ++k, ++i) {
+      t += 1e-5;
+      engine.insert(pattern(i, t));
+    }
+    engine.retrieve();
+  }
+}
+
+template <class Config>
+void check_no_steady_allocations() {
+  sc::StreamClusterer<Config> engine(params<Config>());
+  std::size_t i = 0;
+  double t = 0.0;
+  run_cycles(engine, sparse_point, 40, i, t);  // warm-up: every structure at its window size
+  REQUIRE(engine.size() == kWindow);
+  REQUIRE(engine.last_result().components.size() == kWindow);  // the sparse points never link
+
+  CountingScope scope;
+  run_cycles(engine, sparse_point, 20, i, t);
+  const std::uint64_t sparse = scope.allocations();
+  run_cycles(engine, crowded_point, 40, i, t);  // the masks fill up: 100 candidates
+  const std::uint64_t crowded = scope.allocations() - sparse;
+  CHECK(sparse == 0);
+  CHECK(crowded == 0);
+  CHECK(engine.size() == kWindow);
+  CHECK(engine.last_result().components.size() == kWindow);  // still singletons: nothing else grew
+}
+
+}  // namespace
+
+TEST_CASE("the counting allocator counts") {
+  CountingScope scope;
+  void* p = ::operator new(16);  // a call, not a new-expression: never elided
+  ::operator delete(p);
+  CHECK(scope.allocations() == 1);
+}
+
+TEST_CASE("capped-grid presets allocate nothing in steady state, even when the masks fill up") {
+  static_assert(sc::has_spatial_index_cell_bound_v<sc::CappedGrid>);
+  static_assert(sc::has_spatial_index_cell_bound_v<sc::OverwriteGrid>);
+  static_assert(!sc::has_spatial_index_cell_bound_v<sc::BucketGrid>);
+  SUBCASE("spanning forest (CArcCappedFastConfig's connectivity)") {
+    check_no_steady_allocations<CappedCountConfig<sc::SpanningForestConnectivity>>();
+  }
+  SUBCASE("union-find rebuild (CArcCappedRebuildConfig's connectivity)") {
+    check_no_steady_allocations<CappedCountConfig<sc::UnionFindRebuildConnectivity>>();
+  }
+}
