@@ -42,6 +42,29 @@ struct SampleOnlyAngular {
   sc::AngularLinkage inner;
 };
 
+/// AngularLinkage's payload WITHOUT `restore_ray`: the engine keeps a payload
+/// ring and full 40-byte Samples (no compact samples).
+struct PayloadNoRayAngular {
+  using Params = sc::AngularLinkage::Params;
+  using Payload = sc::AngularLinkage::Payload;
+  explicit PayloadNoRayAngular(const Params& p) : inner(p) {}
+  static Payload make_payload(const sc::Sample& s) { return sc::AngularLinkage::make_payload(s); }
+  bool operator()(const Payload& a, const Payload& b) const { return inner(a, b); }
+  bool operator()(const sc::Sample& a, const sc::Sample& b) const { return inner(a, b); }
+  sc::AngularLinkage inner;
+};
+
+/// Fields of two Samples equal bit for bit (as floats: -0 == +0 aside).
+void require_same_sample(const sc::Sample& a, const sc::Sample& b) {
+  for (int c = 0; c < 3; ++c) {
+    REQUIRE(a.position[c] == b.position[c]);
+    REQUIRE(a.direction[c] == b.direction[c]);
+  }
+  REQUIRE(a.range == b.range);
+  REQUIRE(a.intensity == b.intensity);
+  REQUIRE(a.time == b.time);
+}
+
 /// A payload over the 16-byte limit: detected, but invalid.
 struct WidePayloadLinkage {
   struct Params {};
@@ -123,6 +146,16 @@ static_assert(sc::has_linkage_payload_v<WidePayloadLinkage>);
 static_assert(!sc::is_linkage_payload_valid_v<WidePayloadLinkage>);
 static_assert(sc::StreamClusterer<Cfg<sc::AngularLinkage>>::uses_payload);
 static_assert(!sc::StreamClusterer<Cfg<SampleOnlyAngular>>::uses_payload);
+// the ray refinement: angular payloads carry it, Euclidean's (a position) does not
+static_assert(sc::has_linkage_ray_payload_v<sc::AngularLinkage>);
+static_assert(sc::has_linkage_ray_payload_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
+static_assert(!sc::has_linkage_ray_payload_v<sc::EuclideanLinkage>);
+static_assert(!sc::has_linkage_ray_payload_v<sc::AnyOf<sc::EuclideanLinkage>>);
+static_assert(!sc::has_linkage_ray_payload_v<PayloadNoRayAngular>);
+static_assert(!sc::has_linkage_ray_payload_v<SampleOnlyAngular>);
+static_assert(sc::StreamClusterer<Cfg<sc::AngularLinkage>>::compact_samples);
+static_assert(!sc::StreamClusterer<Cfg<PayloadNoRayAngular>>::compact_samples);
+static_assert(sc::StreamClusterer<Cfg<PayloadNoRayAngular>>::uses_payload);
 
 TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal to the batch clusterer", Conn,
                    sc::LazyBfsConnectivity, sc::UnionFindRebuildConnectivity) {
@@ -162,6 +195,9 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
         const sc::AngularLinkage::Payload& stored = fast.payload(h);
         for (int c = 0; c < 3; ++c) REQUIRE(stored.direction[c] == expected.direction[c]);
         REQUIRE(stored.range == expected.range);
+        // the Sample rebuilt from the compact ring and the payload is the
+        // one the Sample path stored
+        require_same_sample(fast.sample(h), plain.sample(plain.handle_at(pos)));
       }
       ++compared;
       multi += fast.last_result().components.size() > 1 ? 1u : 0u;
@@ -173,28 +209,39 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
   CHECK(grown > 0);             // rings grew (1024 -> 2048 slots or more) with live points
 }
 
-TEST_CASE("memory_usage counts the payload ring: 16 bytes per ring slot, none without a payload") {
-  using Fast = Cfg<sc::AngularLinkage>;
-  using Plain = Cfg<SampleOnlyAngular>;
-  sc::StreamClusterer<Fast> fast(params_for<Fast>(3));
+TEST_CASE("memory_usage counts the payload ring (16 bytes per slot) and the compact samples (16 fewer)") {
+  using Compact = Cfg<sc::AngularLinkage>;  // payload with the ray: 24-byte samples
+  using NoRay = Cfg<PayloadNoRayAngular>;   // payload without it: 40-byte samples
+  using Plain = Cfg<SampleOnlyAngular>;     // no payload ring
+  sc::StreamClusterer<Compact> compact(params_for<Compact>(3));
+  sc::StreamClusterer<NoRay> noray(params_for<NoRay>(3));
   sc::StreamClusterer<Plain> plain(params_for<Plain>(3));
-  CHECK(fast.memory_usage().point_ring == 0);
+  CHECK(compact.memory_usage().point_ring == 0);
   const auto stream = st::make_stream(st::StreamKind::blobs, 3000, 5, 2000.0);
   for (const auto& p : stream) {
-    fast.insert(p);
+    compact.insert(p);
+    noray.insert(p);
     plain.insert(p);
   }
-  REQUIRE(fast.size() == plain.size());
-  const sc::MemoryUsage mf = fast.memory_usage();
+  REQUIRE(compact.size() == plain.size());
+  REQUIRE(noray.size() == plain.size());
+  const sc::MemoryUsage mc = compact.memory_usage();
+  const sc::MemoryUsage mn = noray.memory_usage();
   const sc::MemoryUsage mp = plain.memory_usage();
   REQUIRE(mp.point_ring > 0);
   // the same ring capacity (>= 1024 slots): the difference is the payload ring
-  CHECK(mf.point_ring > mp.point_ring);
-  const std::size_t extra = mf.point_ring - mp.point_ring;
+  REQUIRE(mn.point_ring > mp.point_ring);
+  const std::size_t extra = mn.point_ring - mp.point_ring;
   CHECK(extra % sizeof(sc::AngularLinkage::Payload) == 0);
   const std::size_t ring_slots = extra / sizeof(sc::AngularLinkage::Payload);
-  CHECK(ring_slots >= fast.size());
-  CHECK(ring_slots >= 1024);                    // the smallest ring
-  CHECK(mp.point_ring % ring_slots == 0);       // the Sample and record rings have as many slots
-  CHECK(mf.total() == mp.total() + extra);
+  CHECK(ring_slots >= compact.size());
+  CHECK(ring_slots >= 1024);               // the smallest ring
+  CHECK(mp.point_ring % ring_slots == 0);  // the Sample and record rings have as many slots
+  CHECK(mn.total() == mp.total() + extra);
+  // compact samples: 24 bytes instead of 40 per slot, so the payload ring is free
+  CHECK(mn.point_ring - mc.point_ring == ring_slots * (sizeof(sc::Sample) - 24));
+  CHECK(mc.point_ring == mp.point_ring);
+  // and every rebuilt Sample equals the stored one of the Sample path
+  for (std::size_t pos = 0; pos < compact.size(); ++pos)
+    require_same_sample(compact.sample(compact.handle_at(pos)), plain.sample(plain.handle_at(pos)));
 }

@@ -104,8 +104,10 @@ struct RetrievalStats {
 /// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
 /// windowed point (a 40-byte Sample and a 40-byte record, 16 bytes under
 /// spanning_forest, in two rings with the same slots; 16 more in a third
-/// ring when the linkage has a compact payload; the rings hold the peak
-/// window plus at most 1/8, not a power of two) plus
+/// ring when the linkage has a compact payload, and then only 24 bytes of
+/// the Sample when the payload carries the ray, as the angular criterion's
+/// does: 56 bytes for the C-ARC presets under spanning_forest; the rings
+/// hold the peak window plus at most 1/8, not a power of two) plus
 /// the index, plus the point graph: the paper's strategy and the rebuild keep
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
 /// endpoint leaves (about 14 live edges per point on a simulated Mid-360 at
@@ -175,6 +177,10 @@ class StreamClusterer {
   static constexpr bool uses_payload = has_linkage_payload_v<linkage_type>;
   /// The linkage's payload (`detail::NoPayload` without the capability).
   using payload_type = linkage_payload_t<linkage_type>;
+  /// True when the payload carries the ray (`has_linkage_ray_payload_v`):
+  /// the sample ring then keeps only position, intensity and time (24
+  /// bytes), and `sample(h)` rebuilds the rest from the payload.
+  static constexpr bool compact_samples = has_linkage_ray_payload_v<linkage_type>;
 
   /// Throws std::invalid_argument when a parameter is out of range.
   explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
@@ -217,7 +223,7 @@ class StreamClusterer {
     has_time_ = true;
     last_time_ = time;
     if (calibrating_) {
-      if (size() > 0 && window_.complete(sample(oldest_).time, time, size())) finish_calibration();
+      if (size() > 0 && window_.complete(stored_time(oldest_), time, size())) finish_calibration();
       if (calibrating_) return;  // the first window is still filling: nothing expires
     }
     const auto t0 = clock_now();
@@ -327,7 +333,23 @@ class StreamClusterer {
   std::size_t position_of(PointHandle h) const { return static_cast<PointHandle>(h - oldest_); }
   /// True when `h` is in the window.
   bool is_live(PointHandle h) const { return static_cast<PointHandle>(h - oldest_) < size(); }
-  const Sample& sample(PointHandle h) const { return samples_[ring_slot(h)]; }
+  /// The Sample of a live point, by value (40 bytes): with `compact_samples`
+  /// it is rebuilt from the stored position, intensity and time and the
+  /// payload's ray, equal bit for bit to the Sample inserted. O(1).
+  Sample sample(PointHandle h) const {
+    const std::uint32_t slot = ring_slot(h);
+    if constexpr (compact_samples) {
+      const StoredSample& stored = samples_[slot];
+      Sample s;
+      s.position = stored.position;
+      s.intensity = stored.intensity;
+      s.time = stored.time;
+      linkage_type::restore_ray(payloads_[slot], s);
+      return s;
+    } else {
+      return samples_[slot];
+    }
+  }
   /// The linkage payload of a live point (only with a payload linkage,
   /// `uses_payload`): `linkage_type::make_payload(sample(h))`.
   /// (A template so that explicit instantiations of the engine skip it.)
@@ -457,6 +479,19 @@ class StreamClusterer {
   }
 
  private:
+  /// What the sample ring keeps of a Sample when the payload carries the
+  /// ray (`compact_samples`). 24 bytes.
+  struct SampleRest {
+    Eigen::Vector3f position;  ///< sensor frame [m]
+    float intensity;
+    double time;  ///< [s]
+  };
+  static_assert(sizeof(SampleRest) == 24, "the compact sample is meant to stay 24 bytes");
+  using StoredSample = std::conditional_t<compact_samples, SampleRest, Sample>;
+  /// Position and time of a live point, read from the sample ring.
+  const Eigen::Vector3f& stored_position(PointHandle h) const { return samples_[ring_slot(h)].position; }
+  double stored_time(PointHandle h) const { return samples_[ring_slot(h)].time; }
+
   /// Per-point bookkeeping of the strategies that store point edges; the
   /// point's Sample is apart, in `samples_` (same slot), so the neighbour
   /// search reads a dense 40-byte-stride ring. 40 bytes.
@@ -581,7 +616,7 @@ class StreamClusterer {
     if (calibrating_) {
       // Buffering the first window: nothing expires before it is complete
       // (expiry implies completeness), so no eviction here.
-      if (size() > 0 && window_.complete(sample(oldest_).time, time, size() + 1)) {
+      if (size() > 0 && window_.complete(stored_time(oldest_), time, size() + 1)) {
         finish_calibration();  // on the complete first window; the new point is inserted below
       } else {
         append_point(pos, pr.range, point_intensity, time, stream_index);
@@ -610,8 +645,13 @@ class StreamClusterer {
     const PointHandle h = next_++;
     PointRecord& r = point(h);
     const std::uint32_t slot = ring_slot(h);
-    samples_[slot] = make_sample(pos, range, point_intensity, time);
-    if constexpr (uses_payload) payloads_[slot] = linkage_type::make_payload(samples_[slot]);
+    const Sample s = make_sample(pos, range, point_intensity, time);
+    if constexpr (compact_samples) {
+      samples_[slot] = SampleRest{s.position, s.intensity, s.time};
+    } else {
+      samples_[slot] = s;
+    }
+    if constexpr (uses_payload) payloads_[slot] = linkage_type::make_payload(s);
     r.stream_index = stream_index;
     r.cluster = kNoCluster;
     if constexpr (stores_point_edges) {
@@ -640,7 +680,7 @@ class StreamClusterer {
   void finish_calibration() {
     std::vector<Projected> coords;
     coords.reserve(size());
-    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(sample(h).position));
+    for (PointHandle h = oldest_; h != next_; ++h) coords.push_back(projection_.project(stored_position(h)));
     set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
     std::size_t i = 0;
     replaying_ = true;
@@ -694,7 +734,7 @@ class StreamClusterer {
           if constexpr (uses_payload) {
             detail::prefetch(&payloads_[ring_slot(n)]);
           } else {
-            detail::prefetch(&sample(n));
+            detail::prefetch(&samples_[ring_slot(n)]);
           }
         });
       }
@@ -715,7 +755,7 @@ class StreamClusterer {
           found += linkage_(s, ring[ring_slot(n, origin, ring_capacity)]) ? 1u : 0u;
         }
       } else {
-        const Sample& s = sample(h);
+        const Sample& s = samples_[ring_slot(h, origin, ring_capacity)];
         const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
         for (const PointHandle n : candidates_) {
           out[found] = n;
@@ -857,7 +897,7 @@ class StreamClusterer {
   }
 
   void evict_expired(double newest_time, std::size_t count) {
-    while (size() > 0 && window_.expired(sample(oldest_).time, newest_time, count)) {
+    while (size() > 0 && window_.expired(stored_time(oldest_), newest_time, count)) {
       evict_oldest();
       --count;
     }
@@ -1117,7 +1157,7 @@ class StreamClusterer {
   void add_to_result(std::size_t i, std::uint32_t slot, PointHandle h, std::uint64_t stream_index) {
     ComponentSummary& s = result_.components[slot];
     result_.points[i] = PointLabel{stream_index, s.id};
-    const Sample& sa = sample(h);
+    const StoredSample& sa = samples_[ring_slot(h)];  // position and time only
     const Eigen::Vector3f& p = sa.position;
     if (s.size == 0) {
       s.min = s.max = p;
@@ -1486,7 +1526,7 @@ class StreamClusterer {
       const std::uint32_t slot = slot_of_[k];
       const ComponentId id = ids[slot];
       labels[i] = PointLabel{point(h).stream_index, id};
-      const Sample& sa = sample(h);
+      const StoredSample& sa = samples_[ring_slot(h)];  // position and time only
       const Eigen::Vector3f& p = sa.position;
       ComponentSummary& sm = summaries[slot];
       if (k == unseen) {
@@ -1726,7 +1766,7 @@ class StreamClusterer {
     if (needed <= ring_capacity_) return;
     const std::size_t capacity = std::max<std::size_t>(needed + needed / 8, kMinRingCapacity);
     std::vector<PointRecord> grown(capacity);
-    std::vector<Sample> grown_samples(capacity);
+    std::vector<StoredSample> grown_samples(capacity);
     std::vector<payload_type> grown_payloads(uses_payload ? capacity : 0);  // no ring without a payload
     std::uint32_t slot = 0;
     for (PointHandle h = oldest_; h != next_; ++h, ++slot) {
@@ -1774,7 +1814,7 @@ class StreamClusterer {
   bool replaying_ = false;  // finish_calibration is linking the buffered window
 
   // Ring buffers of the window (same slots): live handles are [oldest_, next_).
-  std::vector<Sample> samples_;      // what the linkage reads: dense for the neighbour search
+  std::vector<StoredSample> samples_;  // Samples (what a payload-less linkage reads), or their rest (compact_samples)
   std::vector<PointRecord> points_;  // the bookkeeping
   std::vector<payload_type> payloads_;  // with a payload linkage: what it reads (16 bytes); else empty
   std::uint32_t ring_capacity_ = 0;  // slots of each point ring

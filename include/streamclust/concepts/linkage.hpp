@@ -36,6 +36,19 @@
 /// `make_payload` is static so that the payload does not depend on the
 /// parameters: combinators can share it between children (AllOf/AnyOf of
 /// children with the same Payload type have the capability too).
+///
+/// Optional refinement: a payload that carries the ray (detected with
+/// `has_linkage_ray_payload_v<L>`).
+///
+/// | expression               | type | meaning                                                               | complexity |
+/// |--------------------------|------|-----------------------------------------------------------------------|------------|
+/// | `L::restore_ray(p, s)`   | void | static: writes `s.direction` and `s.range` back from payload `p` (Sample&) | O(1) |
+///
+/// Contract: for every Sample `a`, `restore_ray(make_payload(a), s)` sets
+/// `s.direction` and `s.range` bit for bit to `a`'s. The engine then keeps
+/// only position, intensity and time (24 bytes) beside the payload and
+/// rebuilds a Sample on demand (`StreamClusterer::sample` returns by value),
+/// 16 bytes per windowed point less than a full Sample ring.
 
 #include <streamclust/types.hpp>
 
@@ -71,6 +84,13 @@ struct has_linkage_payload<
                                                                   std::declval<const typename L::Payload&>())),
                                 bool>> {};
 
+template <class L, class = void>
+struct has_linkage_ray_payload : std::false_type {};
+template <class L>
+struct has_linkage_ray_payload<L, std::void_t<decltype(L::restore_ray(std::declval<const typename L::Payload&>(),
+                                                                       std::declval<Sample&>()))>>
+    : has_linkage_payload<L> {};
+
 template <class L, bool = has_linkage_payload<L>::value>
 struct linkage_payload {
   using type = NoPayload;
@@ -89,6 +109,11 @@ inline constexpr bool is_linkage_policy_v = detail::is_linkage_policy<L>::value;
 /// `bool operator()(const Payload&, const Payload&) const`.
 template <class L>
 inline constexpr bool has_linkage_payload_v = detail::has_linkage_payload<L>::value;
+
+/// True when linkage `L` has the compact payload and its payload carries the
+/// ray: `static void restore_ray(const Payload&, Sample&)`.
+template <class L>
+inline constexpr bool has_linkage_ray_payload_v = detail::has_linkage_ray_payload<L>::value;
 
 /// `L::Payload` when `has_linkage_payload_v<L>`, else `detail::NoPayload`.
 template <class L>

@@ -42,6 +42,12 @@ struct CombinatorPayload {
   using Payload = P;
   /// The children's common payload of `s`. O(1).
   static Payload make_payload(const Sample& s) { return First::make_payload(s); }
+  /// The ray back from the payload, when the children's payload carries it
+  /// (`has_linkage_ray_payload_v`). O(1).
+  template <class F = First>
+  static auto restore_ray(const Payload& p, Sample& s) -> decltype(F::restore_ray(p, s)) {
+    F::restore_ray(p, s);
+  }
 };
 template <class First>
 struct CombinatorPayload<void, First> {};
