@@ -24,6 +24,7 @@
 #include <streamclust/concepts.hpp>
 #include <streamclust/concepts/connectivity.hpp>
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -116,6 +117,10 @@ struct ClustererParams {
   /// Width w of the w x w neighbourhood mask in cells; odd, 1 to 255.
   int mask_size = 5;
   typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
+  /// Stream index of the first offered point (StreamClusterer only; the
+  /// batch clusterer numbers its input from 0): a clusterer that resumes a
+  /// stream continues its numbering.
+  std::uint64_t first_stream_index = 0;
 };
 
 namespace detail {

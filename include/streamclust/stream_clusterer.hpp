@@ -101,12 +101,12 @@ struct RetrievalStats {
 /// Boost.Graph point view) do not compile (STREAMCLUST_NO_POINT_EDGES).
 ///
 /// Time: monotone stream time in seconds. A point earlier than the previous
-/// accepted one is rejected (`time_backwards`). Memory: 80 bytes per
-/// windowed point (a 40-byte Sample and a 40-byte record, 16 bytes under
+/// accepted one is rejected (`time_backwards`). Memory: 72 bytes per
+/// windowed point (a 40-byte Sample and a 32-byte record, 12 bytes under
 /// spanning_forest, in two rings with the same slots; 16 more in a third
 /// ring when the linkage has a compact payload, and then only 24 bytes of
 /// the Sample when the payload carries the ray, as the angular criterion's
-/// does: 56 bytes for the C-ARC presets under spanning_forest; the rings
+/// does: 52 bytes for the C-ARC presets under spanning_forest; the rings
 /// hold the peak window plus at most 1/8, not a power of two) plus
 /// the index, plus the point graph: the paper's strategy and the rebuild keep
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
@@ -271,7 +271,8 @@ class StreamClusterer {
   /// Points in the window.
   std::size_t size() const { return static_cast<std::uint32_t>(next_ - oldest_); }
   bool empty() const { return size() == 0; }
-  /// Points offered so far (the next point's stream index).
+  /// Points offered so far; the next point's stream index is
+  /// `params().first_stream_index + offered()`.
   std::uint64_t offered() const { return offered_; }
   const RejectionCounts& rejections() const { return rejections_; }
   /// True while the first window is buffered for the resolution policy.
@@ -321,7 +322,7 @@ class StreamClusterer {
   /// the window, oldest first. O(N).
   template <class F>
   void for_each_point(F&& f) const {
-    for (PointHandle h = oldest_; h != next_; ++h) f(sample(h), point(h).stream_index);
+    for (PointHandle h = oldest_; h != next_; ++h) f(sample(h), stream_index(h));
   }
 
   // ------------------------------------------- low-level graph access
@@ -358,7 +359,12 @@ class StreamClusterer {
     static_assert(Enabled, "StreamClusterer::payload: the linkage has no compact payload");
     return payloads_[ring_slot(h)];
   }
-  std::uint64_t stream_index(PointHandle h) const { return point(h).stream_index; }
+  /// Stream index of a live point (rejected points counted). O(1) (O(e)
+  /// with e the 2^32-offer epochs the window spans, 1 unless it spans more
+  /// than 4,294,967,296 offered points).
+  std::uint64_t stream_index(PointHandle h) const {
+    return (std::uint64_t{stream_epoch_high(h)} << 32) | point(h).stream_index_low;
+  }
   /// Local cluster of a live point (kNoCluster while calibrating; with
   /// union_find_rebuild or spanning_forest, also for a point inserted after
   /// the last retrieval).
@@ -494,9 +500,9 @@ class StreamClusterer {
 
   /// Per-point bookkeeping of the strategies that store point edges; the
   /// point's Sample is apart, in `samples_` (same slot), so the neighbour
-  /// search reads a dense 40-byte-stride ring. 40 bytes.
+  /// search reads a dense 40-byte-stride ring. 32 bytes.
   struct LinkedPointRecord {
-    std::uint64_t stream_index = 0;
+    std::uint32_t stream_index_low = 0;  ///< low 32 bits of the stream index (see stream_epochs_)
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
     PointHandle next_member = kNoPoint;  ///< next point of the same cluster, insertion order
@@ -505,13 +511,43 @@ class StreamClusterer {
     EdgeHandle fwd_head = kNoEdge;  ///< newest edge from a newer neighbour
     std::uint32_t mark = 0;         ///< BFS epoch
   };
-  /// spanning_forest: no point edges, no member lists, no BFS. 16 bytes.
+  static_assert(sizeof(LinkedPointRecord) == 32, "the linked point record is meant to stay 32 bytes");
+  /// spanning_forest: no point edges, no member lists, no BFS. 12 bytes.
   struct ForestPointRecord {
-    std::uint64_t stream_index = 0;
+    std::uint32_t stream_index_low = 0;  ///< low 32 bits of the stream index (see stream_epochs_)
     CellIndex cell = 0;
     ClusterId cluster = kNoCluster;
   };
-  static_assert(sizeof(ForestPointRecord) == 16, "the forest's point record is meant to stay 16 bytes");
+  static_assert(sizeof(ForestPointRecord) == 12, "the forest's point record is meant to stay 12 bytes");
+  /// The high 32 bits of the stream indexes from handle `first` on: the
+  /// records keep the low 32 bits only (4 bytes per point instead of 8).
+  struct StreamEpoch {
+    PointHandle first;
+    std::uint32_t high;
+  };
+  /// High 32 bits of live point `h`'s stream index: the newest epoch that
+  /// starts at or before `h`. O(1) with one epoch (the window spans fewer
+  /// than 2^32 offers at an epoch change: always, but for 4 billion rejected
+  /// points in a row), O(epochs) otherwise.
+  std::uint32_t stream_epoch_high(PointHandle h) const {
+    std::size_t i = stream_epochs_.size() - 1;
+    const auto back = static_cast<std::uint32_t>(next_ - h);  // handles appended since h, >= 1
+    while (i > 0 && static_cast<std::uint32_t>(next_ - stream_epochs_[i].first) < back) --i;
+    return stream_epochs_[i].high;
+  }
+  /// Records the epoch of point `h` (about to be appended: next_ == h + 1)
+  /// when its high word differs from the last one, and forgets the epochs
+  /// no live point needs. Allocates only when the window spans a new
+  /// maximum of epochs.
+  void note_stream_epoch(PointHandle h, std::uint64_t stream_index) {
+    const auto high = static_cast<std::uint32_t>(stream_index >> 32);
+    if (!stream_epochs_.empty() && stream_epochs_.back().high == high) return;
+    stream_epochs_.push_back(StreamEpoch{h, high});
+    // epoch 1 starting at or before the oldest point: epoch 0 covers no live point
+    const auto live = static_cast<std::uint32_t>(next_ - oldest_);
+    while (stream_epochs_.size() >= 2 && static_cast<std::uint32_t>(next_ - stream_epochs_[1].first) >= live)
+      stream_epochs_.erase(stream_epochs_.begin());
+  }
   using PointRecord = std::conditional_t<stores_point_edges, LinkedPointRecord, ForestPointRecord>;
   struct EdgeRecord {  // the older endpoint is in edge_older_
     PointHandle newer = kNoPoint;
@@ -604,7 +640,7 @@ class StreamClusterer {
   }
 
   RejectReason insert_position(const Eigen::Vector3f& pos, float point_intensity, double time) {
-    const std::uint64_t stream_index = offered_++;
+    const std::uint64_t stream_index = params_.first_stream_index + offered_++;
     if (!std::isfinite(time)) return reject(RejectReason::non_finite);
     const Projected pr = projection_.project(pos);
     if (!pr.accepted()) return reject(pr.reason);
@@ -652,7 +688,8 @@ class StreamClusterer {
       samples_[slot] = s;
     }
     if constexpr (uses_payload) payloads_[slot] = linkage_type::make_payload(s);
-    r.stream_index = stream_index;
+    r.stream_index_low = static_cast<std::uint32_t>(stream_index);
+    note_stream_epoch(h, stream_index);
     r.cluster = kNoCluster;
     if constexpr (stores_point_edges) {
       r.next_member = kNoPoint;
@@ -1084,7 +1121,7 @@ class StreamClusterer {
     for (PointHandle h = oldest_; h != next_; ++h) {
       const PointRecord& r = point(h);
       if (r.cluster == kNoCluster) continue;  // only while calibrating
-      add_to_result(labelled++, slot_of_[component_of_[r.cluster]], h, r.stream_index);
+      add_to_result(labelled++, slot_of_[component_of_[r.cluster]], h, stream_index(h));
     }
     result_.points.resize(labelled);
     finish_summaries(components);
@@ -1525,7 +1562,7 @@ class StreamClusterer {
       const std::uint32_t k = parent_[i];
       const std::uint32_t slot = slot_of_[k];
       const ComponentId id = ids[slot];
-      labels[i] = PointLabel{point(h).stream_index, id};
+      labels[i] = PointLabel{stream_index(h), id};
       const StoredSample& sa = samples_[ring_slot(h)];  // position and time only
       const Eigen::Vector3f& p = sa.position;
       ComponentSummary& sm = summaries[slot];
@@ -1835,6 +1872,9 @@ class StreamClusterer {
   ComponentId next_component_id_ = 0;
 
   std::uint64_t offered_ = 0;
+  /// Epochs of the stream indexes of the live points, oldest first; never
+  /// empty once a point was appended (see StreamEpoch).
+  std::vector<StreamEpoch> stream_epochs_;
   bool has_time_ = false;
   double last_time_ = 0.0;
   RejectionCounts rejections_{};
