@@ -112,16 +112,16 @@ TEST_CASE("heap_bytes of the standard grids") {
   const sc::GridShape shape{kRows, kCols, true};
   const std::size_t cells = shape.cell_count();
 
-  SUBCASE("capped grid: cells x (4 K + 2), fixed at reset") {
+  SUBCASE("capped grid: cells x (4 K + 1), fixed at reset") {
     sc::CappedGrid grid{{4}};
     CHECK(grid.heap_bytes() == 0);
     grid.reset(shape);
-    CHECK(grid.heap_bytes() == cells * (4 * 4 + 2));
+    CHECK(grid.heap_bytes() == cells * (4 * 4 + 1));
     for (sc::PointHandle h = 0; h < 100; ++h) grid.insert(h % 7, h);
-    CHECK(grid.heap_bytes() == cells * (4 * 4 + 2));
+    CHECK(grid.heap_bytes() == cells * (4 * 4 + 1));
     sc::CappedGrid k9{{9}};
     k9.reset(shape);
-    CHECK(k9.heap_bytes() == cells * (4 * 9 + 2));
+    CHECK(k9.heap_bytes() == cells * (4 * 9 + 1));
   }
   SUBCASE("overwrite grid: 4 bytes per cell") {
     sc::OverwriteGrid grid{{}};
@@ -250,7 +250,7 @@ TEST_CASE("memory_usage: index part per standard grid, unknown without heap_byte
   feed(capped, s1, 20000);
   const sc::MemoryUsage mc = capped.memory_usage();
   CHECK(mc.spatial_index_known);
-  CHECK(mc.spatial_index == cells * (4 * capped.params().spatial_index.capacity + 2));
+  CHECK(mc.spatial_index == cells * (4 * capped.params().spatial_index.capacity + 1));
 
   sc::StreamClusterer<OverwriteFixedConfig> overwrite(fixed_params<OverwriteFixedConfig>(0.05));
   feed(overwrite, s2, 20000);
