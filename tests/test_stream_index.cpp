@@ -104,3 +104,22 @@ TEST_CASE("a resumed stream numbers from first_stream_index; the count of offere
   CHECK(accepted == std::vector<std::uint64_t>{(std::uint64_t{7} << 40) + 1, (std::uint64_t{7} << 40) + 2});
   require_window_indexes(engine, accepted);
 }
+
+TEST_CASE("the epochs of the window follow it: one again as soon as the old epoch's last point leaves") {
+  using Config = IndexConfig<sc::SpanningForestConnectivity>;
+  constexpr std::uint64_t two32 = std::uint64_t{1} << 32;
+  sc::StreamClusterer<Config> engine(index_params<Config>(two32 - 3, 4));
+  double t = 0.0;
+  offer(engine, {true, true, true}, t);  // 2^32 - 3 .. 2^32 - 1
+  CHECK(engine.stream_epochs() == 1);
+  offer(engine, {true}, t);  // 2^32: the window straddles the boundary
+  CHECK(engine.stream_epochs() == 2);
+  offer(engine, {true, true}, t);  // evicts 2^32 - 3 and 2^32 - 2
+  CHECK(engine.stream_epochs() == 2);
+  offer(engine, {true}, t);  // evicts 2^32 - 1, the old epoch's last point
+  CHECK(engine.stream_epochs() == 1);
+  require_window_indexes(engine, {two32, two32 + 1, two32 + 2, two32 + 3});
+  engine.advance_to(t + 100.0);  // a count window ignores time: nothing leaves
+  CHECK(engine.stream_epochs() == 1);
+}
+

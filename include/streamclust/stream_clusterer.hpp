@@ -365,6 +365,10 @@ class StreamClusterer {
   std::uint64_t stream_index(PointHandle h) const {
     return (std::uint64_t{stream_epoch_high(h)} << 32) | point(h).stream_index_low;
   }
+  /// Distinct high 32-bit words among the stream indexes of the window
+  /// (plus the last one seen when the window is empty): 1 unless the window
+  /// straddles a multiple of 2^32 offered points. O(1).
+  std::size_t stream_epochs() const { return stream_epochs_.size(); }
   /// Local cluster of a live point (kNoCluster while calibrating; with
   /// union_find_rebuild or spanning_forest, also for a point inserted after
   /// the last retrieval).
@@ -528,17 +532,21 @@ class StreamClusterer {
   /// High 32 bits of live point `h`'s stream index: the newest epoch that
   /// starts at or before `h`. O(1) with one epoch (the window spans fewer
   /// than 2^32 offers at an epoch change: always, but for 4 billion rejected
-  /// points in a row), O(epochs) otherwise.
+  /// points in a row), O(epochs) otherwise. Invariant (kept by
+  /// note_stream_epoch and evict_oldest): every epoch but the first starts
+  /// at a live handle, so the modular distances below never alias (a
+  /// rejection-free stream starts each epoch at the same handle value
+  /// modulo 2^32).
   std::uint32_t stream_epoch_high(PointHandle h) const {
     std::size_t i = stream_epochs_.size() - 1;
     const auto back = static_cast<std::uint32_t>(next_ - h);  // handles appended since h, >= 1
     while (i > 0 && static_cast<std::uint32_t>(next_ - stream_epochs_[i].first) < back) --i;
     return stream_epochs_[i].high;
   }
-  /// Records the epoch of point `h` (about to be appended: next_ == h + 1)
-  /// when its high word differs from the last one, and forgets the epochs
-  /// no live point needs. Allocates only when the window spans a new
-  /// maximum of epochs.
+  /// Records the epoch of point `h` (just appended: next_ == h + 1) when its
+  /// high word differs from the last one, and forgets the epochs no live
+  /// point needs (evict_oldest forgets them as the window moves on).
+  /// Allocates only when the window spans a new maximum of epochs.
   void note_stream_epoch(PointHandle h, std::uint64_t stream_index) {
     const auto high = static_cast<std::uint32_t>(stream_index >> 32);
     if (!stream_epochs_.empty() && stream_epochs_.back().high == high) return;
@@ -984,6 +992,10 @@ class StreamClusterer {
       }
     }
     ++oldest_;
+    // The next epoch starts at the new oldest point: the first covers no
+    // live point. Dropping it now keeps every epoch but the first starting
+    // at a live handle, which stream_epoch_high compares modulo 2^32.
+    if (stream_epochs_.size() >= 2 && stream_epochs_[1].first == oldest_) stream_epochs_.erase(stream_epochs_.begin());
     if (static_cast<std::uint32_t>(oldest_ - ring_origin_) == ring_capacity_) ring_origin_ += ring_capacity_;
     if constexpr (stores_point_edges) oldest_edge_ = size() > 0 ? point(oldest_).back_begin : next_edge_;
   }
