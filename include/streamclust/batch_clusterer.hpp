@@ -57,6 +57,9 @@ class BatchClusterer {
   using traits = config_traits<Config>;
   STREAMCLUST_CHECK_CONFIG(Config);
   using Params = ClustererParams<Config>;
+  /// True when the linkage tests one payload against many (link_many):
+  /// each point's candidates then go through one call, as in the engine.
+  static constexpr bool tests_many = has_linkage_link_many_v<typename traits::linkage>;
 
   explicit BatchClusterer(const Params& params = Params{}, BatchMode mode = BatchMode::insertion_order)
       : params_(params),
@@ -105,6 +108,10 @@ class BatchClusterer {
     index_.reset(result_.grid);
 
     const std::size_t n = samples_.size();
+    if constexpr (tests_many) {
+      payloads_.clear();
+      for (const Sample& smp : samples_) payloads_.push_back(traits::linkage::make_payload(smp));
+    }
     cells_.assign(n, 0);
     sets_.reset(n);
     if (mode_ == BatchMode::insertion_order) {
@@ -143,12 +150,28 @@ class BatchClusterer {
 
  private:
   void link_to_index(std::size_t i) {
-    const Sample& s = samples_[i];
-    detail::for_each_mask_cell(result_.grid, cells_[i], half_, [&](CellIndex c) {
-      index_.for_each(c, [&](PointHandle h) {
-        if (h != i && linkage_(s, samples_[h])) sets_.unite(static_cast<std::uint32_t>(i), h);
+    if constexpr (tests_many) {
+      // As the engine: every candidate in one call (the same decisions as
+      // the pairwise operator, concepts/linkage.hpp), then the unions.
+      candidates_.clear();
+      detail::for_each_mask_cell(result_.grid, cells_[i], half_, [&](CellIndex c) {
+        index_.for_each(c, [&](PointHandle h) {
+          if (h != i) candidates_.push_back(h);
+        });
       });
-    });
+      linked_.resize(candidates_.size());
+      linkage_.link_many(payloads_[i], payloads_.data(), candidates_.data(), candidates_.size(), linked_.data());
+      for (std::size_t k = 0; k < candidates_.size(); ++k) {
+        if (linked_[k]) sets_.unite(static_cast<std::uint32_t>(i), candidates_[k]);
+      }
+    } else {
+      const Sample& s = samples_[i];
+      detail::for_each_mask_cell(result_.grid, cells_[i], half_, [&](CellIndex c) {
+        index_.for_each(c, [&](PointHandle h) {
+          if (h != i && linkage_(s, samples_[h])) sets_.unite(static_cast<std::uint32_t>(i), h);
+        });
+      });
+    }
   }
 
   Params params_;
@@ -159,6 +182,9 @@ class BatchClusterer {
   BatchMode mode_;
   std::optional<GridSize> fixed_grid_;
   std::vector<Sample> samples_;
+  std::vector<linkage_payload_t<typename traits::linkage>> payloads_;  // with link_many: one per sample
+  std::vector<PointHandle> candidates_;                                // with link_many: the mask's handles
+  std::vector<std::uint8_t> linked_;                                   // with link_many: their decisions
   std::vector<Projected> coords_;
   std::vector<Projected> accepted_;
   std::vector<CellIndex> cells_;

@@ -181,6 +181,10 @@ class StreamClusterer {
   /// the sample ring then keeps only position, intensity and time (24
   /// bytes), and `sample(h)` rebuilds the rest from the payload.
   static constexpr bool compact_samples = has_linkage_ray_payload_v<linkage_type>;
+  /// True when the linkage tests one payload against many (`link_many`,
+  /// concepts/linkage.hpp): the neighbour search then makes one call per
+  /// point with all its candidates.
+  static constexpr bool tests_many = has_linkage_link_many_v<linkage_type>;
 
   /// Throws std::invalid_argument when a parameter is out of range.
   explicit StreamClusterer(const Params& params = Params{}, visitor_type visitor = visitor_type{})
@@ -307,6 +311,7 @@ class StreamClusterer {
                  capacity_bytes(cluster_size_);
     for (const Cluster& c : clusters_) m.clusters += capacity_bytes(c.bridges);
     m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(mask_cells_) +
+                capacity_bytes(candidate_slots_) + capacity_bytes(link_flags_) +
                 capacity_bytes(touched_) +
                 capacity_bytes(order_) + capacity_bytes(fragment_begin_) + capacity_bytes(component_of_) +
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
@@ -639,6 +644,10 @@ class StreamClusterer {
       const std::size_t most_candidates = width * width * index_.max_cell_size();
       candidates_.reserve(most_candidates);
       neighbours_.reserve(most_candidates);
+      if constexpr (tests_many) {
+        candidate_slots_.reserve(most_candidates);
+        link_flags_.reserve(most_candidates);
+      }
     }
   }
 
@@ -773,10 +782,15 @@ class StreamClusterer {
       // each is a likely miss); (3) test the linkage. A payload linkage reads
       // the dense 16-byte payload ring, the others the 40-byte Samples.
       candidates_.clear();
+      if constexpr (tests_many) candidate_slots_.clear();
       for (std::size_t i = 0; i < mask_count_; ++i) {
         index_.for_each(mask_cells_[i], [&](PointHandle n) {
           candidates_.push_back(n);
-          if constexpr (uses_payload) {
+          if constexpr (tests_many) {
+            const std::uint32_t slot = ring_slot(n);
+            candidate_slots_.push_back(slot);
+            detail::prefetch(&payloads_[slot]);
+          } else if constexpr (uses_payload) {
             detail::prefetch(&payloads_[ring_slot(n)]);
           } else {
             detail::prefetch(&samples_[ring_slot(n)]);
@@ -792,7 +806,20 @@ class StreamClusterer {
       neighbours_.resize(candidates_.size());
       PointHandle* const out = neighbours_.data();
       std::size_t found = 0;
-      if constexpr (uses_payload) {
+      if constexpr (tests_many) {
+        // One call for all candidates (vectorised), then the compaction.
+        const std::size_t count = candidates_.size();
+        if (link_flags_.capacity() < candidates_.capacity()) link_flags_.reserve(candidates_.capacity());
+        link_flags_.resize(count);
+        linkage_.link_many(payloads_[ring_slot(h, origin, ring_capacity)], payloads_.data(), candidate_slots_.data(),
+                           count, link_flags_.data());
+        const PointHandle* const cand = candidates_.data();
+        const std::uint8_t* const flags = link_flags_.data();
+        for (std::size_t k = 0; k < count; ++k) {
+          out[found] = cand[k];
+          found += flags[k];
+        }
+      } else if constexpr (uses_payload) {
         const payload_type s = payloads_[ring_slot(h, origin, ring_capacity)];  // a copy: the stores below cannot alias it
         const payload_type* const ring = payloads_.data();
         for (const PointHandle n : candidates_) {
@@ -1898,6 +1925,8 @@ class StreamClusterer {
   std::vector<PointHandle> neighbours_;
   std::vector<PointHandle> candidates_;
   std::vector<CellIndex> mask_cells_;  // the mask of the point being linked: [0, mask_count_)
+  std::vector<std::uint32_t> candidate_slots_;  // with link_many: the ring slot of each candidate
+  std::vector<std::uint8_t> link_flags_;        // with link_many: whether each candidate links
   std::size_t mask_count_ = 0;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;

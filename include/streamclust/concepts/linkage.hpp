@@ -49,10 +49,23 @@
 /// only position, intensity and time (24 bytes) beside the payload and
 /// rebuilds a Sample on demand (`StreamClusterer::sample` returns by value),
 /// 16 bytes per windowed point less than a full Sample ring.
+///
+/// Optional refinement: a test of one payload against many (detected with
+/// `has_linkage_link_many_v<L>`), for a vectorised neighbour search.
+///
+/// | expression                                   | type | meaning                                                        | complexity |
+/// |----------------------------------------------|------|----------------------------------------------------------------|------------|
+/// | `l.link_many(a, ring, slots, count, linked)` | void | `linked[k] = l(a, ring[slots[k]])` (0 or 1) for k < count      | O(count)   |
+///
+/// (`a`: const Payload&, `ring`: const Payload*, `slots`: const
+/// std::uint32_t*, `linked`: std::uint8_t*.) Contract: the same decisions
+/// as the pairwise operator, bit for bit. The engine's neighbour search and
+/// the batch clusterer then call it once per point with all its candidates.
 
 #include <streamclust/types.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 #include <utility>
 
@@ -91,6 +104,14 @@ struct has_linkage_ray_payload<L, std::void_t<decltype(L::restore_ray(std::declv
                                                                        std::declval<Sample&>()))>>
     : has_linkage_payload<L> {};
 
+template <class L, class = void>
+struct has_linkage_link_many : std::false_type {};
+template <class L>
+struct has_linkage_link_many<
+    L, std::void_t<decltype(std::declval<const L&>().link_many(
+           std::declval<const typename L::Payload&>(), std::declval<const typename L::Payload*>(),
+           std::declval<const std::uint32_t*>(), std::declval<std::size_t>(), std::declval<std::uint8_t*>()))>>
+    : has_linkage_payload<L> {};
 template <class L, bool = has_linkage_payload<L>::value>
 struct linkage_payload {
   using type = NoPayload;
@@ -115,6 +136,11 @@ inline constexpr bool has_linkage_payload_v = detail::has_linkage_payload<L>::va
 template <class L>
 inline constexpr bool has_linkage_ray_payload_v = detail::has_linkage_ray_payload<L>::value;
 
+/// True when linkage `L` has the compact payload and tests one payload
+/// against many: `void link_many(const Payload&, const Payload* ring, const
+/// std::uint32_t* slots, std::size_t count, std::uint8_t* linked) const`.
+template <class L>
+inline constexpr bool has_linkage_link_many_v = detail::has_linkage_link_many<L>::value;
 /// `L::Payload` when `has_linkage_payload_v<L>`, else `detail::NoPayload`.
 template <class L>
 using linkage_payload_t = typename detail::linkage_payload<L>::type;
