@@ -11,6 +11,7 @@
 #include "support/partition.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <vector>
@@ -301,6 +302,40 @@ TEST_CASE("the mask wraps around the azimuth seam and visits each cell once") {
   const sc::GridShape narrow{1, 3, true};
   sc::detail::for_each_mask_cell(narrow, 1, 3, [&](sc::CellIndex c) { cells.push_back(c); });
   CHECK(cells == std::vector<sc::CellIndex>{0, 1, 2});
+}
+
+TEST_CASE("MaskMembership agrees with the cells the mask visits, on every pair of cells") {
+  // Wrapping and clamped grids, wide and narrower than the mask, at every
+  // half width up to 3: b is in a's mask iff for_each_mask_cell_at around a
+  // visits b, and the coordinates it reports are b's.
+  for (const bool wrap : {true, false}) {
+    for (const std::uint32_t cols : {1u, 2u, 3u, 5u, 7u, 9u, 16u}) {
+      const sc::GridShape grid{5, cols, wrap};
+      for (int half = 0; half <= 3; ++half) {
+        const sc::detail::MaskMembership in_mask(grid, half);
+        for (sc::CellIndex a = 0; a < grid.cell_count(); ++a) {
+          std::vector<bool> visited(grid.cell_count(), false);
+          sc::detail::for_each_mask_cell_at(grid, a, half, [&](sc::CellIndex c, std::int64_t row, std::int64_t col) {
+            REQUIRE(row == static_cast<std::int64_t>(grid.row_of(c)));
+            REQUIRE(col == static_cast<std::int64_t>(grid.col_of(c)));
+            visited[c] = true;
+          });
+          for (sc::CellIndex b = 0; b < grid.cell_count(); ++b) {
+            CAPTURE(wrap);
+            CAPTURE(cols);
+            CAPTURE(half);
+            CAPTURE(a);
+            CAPTURE(b);
+            const auto ra = static_cast<std::int32_t>(grid.row_of(a));
+            const auto ca = static_cast<std::int32_t>(grid.col_of(a));
+            const auto rb = static_cast<std::int32_t>(grid.row_of(b));
+            const auto cb = static_cast<std::int32_t>(grid.col_of(b));
+            REQUIRE(in_mask(ra, ca, rb, cb) == visited[b]);
+          }
+        }
+      }
+    }
+  }
 }
 
 TEST_CASE("points on both sides of the azimuth seam link through the wrap") {

@@ -109,6 +109,7 @@ std::uint64_t run_oracle(std::uint64_t seed, Schedule schedule = Schedule::rando
     params.connectivity.min_fold_edges =
         forest_min_fold_edges != 0 ? forest_min_fold_edges : thresholds[rng() % 5];
     params.connectivity.fold_edges_per_point = 1 + static_cast<std::uint32_t>(rng() % 2);
+    params.connectivity.prune_witnesses = static_cast<std::uint32_t>(rng() % 4);  // 0: every edge kept
   }
   const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
   const auto stream = st::make_stream(kind, 120 + seed % 200, seed);

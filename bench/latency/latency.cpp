@@ -36,7 +36,7 @@
 // Usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K]
 //                      [--timed-cycles N] [--filter TEXT] [--out DIR]
 //                      [--scenario NAME] [--data DIR] [--smoke] [--list]
-//                      [--trace-allocs] [--spin-up SECONDS]
+//                      [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]
 // (--scenario: exactly one scenario, by its --list name; bench/run.sh runs
 // every scenario as its own process, two at a time, and merges the outputs
 // with merge_summaries.py.)
@@ -213,9 +213,17 @@ sc::CArcParams sensor_params(Sensor s, double window) {
 /// Engine parameters: the paper's (w = 5, T_M = 2, theta 30 / 80 degrees,
 /// adaptive grid) for angular configurations; the same FOV, window, mask and
 /// calibration with the linkage's default Params otherwise.
+/// --prune-witnesses N: SpanningForestConnectivity::Params::prune_witnesses
+/// of the spanning-forest configurations (-1: the default), for A/B runs.
+long g_prune_witnesses = -1;
+
 template <class Config>
 sc::ClustererParams<Config> engine_params(const Scenario& s) {
-  return sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
+  auto params = sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
+  if constexpr (std::is_same_v<typename sc::config_traits<Config>::connectivity, sc::SpanningForestConnectivity>) {
+    if (g_prune_witnesses >= 0) params.connectivity.prune_witnesses = static_cast<std::uint32_t>(g_prune_witnesses);
+  }
+  return params;
 }
 
 /// The same parameters for a configuration derived from another: every slot
@@ -228,6 +236,9 @@ sc::ClustererParams<To> rebind_params(const sc::ClustererParams<From>& from) {
   to.window = from.window;
   to.resolution = from.resolution;
   to.mask_size = from.mask_size;
+  if constexpr (std::is_same_v<decltype(to.connectivity), decltype(from.connectivity)>) {
+    to.connectivity = from.connectivity;
+  }
   if constexpr (std::is_same_v<decltype(to.spatial_index), decltype(from.spatial_index)>) {
     to.spatial_index = from.spatial_index;
   }
@@ -290,6 +301,8 @@ struct ScenarioResult {
   // timed pass
   std::size_t timed_cycles = 0;
   sc::PhaseTimes phase_mean{};
+  double edges_found_mean = 0.0;  // spanning_forest: new edges found per cycle
+  double edges_kept_mean = 0.0;   // of those, kept after pruning
   double timed_median_us = 0.0;
   double wall_seconds = 0.0;
 };
@@ -506,6 +519,8 @@ void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, Scen
   std::vector<sim::SimPoint> slice;
   std::vector<double> lat;
   sc::PhaseTimes sum{};
+  double edges_found = 0.0;
+  double edges_kept = 0.0;
   const std::size_t warmup = warmup_cycles(s.window);
   for (std::size_t cycle = 0; cycle < warmup + cycles; ++cycle) {
     source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
@@ -516,6 +531,8 @@ void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, Scen
     if (cycle < warmup) continue;
     lat.push_back(micros(t0, t1));
     const sc::PhaseTimes& ph = engine.last_stats().phase_us;
+    edges_found += static_cast<double>(engine.last_stats().edges_found);
+    edges_kept += static_cast<double>(engine.last_stats().edges_found - engine.last_stats().edges_pruned);
     sum.insertion += ph.insertion;
     sum.eviction += ph.eviction;
     sum.validation += ph.validation;
@@ -527,6 +544,8 @@ void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, Scen
   r.phase_mean = sc::PhaseTimes{sum.insertion / n, sum.eviction / n, sum.validation / n, sum.component_update / n,
                                 sum.labelling / n};
   r.timed_median_us = summarize(lat).median;
+  r.edges_found_mean = edges_found / n;
+  r.edges_kept_mean = edges_kept / n;
 }
 
 /// Calls f(sensor model, description) with this scenario's sensor.
@@ -674,7 +693,8 @@ void write_outputs(const Options& o, const Written& w) {
          << ", \"phase_mean_ms\": {\"insertion\": " << r.phase_mean.insertion * 1e-3
          << ", \"eviction\": " << r.phase_mean.eviction * 1e-3 << ", \"validation\": " << r.phase_mean.validation * 1e-3
          << ", \"component_update\": " << r.phase_mean.component_update * 1e-3
-         << ", \"labelling\": " << r.phase_mean.labelling * 1e-3 << "}, \"timed_median_ms\": " << r.timed_median_us * 1e-3
+         << ", \"labelling\": " << r.phase_mean.labelling * 1e-3 << "}, \"new_edges_per_cycle\": " << r.edges_found_mean
+         << ", \"kept_edges_per_cycle\": " << r.edges_kept_mean << ", \"timed_median_ms\": " << r.timed_median_us * 1e-3
          << ", \"wall_seconds\": " << r.wall_seconds << "\n  }" << (k + 1 < w.all.size() ? "," : "") << '\n';
   }
   json << "  ]\n}\n";
@@ -744,14 +764,16 @@ void write_outputs(const Options& o, const Written& w) {
     md << " | " << fmt(summarize(r.bytes_per_point).median, 1) << " |\n";
   }
   md << "\n## Phase split (timed configuration, mean per cycle) [ms]\n\n";
-  md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median |\n";
-  md << "|---|---|---|---|---|---|---|---|\n";
+  md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median | new "
+        "edges / cycle (kept) |\n";
+  md << "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     if (r.timed_cycles == 0) continue;
     const sc::PhaseTimes& ph = r.phase_mean;
     md << "| " << r.name << " | " << r.timed_cycles << " | " << fmt(ph.insertion * 1e-3) << " | "
        << fmt(ph.eviction * 1e-3) << " | " << fmt(ph.validation * 1e-3) << " | " << fmt(ph.component_update * 1e-3)
-       << " | " << fmt(ph.labelling * 1e-3) << " | " << fmt(r.timed_median_us * 1e-3) << " |\n";
+       << " | " << fmt(ph.labelling * 1e-3) << " | " << fmt(r.timed_median_us * 1e-3) << " | "
+       << fmt(r.edges_found_mean, 0) << " (" << fmt(r.edges_kept_mean, 0) << ") |\n";
   }
 }
 
@@ -816,13 +838,15 @@ Options parse(int argc, char** argv) {
       o.list = true;
     } else if (a == "--trace-allocs") {
       o.trace_allocs = true;
+    } else if (a == "--prune-witnesses") {
+      g_prune_witnesses = static_cast<long>(parse_count(a, value(), 0));
     } else if (a == "--spin-up") {
       o.spin_up_s = parse_count(a, value(), 0);
       spin_given = true;
     } else if (a == "--help" || a == "-h") {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
                    "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
-                   "                     [--list] [--trace-allocs] [--spin-up SECONDS]\n";
+                   "                     [--list] [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");

@@ -54,6 +54,8 @@ struct RetrievalStats {
   std::uint64_t points_validated = 0;   ///< points of the clusters checked (validation work)
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits
   std::uint64_t forest_folds = 0;       ///< spanning_forest: folds without labelling (new edges past the threshold)
+  std::uint64_t edges_found = 0;        ///< spanning_forest: edges of the inserted points to older neighbours
+  std::uint64_t edges_pruned = 0;       ///< spanning_forest: of those, dropped as redundant (prune_witnesses)
   PhaseTimes phase_us{};                ///< timed configs only
 };
 
@@ -311,7 +313,8 @@ class StreamClusterer {
                  capacity_bytes(cluster_size_);
     for (const Cluster& c : clusters_) m.clusters += capacity_bytes(c.bridges);
     m.scratch = capacity_bytes(neighbours_) + capacity_bytes(candidates_) + capacity_bytes(mask_cells_) +
-                capacity_bytes(candidate_slots_) + capacity_bytes(link_flags_) +
+                capacity_bytes(candidate_slots_) + capacity_bytes(link_flags_) + capacity_bytes(mask_at_) +
+                capacity_bytes(candidate_cells_) +
                 capacity_bytes(touched_) +
                 capacity_bytes(order_) + capacity_bytes(fragment_begin_) + capacity_bytes(component_of_) +
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
@@ -644,10 +647,9 @@ class StreamClusterer {
       const std::size_t most_candidates = width * width * index_.max_cell_size();
       candidates_.reserve(most_candidates);
       neighbours_.reserve(most_candidates);
-      if constexpr (tests_many) {
-        candidate_slots_.reserve(most_candidates);
-        link_flags_.reserve(most_candidates);
-      }
+      candidate_slots_.reserve(most_candidates);
+      link_flags_.reserve(most_candidates);
+      if constexpr (keeps_forest) candidate_cells_.reserve(most_candidates);
     }
   }
 
@@ -759,9 +761,14 @@ class StreamClusterer {
   void list_mask_cells(CellIndex cell) {
     const auto width = static_cast<std::size_t>(2 * half_ + 1);
     if (mask_cells_.size() < width * width) mask_cells_.resize(width * width);  // once: at most w^2 cells
+    if constexpr (keeps_forest) {
+      if (mask_at_.size() < width * width) mask_at_.resize(width * width);
+    }
     CellIndex* const out = mask_cells_.data();
+    MaskCellAt* const at = mask_at_.data();
     std::size_t n = 0;
-    detail::for_each_mask_cell(grid_, cell, half_, [&](CellIndex c) {
+    detail::for_each_mask_cell_at(grid_, cell, half_, [&](CellIndex c, std::int64_t row, std::int64_t col) {
+      if constexpr (keeps_forest) at[n] = MaskCellAt{static_cast<std::int32_t>(row), static_cast<std::int32_t>(col)};
       out[n++] = c;
       if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
     });
@@ -781,58 +788,83 @@ class StreamClusterer {
       // candidate's payload, or sample without one (scattered in the ring:
       // each is a likely miss); (3) test the linkage. A payload linkage reads
       // the dense 16-byte payload ring, the others the 40-byte Samples.
+      // Ring slots are gathered for one test of many (link_many) and for the
+      // redundant-edge filter (spanning_forest with prune_witnesses > 0),
+      // mask cells for the filter only; else the test reads the slot itself.
+      const bool pruning = connectivity_prune_witnesses(connectivity_) != 0;
+      const bool with_slots = tests_many || pruning;
       candidates_.clear();
-      if constexpr (tests_many) candidate_slots_.clear();
+      candidate_slots_.clear();
+      if constexpr (keeps_forest) candidate_cells_.clear();
       for (std::size_t i = 0; i < mask_count_; ++i) {
         index_.for_each(mask_cells_[i], [&](PointHandle n) {
+          const std::uint32_t slot = ring_slot(n);
           candidates_.push_back(n);
-          if constexpr (tests_many) {
-            const std::uint32_t slot = ring_slot(n);
-            candidate_slots_.push_back(slot);
+          if (with_slots) candidate_slots_.push_back(slot);
+          if constexpr (keeps_forest) {
+            if (pruning) candidate_cells_.push_back(static_cast<std::uint16_t>(i));
+          }
+          if constexpr (uses_payload) {
             detail::prefetch(&payloads_[slot]);
-          } else if constexpr (uses_payload) {
-            detail::prefetch(&payloads_[ring_slot(n)]);
           } else {
-            detail::prefetch(&samples_[ring_slot(n)]);
+            detail::prefetch(&samples_[slot]);
           }
         });
       }
-      // Branch-free compaction: whether a candidate links is close to a
-      // coin flip, a branch on it would mispredict often.
-      const PointHandle origin = ring_origin_;
-      const std::uint32_t ring_capacity = ring_capacity_;
-      // Same capacity as candidates_: it grows only when they do.
+      // The linkage decisions with a branch-free compaction (whether a
+      // candidate links is close to a coin flip: a branch on it would
+      // mispredict often); with the filter, slots and mask cells are
+      // compacted in place beside the neighbours.
+      const std::size_t count = candidates_.size();
+      // Same capacity as candidates_: they grow only when they do.
       if (neighbours_.capacity() < candidates_.capacity()) neighbours_.reserve(candidates_.capacity());
-      neighbours_.resize(candidates_.size());
+      neighbours_.resize(count);
       PointHandle* const out = neighbours_.data();
+      const PointHandle* const cand = candidates_.data();
       std::size_t found = 0;
-      if constexpr (tests_many) {
-        // One call for all candidates (vectorised), then the compaction.
-        const std::size_t count = candidates_.size();
+      if (with_slots) {
         if (link_flags_.capacity() < candidates_.capacity()) link_flags_.reserve(candidates_.capacity());
         link_flags_.resize(count);
-        linkage_.link_many(payloads_[ring_slot(h, origin, ring_capacity)], payloads_.data(), candidate_slots_.data(),
-                           count, link_flags_.data());
-        const PointHandle* const cand = candidates_.data();
+        test_links(ring_slot(h), candidate_slots_.data(), count, link_flags_.data());
         const std::uint8_t* const flags = link_flags_.data();
-        for (std::size_t k = 0; k < count; ++k) {
-          out[found] = cand[k];
-          found += flags[k];
+        if (keeps_forest && pruning) {
+          std::uint32_t* const slots = candidate_slots_.data();
+          std::uint16_t* const cells = candidate_cells_.data();
+          for (std::size_t k = 0; k < count; ++k) {
+            out[found] = cand[k];
+            slots[found] = slots[k];
+            cells[found] = cells[k];
+            found += flags[k];
+          }
+          stats_.edges_found += found;
+          found = prune_redundant_edges(h, found);
+        } else {
+          for (std::size_t k = 0; k < count; ++k) {
+            out[found] = cand[k];
+            found += flags[k];
+          }
+          stats_.edges_found += keeps_forest ? found : 0;
         }
       } else if constexpr (uses_payload) {
+        const PointHandle origin = ring_origin_;
+        const std::uint32_t ring_capacity = ring_capacity_;
         const payload_type s = payloads_[ring_slot(h, origin, ring_capacity)];  // a copy: the stores below cannot alias it
         const payload_type* const ring = payloads_.data();
-        for (const PointHandle n : candidates_) {
-          out[found] = n;
-          found += linkage_(s, ring[ring_slot(n, origin, ring_capacity)]) ? 1u : 0u;
+        for (std::size_t k = 0; k < count; ++k) {
+          out[found] = cand[k];
+          found += linkage_(s, ring[ring_slot(cand[k], origin, ring_capacity)]) ? 1u : 0u;
         }
+        stats_.edges_found += keeps_forest ? found : 0;
       } else {
+        const PointHandle origin = ring_origin_;
+        const std::uint32_t ring_capacity = ring_capacity_;
         const Sample& s = samples_[ring_slot(h, origin, ring_capacity)];
         const Sample* const ring = samples_.data();  // hoisted: the stores below cannot alias them
-        for (const PointHandle n : candidates_) {
-          out[found] = n;
-          found += linkage_(s, ring[ring_slot(n, origin, ring_capacity)]) ? 1u : 0u;
+        for (std::size_t k = 0; k < count; ++k) {
+          out[found] = cand[k];
+          found += linkage_(s, ring[ring_slot(cand[k], origin, ring_capacity)]) ? 1u : 0u;
         }
+        stats_.edges_found += keeps_forest ? found : 0;
       }
       neighbours_.resize(found);
       if constexpr (stores_point_edges) {
@@ -859,6 +891,84 @@ class StreamClusterer {
     } else {
       link_stored_edges(h);
     }
+  }
+
+  /// flags[k] = whether the point in ring slot `subject` links to the one in
+  /// ring slot `slots[k]`, for k < count: one `link_many` call when the
+  /// linkage has it (vectorised), else the pairwise operator on payloads or
+  /// Samples. O(count).
+  void test_links(std::uint32_t subject, const std::uint32_t* slots, std::size_t count, std::uint8_t* flags) const {
+    if constexpr (tests_many) {
+      linkage_.link_many(payloads_[subject], payloads_.data(), slots, count, flags);
+    } else if constexpr (uses_payload) {
+      const payload_type s = payloads_[subject];  // a copy: the stores below cannot alias it
+      const payload_type* const ring = payloads_.data();
+      for (std::size_t k = 0; k < count; ++k) flags[k] = linkage_(s, ring[slots[k]]) ? 1u : 0u;
+    } else {
+      const Sample& s = samples_[subject];
+      const Sample* const ring = samples_.data();
+      for (std::size_t k = 0; k < count; ++k) flags[k] = linkage_(s, ring[slots[k]]) ? 1u : 0u;
+    }
+  }
+
+  /// spanning_forest: drops from the first `found` entries of `neighbours_`
+  /// (the neighbours of `h`, just found; their ring slots and mask cells in
+  /// `candidate_slots_` and `candidate_cells_`) the edges the window's
+  /// components can do without, for as long as they live; returns how many
+  /// are kept (compacted to the front). O(found x witnesses).
+  ///
+  /// An edge (h, n), n older than h, lives until n leaves. If a neighbour y
+  /// of h younger than n also has an edge (y, n), then while (h, n) lives so
+  /// do (y, n) (same expiry, n) and h - y (expiry y, later): h and n stay
+  /// connected through points no older than n at every moment. By induction
+  /// on insertion that holds when (y, n) or (h, y) were dropped themselves
+  /// (a dropped edge's endpoints are always joined by kept edges between
+  /// points no older than its expiry), so the window's components, at every
+  /// moment, and the folds (fold_forest's proof holds for any edge set with
+  /// those components) do not change. The edge (y, n) exists iff n's cell
+  /// was in y's mask (detail::MaskMembership), n was in the index when y was linked
+  /// (an index holds a point from its insertion until it is removed for
+  /// good, and n is in it now, after y's insertion) and the linkage accepts
+  /// them. The witnesses y are the youngest neighbours, youngest first, up
+  /// to SpanningForestConnectivity::Params::prune_witnesses; each is tested
+  /// against the kept neighbours older than itself in one `test_links` call.
+  std::size_t prune_redundant_edges(PointHandle h, std::size_t found) {
+    const std::uint32_t witnesses = connectivity_prune_witnesses(connectivity_);
+    PointHandle* const nb = neighbours_.data();
+    std::uint32_t* const slots = candidate_slots_.data();
+    std::uint16_t* const cells = candidate_cells_.data();
+    std::uint8_t* const linked = link_flags_.data();  // free again: reused for the witness's decisions
+    const MaskCellAt* const at = mask_at_.data();
+    const detail::MaskMembership in_mask(grid_, half_);
+    std::uint32_t witness_age = 0;  // the previous witness's age: the next one is older
+    for (std::uint32_t w = 0; w < witnesses && found >= 2; ++w) {
+      // The youngest kept neighbour older than the previous witness.
+      std::uint32_t age = std::numeric_limits<std::uint32_t>::max();
+      std::size_t y = found;
+      for (std::size_t k = 0; k < found; ++k) {
+        const auto a = static_cast<std::uint32_t>(h - nb[k]);
+        const bool better = a > witness_age && a < age;
+        y = better ? k : y;
+        age = better ? a : age;
+      }
+      if (y == found) break;
+      const MaskCellAt wy = at[cells[y]];
+      test_links(slots[y], slots, found, linked);
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < found; ++k) {
+        const MaskCellAt c = at[cells[k]];
+        const bool older = static_cast<std::uint32_t>(h - nb[k]) > age;
+        const bool redundant = older & in_mask(wy.row, wy.col, c.row, c.col) & (linked[k] != 0);
+        nb[kept] = nb[k];
+        slots[kept] = slots[k];
+        cells[kept] = cells[k];
+        kept += redundant ? 0u : 1u;
+      }
+      stats_.edges_pruned += found - kept;
+      found = kept;
+      witness_age = age;
+    }
+    return found;
   }
 
   /// link()'s second half for the strategies that store point edges: the
@@ -1925,8 +2035,14 @@ class StreamClusterer {
   std::vector<PointHandle> neighbours_;
   std::vector<PointHandle> candidates_;
   std::vector<CellIndex> mask_cells_;  // the mask of the point being linked: [0, mask_count_)
-  std::vector<std::uint32_t> candidate_slots_;  // with link_many: the ring slot of each candidate
-  std::vector<std::uint8_t> link_flags_;        // with link_many: whether each candidate links
+  std::vector<std::uint32_t> candidate_slots_;  // the ring slot of each candidate
+  std::vector<std::uint8_t> link_flags_;        // whether each candidate links (then: to the witness)
+  struct MaskCellAt {
+    std::int32_t row;
+    std::int32_t col;
+  };
+  std::vector<MaskCellAt> mask_at_;             // spanning_forest: grid row and column of each mask cell
+  std::vector<std::uint16_t> candidate_cells_;  // spanning_forest: the mask cell (place in mask_cells_) of each candidate
   std::size_t mask_count_ = 0;
   std::vector<Bridge> touched_;
   std::vector<PointHandle> order_;

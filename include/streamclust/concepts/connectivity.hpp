@@ -26,6 +26,13 @@
 /// | `union_find_rebuild` | edges only: no cluster or bridge bookkeeping        | one union-find pass over the live edges in ring (FIFO) order: O(N + E), independent of what is pending |
 /// | `spanning_forest`    | appends each new edge to a list (no edge ring, no per-point adjacency); eviction drops the point | folds the new edges into a maximum spanning forest (weight = older endpoint) by Kruskal: O(N + F + edges inserted since the last retrieval), F < N |
 ///
+/// A `spanning_forest` policy also has `c.fold_threshold(points)` (std::size_t:
+/// the new-edge count past which the engine folds without a retrieval, for a
+/// window of `points` points) and may have `c.prune_witnesses()`
+/// (std::uint32_t: witnesses per inserted point for dropping redundant new
+/// edges, see SpanningForestConnectivity::Params; 0 when absent,
+/// `connectivity_prune_witnesses(c)`).
+///
 /// Not thread-safe state is kept by the engine; a policy object is immutable.
 
 #include <cstdint>
@@ -56,7 +63,22 @@ template <class C>
 struct is_connectivity_policy<C, std::void_t<typename C::Params, decltype(C{std::declval<const typename C::Params&>()}),
                                              decltype(C::strategy)>>
     : std::is_same<std::remove_cv_t<decltype(C::strategy)>, ConnectivityStrategy> {};
+
+template <class C, class = void>
+struct has_prune_witnesses : std::false_type {};
+template <class C>
+struct has_prune_witnesses<C, std::void_t<decltype(std::declval<const C&>().prune_witnesses())>> : std::true_type {};
 }  // namespace detail
+
+/// `c.prune_witnesses()` when the policy has it, else 0 (keep every edge).
+template <class C>
+std::uint32_t connectivity_prune_witnesses(const C& c) {
+  if constexpr (detail::has_prune_witnesses<C>::value) {
+    return static_cast<std::uint32_t>(c.prune_witnesses());
+  } else {
+    return 0;
+  }
+}
 
 template <class C>
 inline constexpr bool is_connectivity_policy_v = detail::is_connectivity_policy<C>::value;

@@ -6,6 +6,7 @@
 
 #include <streamclust/concepts/linkage.hpp>
 #include <streamclust/detail/hints.hpp>
+#include <streamclust/detail/rounded.hpp>
 #include <streamclust/types.hpp>
 
 #include <Eigen/Core>
@@ -146,67 +147,29 @@ class AngularLinkage {
 
   /// Optional capability (concepts/linkage.hpp): linked[k] = (*this)(a,
   /// ring[slots[k]]) for k < count. With SSE2 (every x86-64) four candidates
-  /// at a time: the same float operations, in the same order, on the same
-  /// canonically ordered operands as `decide` (IEEE single precision, sqrt
-  /// correctly rounded in both), selected lane by lane instead of by a
-  /// pointer table; the last count % 4 candidates, and every candidate
-  /// without SSE2, take the pairwise operator. O(count).
+  /// at a time, the last count % 4 in one more block padded with repeats of
+  /// their first slot: the same float operations, in the same order, on the
+  /// same canonically ordered operands as `decide` (IEEE single precision,
+  /// sqrt correctly rounded in both, no product fused: detail/rounded.hpp),
+  /// selected lane by lane instead of by a pointer table. Without SSE2 the
+  /// pairwise operator. O(count).
   void link_many(const Payload& a, const Payload* ring, const std::uint32_t* slots, std::size_t count,
                  std::uint8_t* linked) const {
-    std::size_t k = 0;
 #if defined(__SSE2__)
-    const __m128 ax = _mm_set1_ps(a.direction[0]);
-    const __m128 ay = _mm_set1_ps(a.direction[1]);
-    const __m128 az = _mm_set1_ps(a.direction[2]);
-    const __m128 ar = _mm_set1_ps(a.range);
-    const __m128 sin_min = _mm_set1_ps(sin_min_);
-    const __m128 cos_min = _mm_set1_ps(cos_min_);
-    const __m128 sin_theta = _mm_set1_ps(sin_theta_);
-    const __m128 cos_theta = _mm_set1_ps(cos_theta_);
-    const __m128 zero = _mm_setzero_ps();
-    const auto select = [](__m128 mask, __m128 yes, __m128 no) {
-      return _mm_or_ps(_mm_and_ps(mask, yes), _mm_andnot_ps(mask, no));
-    };
-    for (; k + 4 <= count; k += 4) {
-      // Four payloads, one per row, transposed to one component per register.
-      __m128 bx = _mm_load_ps(ring[slots[k]].direction);
-      __m128 by = _mm_load_ps(ring[slots[k + 1]].direction);
-      __m128 bz = _mm_load_ps(ring[slots[k + 2]].direction);
-      __m128 br = _mm_load_ps(ring[slots[k + 3]].direction);
-      _MM_TRANSPOSE4_PS(bx, by, bz, br);
-      // precedes(a, b): larger range, then direction (lexicographic, ties true).
-      const __m128 tie_z = _mm_cmpge_ps(az, bz);
-      const __m128 tie_y = _mm_or_ps(_mm_cmpgt_ps(ay, by), _mm_and_ps(_mm_cmpeq_ps(ay, by), tie_z));
-      const __m128 tie_x = _mm_or_ps(_mm_cmpgt_ps(ax, bx), _mm_and_ps(_mm_cmpeq_ps(ax, bx), tie_y));
-      const __m128 a_first = _mm_or_ps(_mm_cmpgt_ps(ar, br), _mm_and_ps(_mm_cmpeq_ps(ar, br), tie_x));
-      const __m128 px = select(a_first, ax, bx);
-      const __m128 py = select(a_first, ay, by);
-      const __m128 pz = select(a_first, az, bz);
-      const __m128 d1 = select(a_first, ar, br);
-      const __m128 qx = select(a_first, bx, ax);
-      const __m128 qy = select(a_first, by, ay);
-      const __m128 qz = select(a_first, bz, az);
-      const __m128 d2 = select(a_first, br, ar);
-      // decide(p, q), operation by operation.
-      __m128 cos_a = _mm_add_ps(_mm_mul_ps(px, qx), _mm_add_ps(_mm_mul_ps(py, qy), _mm_mul_ps(pz, qz)));
-      const __m128 cx = _mm_sub_ps(_mm_mul_ps(py, qz), _mm_mul_ps(pz, qy));
-      const __m128 cy = _mm_sub_ps(_mm_mul_ps(pz, qx), _mm_mul_ps(px, qz));
-      const __m128 cz = _mm_sub_ps(_mm_mul_ps(px, qy), _mm_mul_ps(py, qx));
-      __m128 sin_a =
-          _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(cx, cx), _mm_mul_ps(cy, cy)), _mm_mul_ps(cz, cz)));
-      const __m128 floored = _mm_and_ps(_mm_cmplt_ps(sin_a, sin_min), _mm_cmpgt_ps(cos_a, zero));
-      sin_a = select(floored, sin_min, sin_a);
-      cos_a = select(floored, cos_min, cos_a);
-      const __m128 left = _mm_mul_ps(_mm_mul_ps(d2, sin_a), cos_theta);
-      const __m128 right = _mm_mul_ps(_mm_sub_ps(d1, _mm_mul_ps(d2, cos_a)), sin_theta);
-      const int bits = _mm_movemask_ps(_mm_cmpgt_ps(left, right));
-      linked[k] = static_cast<std::uint8_t>(bits & 1);
-      linked[k + 1] = static_cast<std::uint8_t>((bits >> 1) & 1);
-      linked[k + 2] = static_cast<std::uint8_t>((bits >> 2) & 1);
-      linked[k + 3] = static_cast<std::uint8_t>((bits >> 3) & 1);
+    const Lanes lanes(a, *this);
+    std::size_t k = 0;
+    for (; k + 4 <= count; k += 4) link_four(lanes, ring, slots + k, linked + k);
+    if (k < count) {
+      const std::size_t rest = count - k;  // 1 to 3
+      const std::uint32_t padded[4] = {slots[k], slots[k + (rest > 1 ? 1 : 0)], slots[k + (rest > 2 ? 2 : 0)],
+                                       slots[k]};
+      std::uint8_t decided[4];
+      link_four(lanes, ring, padded, decided);
+      for (std::size_t i = 0; i < rest; ++i) linked[k + i] = decided[i];
     }
+#else
+    for (std::size_t k = 0; k < count; ++k) linked[k] = (*this)(a, ring[slots[k]]) ? 1u : 0u;
 #endif
-    for (; k < count; ++k) linked[k] = (*this)(a, ring[slots[k]]) ? 1u : 0u;
   }
 
   /// Reference beta [deg] of the pure criterion (no floor), computed in
@@ -229,6 +192,72 @@ class AngularLinkage {
   const Params& params() const { return params_; }
 
  private:
+#if defined(__SSE2__)
+  /// link_many's subject and thresholds, one per SSE lane.
+  struct Lanes {
+    __m128 ax, ay, az, ar, sin_min, cos_min, sin_theta, cos_theta;
+    Lanes(const Payload& a, const AngularLinkage& l)
+        : ax(_mm_set1_ps(a.direction[0])),
+          ay(_mm_set1_ps(a.direction[1])),
+          az(_mm_set1_ps(a.direction[2])),
+          ar(_mm_set1_ps(a.range)),
+          sin_min(_mm_set1_ps(l.sin_min_)),
+          cos_min(_mm_set1_ps(l.cos_min_)),
+          sin_theta(_mm_set1_ps(l.sin_theta_)),
+          cos_theta(_mm_set1_ps(l.cos_theta_)) {}
+  };
+
+  /// linked[i] = the decision of the subject in `l` against ring[slots[i]],
+  /// for i < 4: `decide`, lane by lane. O(1).
+  STREAMCLUST_ALWAYS_INLINE static void link_four(const Lanes& l, const Payload* ring, const std::uint32_t* slots,
+                                                  std::uint8_t* linked) {
+    const __m128 ax = l.ax, ay = l.ay, az = l.az, ar = l.ar;
+    const __m128 sin_min = l.sin_min, cos_min = l.cos_min, sin_theta = l.sin_theta, cos_theta = l.cos_theta;
+    const __m128 zero = _mm_setzero_ps();
+    const auto select = [](__m128 mask, __m128 yes, __m128 no) {
+      return _mm_or_ps(_mm_and_ps(mask, yes), _mm_andnot_ps(mask, no));
+    };
+    // Four payloads, one per row, transposed to one component per register.
+    __m128 bx = _mm_load_ps(ring[slots[0]].direction);
+    __m128 by = _mm_load_ps(ring[slots[1]].direction);
+    __m128 bz = _mm_load_ps(ring[slots[2]].direction);
+    __m128 br = _mm_load_ps(ring[slots[3]].direction);
+    _MM_TRANSPOSE4_PS(bx, by, bz, br);
+    // precedes(a, b): larger range, then direction (lexicographic, ties true).
+    const __m128 tie_z = _mm_cmpge_ps(az, bz);
+    const __m128 tie_y = _mm_or_ps(_mm_cmpgt_ps(ay, by), _mm_and_ps(_mm_cmpeq_ps(ay, by), tie_z));
+    const __m128 tie_x = _mm_or_ps(_mm_cmpgt_ps(ax, bx), _mm_and_ps(_mm_cmpeq_ps(ax, bx), tie_y));
+    const __m128 a_first = _mm_or_ps(_mm_cmpgt_ps(ar, br), _mm_and_ps(_mm_cmpeq_ps(ar, br), tie_x));
+    const __m128 px = select(a_first, ax, bx);
+    const __m128 py = select(a_first, ay, by);
+    const __m128 pz = select(a_first, az, bz);
+    const __m128 d1 = select(a_first, ar, br);
+    const __m128 qx = select(a_first, bx, ax);
+    const __m128 qy = select(a_first, by, ay);
+    const __m128 qz = select(a_first, bz, az);
+    const __m128 d2 = select(a_first, br, ar);
+    // decide(p, q), operation by operation.
+    // (_mm_mul_ps is a plain vector product to GCC: without `mul` it could
+    // be fused with the sum that follows, as in the scalar decide.)
+    const auto mul = [](__m128 x, __m128 y) { return detail::rounded(_mm_mul_ps(x, y)); };
+    __m128 cos_a = _mm_add_ps(mul(px, qx), _mm_add_ps(mul(py, qy), mul(pz, qz)));
+    const __m128 cx = _mm_sub_ps(mul(py, qz), mul(pz, qy));
+    const __m128 cy = _mm_sub_ps(mul(pz, qx), mul(px, qz));
+    const __m128 cz = _mm_sub_ps(mul(px, qy), mul(py, qx));
+    __m128 sin_a = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(mul(cx, cx), mul(cy, cy)), mul(cz, cz)));
+    const __m128 floored = _mm_and_ps(_mm_cmplt_ps(sin_a, sin_min), _mm_cmpgt_ps(cos_a, zero));
+    sin_a = select(floored, sin_min, sin_a);
+    cos_a = select(floored, cos_min, cos_a);
+    const __m128 left = _mm_mul_ps(_mm_mul_ps(d2, sin_a), cos_theta);
+    const __m128 right = _mm_mul_ps(_mm_sub_ps(d1, mul(d2, cos_a)), sin_theta);
+    const int bits = _mm_movemask_ps(_mm_cmpgt_ps(left, right));
+    linked[0] = static_cast<std::uint8_t>(bits & 1);
+    linked[1] = static_cast<std::uint8_t>((bits >> 1) & 1);
+    linked[2] = static_cast<std::uint8_t>((bits >> 2) & 1);
+    linked[3] = static_cast<std::uint8_t>((bits >> 3) & 1);
+  }
+#endif
+
   /// Strict canonical order: larger range first, then direction
   /// (lexicographic). Equal keys mean equal payloads, so either order is
   /// fine. The range test is written branch-free (ties are rare and predicted).
@@ -254,16 +283,17 @@ class AngularLinkage {
     const float* const v = q.direction;
     const float d1 = p.range;
     const float d2 = q.range;
-    float cos_a = u[0] * v[0] + (u[1] * v[1] + u[2] * v[2]);  // Eigen's order for a 3-vector dot
-    const float x = u[1] * v[2] - u[2] * v[1];
-    const float y = u[2] * v[0] - u[0] * v[2];
-    const float z = u[0] * v[1] - u[1] * v[0];
-    float sin_a = std::sqrt((x * x + y * y) + z * z);
+    using detail::rounded;  // every product that feeds a sum: never fused (detail/rounded.hpp)
+    float cos_a = rounded(u[0] * v[0]) + (rounded(u[1] * v[1]) + rounded(u[2] * v[2]));  // Eigen's dot order
+    const float x = rounded(u[1] * v[2]) - rounded(u[2] * v[1]);
+    const float y = rounded(u[2] * v[0]) - rounded(u[0] * v[2]);
+    const float z = rounded(u[0] * v[1]) - rounded(u[1] * v[0]);
+    float sin_a = std::sqrt((rounded(x * x) + rounded(y * y)) + rounded(z * z));
     if (sin_a < sin_min_ && cos_a > 0.0f) {
       sin_a = sin_min_;
       cos_a = cos_min_;
     }
-    return d2 * sin_a * cos_theta_ > (d1 - d2 * cos_a) * sin_theta_;
+    return d2 * sin_a * cos_theta_ > (d1 - rounded(d2 * cos_a)) * sin_theta_;
   }
 
   static std::invalid_argument error(const char* name, float value, const char* allowed) {
