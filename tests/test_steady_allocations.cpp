@@ -143,6 +143,68 @@ void check_no_steady_allocations() {
   CHECK(engine.last_result().components.size() == kWindow);  // still singletons: nothing else grew
 }
 
+/// The same grid with the presets' time window: the window's size follows
+/// the point rate.
+template <class Connectivity>
+struct CappedTimeConfig : sc::CArcFixedConfig {
+  using spatial_index = sc::CappedGrid;
+  using linkage = sc::EuclideanLinkage;
+  using connectivity = Connectivity;
+};
+
+/// Point i of the blocks pattern: a 5 x 5 block of cells, all at 5 m, so
+/// the points of a cell link (distance 0) and those of neighbouring cells
+/// do not (0.12 m apart): 25 components whatever the rate.
+sc::Point block_point(std::size_t i, double t) {
+  const std::size_t cell = i % 25;
+  return sc::test::point_at(azimuth_of(static_cast<std::uint32_t>(100 + cell % 5)),
+                            elevation_of(static_cast<std::uint32_t>(14 + cell / 5)), 5.0f, t);
+}
+
+/// Inserts block points for `seconds` [s] at `rate` [points/s], retrieving
+/// every 20 ms when `retrieve` is set.
+template <class Engine>
+void run_blocks(Engine& engine, double rate, double seconds, bool retrieve, std::size_t& i, double& t) {
+  const double end = t + seconds;
+  double next_retrieval = t + 0.02;
+  while (t < end) {
+    t += 1.0 / rate;
+    engine.insert(block_point(i++, t));
+    if (retrieve && t >= next_retrieval) {
+      engine.retrieve();
+      next_retrieval += 0.02;
+    }
+  }
+}
+
+/// A window that grows back to a size its point rings have held already
+/// (a sensor whose rate dips and recovers) allocates nothing: the per-point
+/// vectors of the retrieval (labels, union-find) follow the rings'
+/// capacity, not the largest window retrieved so far.
+template <class Config>
+void check_window_regrowth() {
+  sc::ClustererParams<Config> p;
+  p.resolution = {kRows, kCols};
+  p.window.duration = 0.1;  // [s]
+  p.spatial_index.capacity = 4;
+  p.linkage.max_distance = 0.05f;  // [m]
+  p.mask_size = 5;
+  sc::StreamClusterer<Config> engine(p);
+  std::size_t i = 0;
+  double t = 0.0;
+  run_blocks(engine, 3000.0, 0.3, false, i, t);  // the rings grow to about 300 points
+  run_blocks(engine, 2000.0, 0.3, true, i, t);   // the first retrievals see about 200
+  REQUIRE(engine.size() < 220);
+  REQUIRE(engine.last_result().components.size() == 25);
+
+  CountingScope scope;
+  run_blocks(engine, 3000.0, 0.3, true, i, t);  // back to about 300
+  CHECK(engine.size() > 280);
+  CHECK(engine.last_result().points.size() == engine.size());
+  CHECK(engine.last_result().components.size() == 25);
+  CHECK(scope.allocations() == 0);
+}
+
 }  // namespace
 
 TEST_CASE("the counting allocator counts") {
@@ -162,4 +224,9 @@ TEST_CASE("capped-grid presets allocate nothing in steady state, even when the m
   SUBCASE("union-find rebuild (CArcCappedRebuildConfig's connectivity)") {
     check_no_steady_allocations<CappedCountConfig<sc::UnionFindRebuildConnectivity>>();
   }
+}
+
+TEST_CASE("a window growing back within its rings allocates nothing") {
+  SUBCASE("spanning forest") { check_window_regrowth<CappedTimeConfig<sc::SpanningForestConnectivity>>(); }
+  SUBCASE("union-find rebuild") { check_window_regrowth<CappedTimeConfig<sc::UnionFindRebuildConnectivity>>(); }
 }
