@@ -1399,6 +1399,11 @@ class StreamClusterer {
   };
   /// No place in the last result / no vote.
   static constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
+  /// claim_head_ of an old cluster with one point left, before it voted.
+  static constexpr std::uint32_t kSoleMark = kNoSlot - 1;
+  /// claim_head_ = kSoleVote + k: that one point voted for component k
+  /// (components and votes stay below 2^31: fewer than 2^31 window points).
+  static constexpr std::uint32_t kSoleVote = std::uint32_t{1} << 31;
 
   /// lazy_bfs: the old ids claimed by the clusters, weighted by their
   /// current size, resolved by `resolve_claims`; fills `component_ids_`
@@ -1636,15 +1641,31 @@ class StreamClusterer {
     // The old clusters are the previous retrieval's components, at places
     // slot_of_[c] in the previous result, which holds their ids.
     const auto old_clusters = static_cast<std::uint32_t>(cluster_size_.size());
+    // claim_head_[c]: kNoSlot while no point of old cluster c voted (none
+    // is left: evicted entirely), else the head of c's list of votes. An old
+    // cluster with one point left (most of them in a fragmented window: the
+    // Avia office's single points) keeps no list: kSoleMark, then
+    // kSoleVote + k once its point voted for component k, the whole claim.
+    // (cluster_size_ counts the points still in the window: evict_oldest
+    // decrements it.)
     reserve_geometric(claim_head_, old_clusters);
-    claim_head_.assign(old_clusters, kNoSlot);
+    claim_head_.resize(old_clusters);
+    std::size_t listed = 0;       // old clusters of two or more points left
+    std::size_t listed_points = 0;  // and their points
+    for (ClusterId c = 0; c < old_clusters; ++c) {
+      const std::uint32_t left = cluster_size_[c];
+      claim_head_[c] = left == 1 ? kSoleMark : kNoSlot;
+      listed += left > 1 ? 1u : 0u;
+      listed_points += left > 1 ? left : 0u;
+    }
     votes_.clear();
-    // One vote per (old cluster, component) pair met: about one per old
-    // cluster (up to 1.16 of them on the simulated Livox streams), never
-    // more than the points. Reserved here, not grown by push_back, so that
-    // a new maximum within this margin allocates nothing (one allocation in
-    // 300 cycles on the Avia office at T_B = 0.5 s before).
-    reserve_geometric(votes_, std::min<std::size_t>(n, std::size_t{old_clusters} + old_clusters / 2));
+    // One vote per (listed old cluster, component) pair met: 1.05-1.75 per
+    // such cluster on the simulated Livox streams (the most where they are
+    // few: the Mid-360 office's 19 at T_B = 0.1 s), never more than their
+    // points. Reserved here, not grown by push_back, so that a new maximum
+    // within this margin allocates nothing (the Avia office at T_B = 0.5 s
+    // allocated once in 300 cycles when votes_ grew by push_back).
+    reserve_geometric(votes_, std::min(listed_points, 2 * listed + 64));
     reserve_geometric(cluster_size_, components);
     cluster_size_.assign(components, 0);
     // Prefetch only when the per-cluster records outgrow the L1/L2 caches
@@ -1660,7 +1681,14 @@ class StreamClusterer {
       const std::uint32_t k = parent_[i];
       r.cluster = k;
       ++cluster_size_[k];
-      if (old < old_clusters) vote(old, k);  // else inserted since the last retrieval
+      if (old < old_clusters) {  // else inserted since the last retrieval
+        std::uint32_t& head = claim_head_[old];
+        if (head == kSoleMark) {
+          head = kSoleVote + k;
+        } else {
+          vote(old, k);
+        }
+      }
     }
     // Stable ids: resolve_claims' rule in linear time. Each (component, old
     // cluster) pair is one vote and the old clusters carry distinct ids, so:
@@ -1674,16 +1702,22 @@ class StreamClusterer {
     won_slot_.assign(components, kNoSlot);
     for (ClusterId c = 0; c < old_clusters; ++c) {
       std::uint32_t best = claim_head_[c];
-      if (best == kNoSlot) continue;  // evicted entirely
-      for (std::uint32_t v = votes_[best].next; v != kNoSlot; v = votes_[v].next) {
-        if (votes_[v].weight > votes_[best].weight ||
-            (votes_[v].weight == votes_[best].weight && votes_[v].component < votes_[best].component)) {
-          best = v;
+      if (best >= kSoleMark) continue;  // evicted entirely (kSoleMark cannot remain: its point voted)
+      std::uint32_t k = 0;
+      std::uint32_t w = 1;
+      if (best >= kSoleVote) {
+        k = best - kSoleVote;
+      } else {
+        for (std::uint32_t v = votes_[best].next; v != kNoSlot; v = votes_[v].next) {
+          if (votes_[v].weight > votes_[best].weight ||
+              (votes_[v].weight == votes_[best].weight && votes_[v].component < votes_[best].component)) {
+            best = v;
+          }
         }
+        k = votes_[best].component;
+        w = votes_[best].weight;
       }
       const std::uint32_t slot = slot_of_[c];
-      const std::uint32_t k = votes_[best].component;
-      const std::uint32_t w = votes_[best].weight;
       if (won_slot_[k] == kNoSlot || w > won_weight_[k] || (w == won_weight_[k] && slot < won_slot_[k])) {
         won_weight_[k] = w;
         won_slot_[k] = slot;
