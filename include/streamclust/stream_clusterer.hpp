@@ -766,9 +766,10 @@ class StreamClusterer {
     }
     CellIndex* const out = mask_cells_.data();
     MaskCellAt* const at = mask_at_.data();
+    const bool with_at = keeps_forest && connectivity_prune_witnesses(connectivity_) != 0;  // only the filter reads them
     std::size_t n = 0;
     detail::for_each_mask_cell_at(grid_, cell, half_, [&](CellIndex c, std::int64_t row, std::int64_t col) {
-      if constexpr (keeps_forest) at[n] = MaskCellAt{static_cast<std::int32_t>(row), static_cast<std::int32_t>(col)};
+      if (with_at) at[n] = MaskCellAt{static_cast<std::int32_t>(row), static_cast<std::int32_t>(col)};
       out[n++] = c;
       if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
     });
@@ -1650,23 +1651,9 @@ class StreamClusterer {
     // decrements it.)
     reserve_geometric(claim_head_, old_clusters);
     claim_head_.resize(old_clusters);
-    std::size_t listed = 0;       // old clusters of two or more points left
-    std::size_t listed_points = 0;  // and their points
-    for (ClusterId c = 0; c < old_clusters; ++c) {
-      const std::uint32_t left = cluster_size_[c];
-      claim_head_[c] = left == 1 ? kSoleMark : kNoSlot;
-      listed += left > 1 ? 1u : 0u;
-      listed_points += left > 1 ? left : 0u;
-    }
+    for (ClusterId c = 0; c < old_clusters; ++c) claim_head_[c] = cluster_size_[c] == 1 ? kSoleMark : kNoSlot;
     votes_.clear();
-    // One vote per (listed old cluster, component) pair met: 1.05-1.75 per
-    // such cluster on the simulated Livox streams (the most where they are
-    // few: the Mid-360 office's 19 at T_B = 0.1 s), never more than their
-    // points. Room for two each at the first retrieval; afterwards the
-    // votes grow only when they outgrow it (a reservation that followed the
-    // listed clusters grew with them: on the Avia office, 6,000 to 9,300
-    // over 1,000 cycles while the votes stayed below 9,900).
-    if (votes_.capacity() == 0) votes_.reserve(std::min(listed_points, 2 * listed + 64));
+    if (votes_.capacity() == 0) reserve_first_votes(old_clusters);
     reserve_geometric(cluster_size_, components);
     cluster_size_.assign(components, 0);
     // Prefetch only when the per-cluster records outgrow the L1/L2 caches
@@ -1794,6 +1781,26 @@ class StreamClusterer {
       sm.centroid = (sums_[won_weight_[k]] / static_cast<double>(sm.size)).template cast<float>();
     }
     add_elapsed(stats_.phase_us.labelling, t1);
+  }
+
+  /// The first room for votes (adopt_components): one vote per (listed old
+  /// cluster, component) pair met, a listed cluster being one of two or
+  /// more points left; 1.05-1.75 per such cluster on the simulated Livox
+  /// streams (the most where they are few: the Mid-360 office's 19 at T_B =
+  /// 0.1 s), never more than their points. Room for two each, once;
+  /// afterwards the votes grow only when they outgrow it (a reservation
+  /// that followed the listed clusters grew with them: on the Avia office,
+  /// 6,000 to 9,300 over 1,000 cycles while the votes stayed below 9,900).
+  /// O(old clusters).
+  void reserve_first_votes(std::uint32_t old_clusters) {
+    std::size_t listed = 0;
+    std::size_t listed_points = 0;
+    for (ClusterId c = 0; c < old_clusters; ++c) {
+      const std::uint32_t left = cluster_size_[c];
+      listed += left > 1 ? 1u : 0u;
+      listed_points += left > 1 ? left : 0u;
+    }
+    votes_.reserve(std::min(listed_points, 2 * listed + 64));
   }
 
   /// The rebuilding strategies' `order_components` on the ids alone: the
