@@ -6,8 +6,11 @@
 
 #include <streamclust/clustering.hpp>
 #include <streamclust/config.hpp>
+#include <streamclust/detail/age_bands.hpp>
+#include <streamclust/detail/forest_merge.hpp>
 #include <streamclust/detail/hints.hpp>
 #include <streamclust/detail/mask.hpp>
+#include <streamclust/detail/ring_queue.hpp>
 #include <streamclust/memory_usage.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
@@ -56,6 +59,7 @@ struct RetrievalStats {
   std::uint64_t forest_folds = 0;       ///< spanning_forest: folds without labelling (new edges past the threshold)
   std::uint64_t edges_found = 0;        ///< spanning_forest: edges of the inserted points to older neighbours
   std::uint64_t edges_pruned = 0;       ///< spanning_forest: of those, dropped as redundant (prune_witnesses)
+  std::uint64_t forest_displaced = 0;   ///< spanning_forest: kept forest edges a fold moved aside (detail::merge_forest)
   PhaseTimes phase_us{};                ///< timed configs only
 };
 
@@ -114,9 +118,9 @@ struct RetrievalStats {
 /// an edge ring of 12 bytes per edge, which holds an edge until its NEWER
 /// endpoint leaves (about 14 live edges per point on a simulated Mid-360 at
 /// w = 5, T_M = 2, and as many dead ones); the spanning forest keeps 8 bytes
-/// per forest edge (< 1 per point) and, twice, per edge inserted since the
-/// last fold (the new edges, and room in the forest's buffer, which the
-/// fold uses as radix buffer and writes the new forest into in place).
+/// per forest edge (< 1 per point) and per edge inserted since the last
+/// fold (binned by the age of their older endpoint, so the fold needs no
+/// sort buffer; see detail::AgeBands).
 /// `memory_usage()` reports the parts. The point rings grow to the needed
 /// size + 1/8, the edge ring by doubling, the scratch and result vectors
 /// geometrically; none shrinks. Steady-state heap allocations: none with the capped grid
@@ -303,7 +307,7 @@ class StreamClusterer {
     MemoryUsage m;
     m.point_ring = capacity_bytes(samples_) + capacity_bytes(points_) + capacity_bytes(payloads_);
     m.edge_storage = capacity_bytes(edges_) + capacity_bytes(edge_older_) + capacity_bytes(forest_) +
-                     capacity_bytes(fresh_);
+                     fresh_.heap_bytes() + displaced_.heap_bytes();
     if constexpr (is_spatial_index_heap_reporting_v<spatial_index_type>) {
       m.spatial_index = static_cast<std::size_t>(index_.heap_bytes());
     } else {
@@ -320,8 +324,7 @@ class StreamClusterer {
                 capacity_bytes(queue_) + capacity_bytes(component_ids_) + capacity_bytes(claims_) +
                 capacity_bytes(parent_) + capacity_bytes(claim_head_) + capacity_bytes(votes_) +
                 capacity_bytes(sums_) + capacity_bytes(won_weight_) + capacity_bytes(won_slot_) +
-                capacity_bytes(by_slot_) + capacity_bytes(slot_of_) +
-                capacity_bytes(radix_counts_);
+                capacity_bytes(by_slot_) + capacity_bytes(slot_of_);
     m.result = capacity_bytes(result_.points) + capacity_bytes(result_.components);
     return m;
   }
@@ -590,12 +593,8 @@ class StreamClusterer {
   static constexpr ClusterId kUnlabelled = kNoCluster - 1;
 
   /// An edge of the spanning forest or of the list of new edges (spanning_forest).
-  struct ForestEdge {
-    PointHandle older;  ///< the expiry: the edge dies when this point leaves
-    PointHandle newer;
-    ForestEdge() noexcept {}  // NOLINT: uninitialised on purpose (radix scratch resized without a fill)
-    ForestEdge(PointHandle o, PointHandle n) noexcept : older(o), newer(n) {}
-  };
+  /// spanning_forest: an edge (older, newer); the older endpoint is its expiry.
+  using ForestEdge = detail::HandleEdge;
   /// Points ahead whose per-component records the retrieval's passes
   /// prefetch (rebuilding strategies) [points].
   static constexpr std::uint32_t kResultPrefetchDistance = 16;
@@ -603,8 +602,6 @@ class StreamClusterer {
   static constexpr std::uint32_t kResultPrefetchMinComponents = 4096;
   /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
   static constexpr PointHandle kEvictPrefetchDistance = 8;
-  /// Digit width of the radix sort of new edges [bits]: 2^11 counters (8 KB, in L1).
-  static constexpr unsigned kRadixBits = 11;
   /// Smallest point ring [slots].
   static constexpr std::size_t kMinRingCapacity = 1024;
   /// Points inserted between two folds at most, so that edge ages (newest
@@ -740,6 +737,7 @@ class StreamClusterer {
     set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
     std::size_t i = 0;
     replaying_ = true;
+    if constexpr (keeps_forest) fresh_.reset(oldest_);  // no edge yet: the bands count from the window's start
     for (PointHandle h = oldest_; h != next_; ++h, ++i) {
       point(h).cell = grid_.cell_of(coords[i].u, coords[i].v);
       list_mask_cells(point(h).cell);
@@ -873,9 +871,8 @@ class StreamClusterer {
       }
     }
     if constexpr (keeps_forest) {
-      // Edges go to the list of new edges, folded at the next retrieval.
-      reserve_geometric(fresh_, fresh_.size() + neighbours_.size());
-      for (const PointHandle n : neighbours_) fresh_.push_back(ForestEdge{n, h});
+      // Edges go to the bands of new edges, folded at the next retrieval.
+      fresh_.append(neighbours_.data(), neighbours_.size(), h);
       PointRecord& r = point(h);
       r.cluster = kUnlabelled;  // labelled by the next retrieval
       index_.insert(r.cell, h);
@@ -1861,8 +1858,9 @@ class StreamClusterer {
   /// (`fresh_`) into the forest (`forest_`) and leaves in `parent_` a
   /// ranked union-find over the window positions whose sets are the
   /// window's connected components (`number_ranked_components` numbers them).
-  /// O(N + forest + new edges): a radix sort of the new edges, one merge,
-  /// Kruskal with union by rank and path halving. (Hanging the younger root
+  /// O(N + forest + new edges): the new edges sorted band by band (their
+  /// age bands, detail::AgeBands), one merge, Kruskal with union by rank and
+  /// path halving. (Hanging the younger root
   /// under the older, as the rebuild does, built long chains here: Kruskal
   /// takes the newest edges first, and the finds were 40 % of the fold.)
   ///
@@ -1895,17 +1893,11 @@ class StreamClusterer {
   /// order (non-increasing weight = increasing age): its expired edges are
   /// a suffix and the new edges are merged into it, not re-sorted with it.
   ///
-  /// Memory: no second forest. The expired suffix is cut off first; the new
-  /// edges are radix-sorted with the spare tail of `forest_` as the buffer
-  /// (sort_fresh_by_age); the kept forest then moves back by the number of
-  /// added edges a, and Kruskal writes the edges it accepts over the front
-  /// of `forest_`. The writes never overtake the reads: when an edge is
-  /// accepted, i kept and j added edges have been read (it included), the w
-  /// accepted before it are fewer than the i + j read, so it goes to
-  /// w <= i + j - 1 <= a + i - 1, below a + i, where the next kept edge to
-  /// read lies (the added edges are in `fresh_`, apart); it was copied out
-  /// before the write. So `forest_` holds live forest + new edges at the
-  /// fold's peak and `fresh_` the new edges.
+  /// Memory: no second forest and no sort buffer. The new edges wait in
+  /// their age bands (detail::AgeBands), which hand them back sorted one
+  /// band at a time; the expired suffix of the forest is cut off, and
+  /// detail::merge_forest runs Kruskal in place in `forest_`, whose capacity
+  /// (at least the window) exceeds any forest of the window.
   void fold_forest() {
     const auto n = static_cast<std::uint32_t>(size());
     const PointHandle newest = next_ - 1;
@@ -1914,92 +1906,13 @@ class StreamClusterer {
     // The expired edges are a suffix (increasing age; ages do not wrap, see kMaxFoldSpan).
     forest_.erase(std::partition_point(forest_.begin(), forest_.end(), [&](const ForestEdge& e) { return age(e) < n; }),
                   forest_.end());
-    const std::size_t kept_count = forest_.size();
-    const std::size_t added_count = sort_fresh_by_age(n);  // now in fresh_; forest_ grew by added_count
-    ForestEdge* const out = forest_.data();
-    std::copy_backward(out, out + kept_count, out + kept_count + added_count);
-    const ForestEdge* const kept = out + added_count;
-    const ForestEdge* const added = fresh_.data();
-    std::size_t i = 0;
-    std::size_t j = 0;
-    std::size_t written = 0;
-    for (;;) {
-      // Age n: a list is exhausted (every remaining edge is live).
-      const std::uint32_t kept_age = i < kept_count ? age(kept[i]) : n;
-      const std::uint32_t added_age = j < added_count ? age(added[j]) : n;
-      ForestEdge e;
-      if (kept_age <= added_age) {
-        if (kept_age >= n) break;
-        e = kept[i++];
-      } else {
-        e = added[j++];
-      }
-      if (unite_ranked(static_cast<std::uint32_t>(e.older - oldest_), static_cast<std::uint32_t>(e.newer - oldest_))) {
-        out[written++] = e;
-      }
-    }
-    forest_.resize(written);
-    fresh_.clear();
+    reserve_window(forest_, n);  // room for any forest of the window: merge_forest's gap
+    const PointHandle base = oldest_;
+    stats_.forest_displaced += detail::merge_forest(forest_, fresh_, displaced_, oldest_, n, age, [&](const ForestEdge& e) {
+      return unite_ranked(static_cast<std::uint32_t>(e.older - base), static_cast<std::uint32_t>(e.newer - base));
+    });
+    fresh_.reset(oldest_);
     fold_mark_ = next_;
-  }
-
-  /// Drops the expired edges from `fresh_` and sorts the others by age
-  /// (newest - older endpoint, increasing: Kruskal's order) with an LSD radix
-  /// sort of an even number of passes (2 for windows up to 2^22 points, 4
-  /// beyond) over the bits of the largest age, so that the sorted edges end
-  /// in `fresh_`. The other buffer of the ping-pong is the tail of `forest_`,
-  /// which grows by the live new edges (fold_forest writes there next).
-  /// Returns the live new edges (`fresh_.size()`).
-  /// O(passes x (new edges + 2^digit)).
-  std::size_t sort_fresh_by_age(std::uint32_t n) {
-    const PointHandle newest = next_ - 1;
-    std::size_t live = 0;
-    for (std::size_t k = 0; k < fresh_.size(); ++k) {
-      if (static_cast<PointHandle>(fresh_[k].older - oldest_) < n) fresh_[live++] = fresh_[k];
-    }
-    fresh_.resize(live);
-    const std::size_t kept = forest_.size();
-    if (kept + live > forest_.capacity()) {
-      // Room for any forest of the window (fewer than n edges) plus these
-      // new edges, + 1/8: growth then follows the peaks of the window and of
-      // the new edges per fold, not of their sum, and the jitter of the new
-      // edges from cycle to cycle does not reallocate in a steady stream.
-      const std::size_t room = std::size_t{n} + live;
-      forest_.reserve(room + room / 8);
-    }
-    forest_.resize(kept + live);  // ForestEdge's constructor leaves the tail uninitialised: no fill
-    if (live < 2 || n < 2) return live;
-    unsigned bits = 0;  // ages are in [0, n)
-    while (bits < 32 && ((n - 1) >> bits) != 0) ++bits;
-    unsigned passes = (bits + kRadixBits - 1) / kRadixBits;
-    passes += passes % 2;  // even: the result lands back in fresh_
-    const unsigned digit = (bits + passes - 1) / passes;
-    const std::uint32_t mask = (std::uint32_t{1} << digit) - 1;
-    const std::size_t buckets = std::size_t{1} << digit;
-    radix_counts_.reserve(std::size_t{2} << kRadixBits);  // once: 2 passes of kRadixBits or 4 of 8 bits
-    radix_counts_.assign(passes * buckets, 0);
-    for (const ForestEdge& e : fresh_) {
-      const std::uint32_t a = newest - e.older;
-      for (unsigned p = 0; p < passes; ++p) ++radix_counts_[p * buckets + ((a >> (p * digit)) & mask)];
-    }
-    ForestEdge* from = fresh_.data();
-    ForestEdge* to = forest_.data() + kept;
-    for (unsigned p = 0; p < passes; ++p) {
-      std::uint32_t* start = &radix_counts_[p * buckets];
-      std::uint32_t sum = 0;
-      for (std::size_t b = 0; b < buckets; ++b) {
-        const std::uint32_t c = start[b];
-        start[b] = sum;
-        sum += c;
-      }
-      const unsigned shift = p * digit;
-      for (std::size_t k = 0; k < live; ++k) {
-        const ForestEdge e = from[k];
-        to[start[((newest - e.older) >> shift) & mask]++] = e;
-      }
-      std::swap(from, to);
-    }
-    return live;
   }
 
   /// Grows the point rings so they can hold `needed` points: to needed +
@@ -2123,11 +2036,11 @@ class StreamClusterer {
   std::vector<Eigen::Vector3d> sums_;       // per component (rebuilding: per component of 2+ points): sum of the positions, for the centroid
   // spanning_forest: the maximum spanning forest of the window in Kruskal's
   // order (non-increasing older endpoint; expired edges form a suffix; during
-  // a fold also the radix buffer and the new forest, see fold_forest), the
-  // edges inserted since the last fold, and the radix counters.
+  // a fold also the new forest, see fold_forest), the edges inserted since
+  // the last fold by age band, and the fold's queue of displaced kept edges.
   std::vector<ForestEdge> forest_;
-  std::vector<ForestEdge> fresh_;
-  std::vector<std::uint32_t> radix_counts_;
+  detail::AgeBands fresh_;
+  detail::RingQueue<ForestEdge> displaced_;
   PointHandle fold_mark_ = 0;  // next_ at the last fold
   Clustering result_;
 };

@@ -2,8 +2,8 @@
 #pragma once
 
 /// \file
-/// Compiler and CPU hints for the hot paths: a portable software prefetch and
-/// a forced-inline marker. Neither changes any result.
+/// Compiler and CPU hints for the hot paths: portable software prefetches and
+/// inlining markers. None changes any result.
 
 /// Forces inlining of a small hot function into its callers (GCC, clang);
 /// plain `inline` elsewhere.
@@ -13,6 +13,13 @@
 #define STREAMCLUST_ALWAYS_INLINE inline
 #endif
 
+/// Keeps a rarely taken slow path (a growth) out of its hot caller.
+#if defined(__GNUC__) || defined(__clang__)
+#define STREAMCLUST_NOINLINE __attribute__((noinline))
+#else
+#define STREAMCLUST_NOINLINE
+#endif
+
 namespace streamclust::detail {
 
 /// Hint that the cache line holding `p` will be read soon (no effect on
@@ -20,6 +27,16 @@ namespace streamclust::detail {
 inline void prefetch(const void* p) {
 #if defined(__GNUC__) || defined(__clang__)
   __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
+/// Hint that the cache line holding `p` will be written soon (no effect on
+/// correctness). O(1), thread-safe.
+inline void prefetch_for_write(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p, 1);
 #else
   (void)p;
 #endif

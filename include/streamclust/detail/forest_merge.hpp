@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// merge_forest: one Kruskal pass over a maximum spanning forest and the new
+/// edges of its age bands, written in place.
+
+#include <streamclust/detail/age_bands.hpp>
+#include <streamclust/detail/ring_queue.hpp>
+#include <streamclust/types.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace streamclust::detail {
+
+/// Kruskal over `forest` (the kept edges, live and in increasing age) and
+/// the live new edges of `bands` (older endpoint in [oldest, oldest +
+/// window)), taking the edges by increasing age, a kept edge before a new
+/// one of the same age: every edge that `unite(e)` accepts (true: it joined
+/// two sets) is kept, in that order, and `forest` ends up holding exactly
+/// those. `age(e)` must be below `window` for a live edge.
+///
+/// In place: the kept edges first move to the end of `forest`'s capacity,
+/// which must exceed any forest the pass can write (the caller reserves at
+/// least `window` edges); the accepted edges are written from the front.
+/// When a write would land on a kept edge not read yet (the accepted new
+/// edges outnumbered the rejected kept ones by the whole gap), that edge
+/// moves to `displaced` first, and kept edges are read from the queue before
+/// the array. Returns the number of kept edges that went through the queue.
+/// O(kept + new edges + bands x 2^AgeBands::kBandBits) plus the unions;
+/// allocates only when `displaced` or a sorted band outgrows its capacity.
+template <class Age, class Unite>
+std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQueue<HandleEdge>& displaced,
+                         PointHandle oldest, std::uint32_t window, const Age& age, Unite&& unite) {
+  const std::size_t kept_count = forest.size();
+  const std::size_t total = std::max(forest.capacity(), kept_count);
+  forest.resize(total);  // HandleEdge leaves the tail uninitialised: no fill
+  HandleEdge* const f = forest.data();
+  std::copy_backward(f, f + kept_count, f + total);
+  displaced.clear();
+  bands.rewind();
+  std::size_t read = total - kept_count;  // the next kept edge in f, neither read nor displaced
+  std::size_t written = 0;                // accepted edges, at the front of f
+  std::size_t moved = 0;
+  const HandleEdge* added = nullptr;
+  std::size_t added_count = 0;
+  std::size_t j = 0;
+  bool bands_left = true;
+  for (;;) {
+    if (j == added_count && bands_left) {
+      bands_left = bands.next_band(oldest, window);
+      added = bands_left ? bands.band().data() : nullptr;
+      added_count = bands_left ? bands.band().size() : 0;
+      j = 0;
+    }
+    // Age `window`: that list is exhausted.
+    const bool from_queue = !displaced.empty();
+    const std::uint32_t kept_age = from_queue ? age(displaced.front()) : read < total ? age(f[read]) : window;
+    const std::uint32_t added_age = j < added_count ? age(added[j]) : window;
+    HandleEdge e;
+    if (kept_age <= added_age) {
+      if (kept_age >= window) break;
+      if (from_queue) {
+        e = displaced.front();
+        displaced.pop();
+      } else {
+        e = f[read++];
+      }
+    } else {
+      e = added[j++];
+    }
+    if (unite(e)) {
+      if (written == read && read < total) {
+        displaced.push(f[read++]);
+        ++moved;
+      }
+      f[written++] = e;
+    }
+  }
+  forest.resize(written);
+  return moved;
+}
+
+}  // namespace streamclust::detail
