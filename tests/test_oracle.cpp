@@ -8,6 +8,7 @@
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/detail/age_bands.hpp>
 #include <streamclust/connectivity/spanning_forest.hpp>
 #include <streamclust/connectivity/union_find_rebuild.hpp>
 #include <streamclust/index/bucket_grid.hpp>
@@ -19,6 +20,7 @@
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/fixed.hpp>
+#include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
@@ -287,5 +289,39 @@ TEST_CASE_TEMPLATE("the C-ARC presets with adaptive resolution agree with the ba
     CHECK(compared >= 4);
     CHECK(engine.grid().rows >= 1);
     CHECK(engine.grid().cols >= 1);
+  }
+}
+
+TEST_CASE_TEMPLATE("spanning forest: windows of many age bands agree with the batch clusterer", Preset,
+                   sc::CArcFastConfig, sc::CArcCappedFastConfig) {
+  // The windows above fit in one or two age bands of the new edges (512
+  // points each, detail::AgeBands); here 10,000 points span about 20, with
+  // folds at retrievals and, with a low threshold, between them.
+  for (const std::uint32_t min_fold_edges : {65536u, 3000u}) {
+    auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
+    params.window.duration = 0.05;  // [s] 10,000 points at 200 kHz
+    params.connectivity.min_fold_edges = min_fold_edges;
+    params.connectivity.fold_edges_per_point = 1;
+    sc::StreamClusterer<Preset> engine(params);
+    sc::BatchClusterer<Preset> batch(params);
+    sc::SyntheticStream stream;
+    double next_retrieval = 0.06;
+    std::size_t compared = 0;
+    std::uint64_t folds = 0;
+    while (stream.time() < 0.2) {
+      const sc::SyntheticPoint p = stream.next();
+      engine.insert(sc::Point{p.x, p.y, p.z, p.intensity, p.t});
+      if (p.t >= next_retrieval) {
+        engine.retrieve();
+        folds += engine.last_stats().forest_folds;
+        INFO("threshold " << min_fold_edges << ", t = " << p.t << ", window " << engine.size());
+        REQUIRE(st::compare_with_batch(engine, batch) == "");
+        ++compared;
+        next_retrieval += 0.0137;  // not a multiple of the window: the expiry cuts bands anywhere
+      }
+    }
+    CHECK(compared >= 8);
+    CHECK(engine.size() > 8 * sc::detail::AgeBands::kBandPoints);
+    if (min_fold_edges == 3000u) CHECK(folds > 0);
   }
 }

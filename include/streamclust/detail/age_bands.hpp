@@ -46,6 +46,8 @@ class AgeBands {
  public:
   /// Older endpoints per band: 2^9 = 512 handles [points].
   static constexpr unsigned kBandBits = 9;
+  /// Older endpoints per band [points].
+  static constexpr std::uint32_t kBandPoints = std::uint32_t{1} << kBandBits;
   /// Edges per chunk of a band's list (512 bytes).
   static constexpr std::uint32_t kChunkEdges = 64;
 

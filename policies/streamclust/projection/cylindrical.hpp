@@ -5,6 +5,7 @@
 /// CylindricalProjection: azimuth / height projection.
 
 #include <streamclust/concepts/projection.hpp>
+#include <streamclust/detail/fast_atan2.hpp>
 #include <streamclust/projection/azimuth_axis.hpp>
 #include <streamclust/types.hpp>
 
@@ -88,7 +89,7 @@ class CylindricalProjection {
       out.reason = RejectReason::too_close;
       return out;
     }
-    const float u = azimuth_.to_u(std::atan2(y, x));
+    const float u = azimuth_.to_u(detail::fast_atan2(y, x));
     const float dz = z - params_.z_min;
     if (u < 0.0f || dz < -z_tolerance_ || dz > height_ + z_tolerance_) {
       out.reason = RejectReason::outside_fov;

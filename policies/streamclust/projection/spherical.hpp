@@ -5,6 +5,7 @@
 /// SphericalProjection: azimuth / elevation range-image projection.
 
 #include <streamclust/concepts/projection.hpp>
+#include <streamclust/detail/fast_atan2.hpp>
 #include <streamclust/projection/azimuth_axis.hpp>
 #include <streamclust/types.hpp>
 
@@ -32,7 +33,7 @@ namespace streamclust {
 ///    point is always rejected, even with min_range = 0: it has no direction)
 /// 3. azimuth or elevation outside the FOV -> `RejectReason::outside_fov`
 ///
-/// Complexity: O(1) per point (two sqrt, two atan2). No allocation.
+/// Complexity: O(1) per point (two sqrt, two polynomial atan2, detail::fast_atan2). No allocation.
 /// Thread safety: immutable after construction; `project` is const and may be
 /// called concurrently.
 ///
@@ -104,8 +105,8 @@ class SphericalProjection {
       out.reason = RejectReason::too_close;
       return out;
     }
-    const float u = azimuth_.to_u(std::atan2(y, x));
-    const float v = elevation_to_v(std::atan2(z, horizontal));
+    const float u = azimuth_.to_u(detail::fast_atan2(y, x));
+    const float v = elevation_to_v(detail::fast_atan2(z, horizontal));
     if (u < 0.0f || v < 0.0f) {
       out.reason = RejectReason::outside_fov;
       return out;
