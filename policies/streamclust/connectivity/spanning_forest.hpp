@@ -69,9 +69,9 @@ struct SpanningForestConnectivity {
     /// edges to store, sort and merge; each witness costs one linkage test
     /// per neighbour (vectorised with `link_many`). Off by default: on the
     /// Mid-360 office stream (T_B 0.5 s) one witness keeps 50 % of the new
-    /// edges and cuts memory from 139 to 124 bytes per window point, but adds
-    /// about 0.4 ms to a 8.2 ms cycle (the tests cost more than the shorter
-    /// fold saves; optimization log, section 17). Allowed: [0, 8].
+    /// edges and cuts memory from 122.8 to 117.3 bytes per window point, but
+    /// adds about 0.6 ms to a 8.4 ms cycle (the tests cost more than the
+    /// shorter fold saves; optimization log, sections 17 and 19 G). Allowed: [0, 8].
     std::uint32_t prune_witnesses = 0;
   };
 
