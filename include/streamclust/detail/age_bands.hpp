@@ -39,12 +39,13 @@ struct HandleEdge {
 /// Memory: the pool (edges + less than one chunk per band used), grown by a
 /// quarter when full and never shrunk, so a steady stream stops allocating
 /// once the pool has held its largest period; plus one band's sorted copy.
-/// Handles are modular: every older endpoint must lie less than 2^32 -
-/// 2^kBandBits after `base` (the engine folds at least every 2^30 points).
+/// Handles are modular: every older endpoint, and the `oldest` handed to
+/// `next_band`, must lie less than 2^31 after `base` (the engine folds at
+/// least every 2^30 points).
 /// Thread safety: none (one engine, one thread).
 class AgeBands {
  public:
-  /// Older endpoints per band: 2^9 = 512 handles [points].
+  /// log2 of the older endpoints per band (kBandPoints).
   static constexpr unsigned kBandBits = 9;
   /// Older endpoints per band [points].
   static constexpr std::uint32_t kBandPoints = std::uint32_t{1} << kBandBits;
