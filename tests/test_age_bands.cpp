@@ -12,11 +12,11 @@
 #include <streamclust/detail/age_bands.hpp>
 #include <streamclust/detail/forest_merge.hpp>
 #include <streamclust/detail/ring_queue.hpp>
+#include <streamclust/detail/union_find.hpp>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <numeric>
 #include <random>
 #include <vector>
 
@@ -55,22 +55,13 @@ std::vector<Edge> reference_order(std::vector<Edge> appended, sc::PointHandle ol
   return appended;
 }
 
-/// Plain union-find for the reference Kruskal.
-struct Sets {
-  std::vector<std::uint32_t> parent;
-  explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent[a] = b;
-    return true;
-  }
-};
+/// True when `a` and `b` were in different sets, which are then one
+/// (the batch clusterer's union-find as the reference Kruskal's).
+bool joined(scd::UnionFind& sets, std::uint32_t a, std::uint32_t b) {
+  if (sets.find(a) == sets.find(b)) return false;
+  sets.unite(a, b);
+  return true;
+}
 
 }  // namespace
 
@@ -182,10 +173,11 @@ std::size_t check_fold(const std::vector<Edge>& kept, const std::vector<Edge>& a
   const std::vector<Edge> sorted_added = reference_order(added, oldest, window, newest);
   all.insert(all.end(), sorted_added.begin(), sorted_added.end());
   std::stable_sort(all.begin(), all.end(), [&](const Edge& a, const Edge& b) { return age(a) < age(b); });
-  Sets reference_sets(window);
+  scd::UnionFind reference_sets;
+  reference_sets.reset(window);
   std::vector<Edge> expected;
   for (const Edge& e : all) {
-    if (reference_sets.unite(e.older - oldest, e.newer - oldest)) expected.push_back(e);
+    if (joined(reference_sets, e.older - oldest, e.newer - oldest)) expected.push_back(e);
   }
 
   std::vector<scd::HandleEdge> forest;
@@ -198,9 +190,10 @@ std::size_t check_fold(const std::vector<Edge>& kept, const std::vector<Edge>& a
     bands.append(one, 1, e.newer);
   }
   scd::RingQueue<scd::HandleEdge> displaced;
-  Sets sets(window);
+  scd::UnionFind sets;
+  sets.reset(window);
   const std::size_t moved = scd::merge_forest(forest, bands, displaced, oldest, window, age, [&](const scd::HandleEdge& e) {
-    return sets.unite(e.older - oldest, e.newer - oldest);
+    return joined(sets, e.older - oldest, e.newer - oldest);
   });
   std::vector<Edge> got;
   for (const scd::HandleEdge& e : forest) got.push_back(Edge{e.older, e.newer});
@@ -221,10 +214,11 @@ std::vector<Edge> random_forest(std::mt19937_64& rng, sc::PointHandle oldest, st
   std::stable_sort(candidates.begin(), candidates.end(), [&](const Edge& x, const Edge& y) {
     return static_cast<sc::PointHandle>(x.older - oldest) > static_cast<sc::PointHandle>(y.older - oldest);
   });
-  Sets sets(n);
+  scd::UnionFind sets;
+  sets.reset(n);
   std::vector<Edge> forest;
   for (const Edge& e : candidates) {
-    if (sets.unite(e.older - oldest, e.newer - oldest)) forest.push_back(e);
+    if (joined(sets, e.older - oldest, e.newer - oldest)) forest.push_back(e);
   }
   return forest;
 }

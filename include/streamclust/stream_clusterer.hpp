@@ -592,8 +592,8 @@ class StreamClusterer {
   /// and spanning_forest only).
   static constexpr ClusterId kUnlabelled = kNoCluster - 1;
 
-  /// An edge of the spanning forest or of the list of new edges (spanning_forest).
-  /// spanning_forest: an edge (older, newer); the older endpoint is its expiry.
+  /// spanning_forest: an edge (older, newer) of the forest or of the new
+  /// edges; the older endpoint is its expiry.
   using ForestEdge = detail::HandleEdge;
   /// Points ahead whose per-component records the retrieval's passes
   /// prefetch (rebuilding strategies) [points].
@@ -1860,9 +1860,9 @@ class StreamClusterer {
   /// window's connected components (`number_ranked_components` numbers them).
   /// O(N + forest + new edges): the new edges sorted band by band (their
   /// age bands, detail::AgeBands), one merge, Kruskal with union by rank and
-  /// path halving. (Hanging the younger root
-  /// under the older, as the rebuild does, built long chains here: Kruskal
-  /// takes the newest edges first, and the finds were 40 % of the fold.)
+  /// path halving. (Hanging the younger root under the older, as the
+  /// rebuild does, built long chains here: Kruskal takes the newest edges
+  /// first, and the finds were 40 % of the fold.)
   ///
   /// Why it is exact. Give every edge (a, b), a older than b, the weight a:
   /// FIFO eviction kills the edge exactly when a leaves, so a is its expiry

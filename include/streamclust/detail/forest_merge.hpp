@@ -36,7 +36,7 @@ template <class Age, class Unite>
 std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQueue<HandleEdge>& displaced,
                          PointHandle oldest, std::uint32_t window, const Age& age, Unite&& unite) {
   const std::size_t kept_count = forest.size();
-  const std::size_t total = std::max(forest.capacity(), kept_count);
+  const std::size_t total = forest.capacity();
   forest.resize(total);  // HandleEdge leaves the tail uninitialised: no fill
   HandleEdge* const f = forest.data();
   std::copy_backward(f, f + kept_count, f + total);
