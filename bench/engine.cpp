@@ -172,11 +172,22 @@ class CycleDriver {
     engine_.retrieve();
     return n;
   }
-  /// Inserts the next 50 ms slice without retrieving; returns its points.
-  std::size_t insert_slice() {
+  /// Inserts the next 50 ms slice without retrieving: point by point with
+  /// insert(), or with insert_batch on packets of `packet` points (96: a
+  /// Livox packet). Returns the slice's points.
+  std::size_t insert_slice(std::size_t packet = 0) {
     const double end = slice_end_;
-    std::size_t n = 0;
-    for (; i_ < points_.size() && points_[i_].t < end; ++i_, ++n) engine_.insert(points_[i_]);
+    std::size_t last = i_;
+    while (last < points_.size() && points_[last].t < end) ++last;
+    const std::size_t n = last - i_;
+    if (packet == 0) {
+      for (; i_ < last; ++i_) engine_.insert(points_[i_]);
+    } else {
+      for (; i_ < last; i_ = std::min(last, i_ + packet)) {
+        engine_.insert_batch(points_.begin() + static_cast<std::ptrdiff_t>(i_),
+                             points_.begin() + static_cast<std::ptrdiff_t>(std::min(last, i_ + packet)));
+      }
+    }
     slice_end_ += 0.05;
     return n;
   }
@@ -297,14 +308,17 @@ using sc::CArcCappedFastConfig;
 /// (untimed), so the spanning forest folds at the retrieval as in a 20 Hz
 /// client instead of inside the insertion loop as in BM_Insert. Items:
 /// points inserted. Arg: T_B [ms].
+/// With a second argument P > 0 the slice goes in through insert_batch in
+/// packets of P points.
 template <class Config, class Scenario>
 void BM_InsertCycle(benchmark::State& state) {
   CycleDriver<Config> driver(Scenario::points(), params_for<Config, Scenario>(state.range(0)));
+  const auto packet = static_cast<std::size_t>(state.range(1));
   std::size_t processed = 0;
   for (auto _ : state) {
     if (driver.exhausted()) driver.restart();
     const auto t0 = std::chrono::steady_clock::now();
-    processed += driver.insert_slice();
+    processed += driver.insert_slice(packet);
     state.SetIterationTime(ms_since(t0) / 1000.0);
     driver.engine().retrieve();
   }
@@ -328,8 +342,12 @@ using sc::FrameBaselineConfig;
       benchmark::kMillisecond)
 
 #define SC_INSERT_CYCLE(CONFIG, SCENARIO)                                                               \
-  BENCHMARK_TEMPLATE(BM_InsertCycle, CONFIG, SCENARIO)->Arg(100)->Arg(500)->UseManualTime()->Unit(     \
-      benchmark::kMillisecond)
+  BENCHMARK_TEMPLATE(BM_InsertCycle, CONFIG, SCENARIO)                                                  \
+      ->Args({100, 0})                                                                                  \
+      ->Args({500, 0})                                                                                  \
+      ->Args({500, 96})                                                                                 \
+      ->UseManualTime()                                                                                 \
+      ->Unit(benchmark::kMillisecond)
 
 SC_INSERT_CYCLE(CArcCappedFastConfig, Mid360Office);
 SC_INSERT_CYCLE(CArcFastConfig, Mid360Office);

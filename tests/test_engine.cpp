@@ -9,10 +9,14 @@
 #include <streamclust/streamclust.hpp>
 
 #include "support/partition.hpp"
+#include "support/streams.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -229,6 +233,70 @@ TEST_CASE("rejected input is counted by reason and never inserted; stream indice
   REQUIRE(result.points.size() == 2);
   CHECK(result.points[0].stream_index == 0);
   CHECK(result.points[1].stream_index == 7);
+  CHECK(result.points[0].label == result.points[1].label);
+}
+
+TEST_CASE_TEMPLATE("insert_batch gives exactly what insert gives: rejections, stream indexes, labels, summaries",
+                   Preset, sc::CArcConfig, sc::CArcCappedFastConfig) {
+  // Bad records of every kind among good points; the adaptive resolution's
+  // calibration ends inside a packet. Packets of 1 to 130 points, cut at the
+  // retrievals; the reference engine gets the same points one by one.
+  for (std::uint64_t seed = 0; seed < 12; ++seed) {
+    auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
+    params.window.duration = 0.05;
+    params.resolution.initial_rows = 8;
+    params.resolution.initial_cols = 32;
+    sc::StreamClusterer<Preset> single(params);
+    sc::StreamClusterer<Preset> batched(params);
+    const auto kind = seed % 2 == 0 ? sc::test::StreamKind::invalid_mixed : sc::test::StreamKind::blobs;
+    const auto stream = sc::test::make_stream(kind, 1500, seed, 4000.0);
+    std::mt19937_64 rng(seed);
+    std::size_t retrievals_with_labels = 0;
+    for (std::size_t offered = 0; offered < stream.size();) {
+      const std::size_t stop = std::min(stream.size(), offered + 1 + static_cast<std::size_t>(rng() % 300));
+      const std::size_t accepted_single = sc::test::offer(single, stream, offered, stop, 0, rng);
+      const std::size_t accepted_batched = sc::test::offer(batched, stream, offered, stop, 130, rng);
+      offered = stop;
+      INFO("seed " << seed << ", after point " << offered - 1);
+      CHECK(accepted_batched == accepted_single);
+      REQUIRE(batched.offered() == single.offered());
+      CHECK(batched.rejections().by_reason == single.rejections().by_reason);
+      CHECK(batched.calibrating() == single.calibrating());
+      CHECK(batched.size() == single.size());
+      const sc::Clustering& a = single.retrieve();
+      const sc::Clustering& b = batched.retrieve();
+      REQUIRE(b.points.size() == a.points.size());
+      for (std::size_t i = 0; i < a.points.size(); ++i) {
+        REQUIRE(b.points[i].stream_index == a.points[i].stream_index);
+        REQUIRE(b.points[i].label == a.points[i].label);
+      }
+      REQUIRE(b.components.size() == a.components.size());
+      for (std::size_t k = 0; k < a.components.size(); ++k) {
+        CHECK(b.components[k].id == a.components[k].id);
+        CHECK(b.components[k].size == a.components[k].size);
+        CHECK(b.components[k].centroid == a.components[k].centroid);
+      }
+      retrievals_with_labels += a.points.empty() ? 0 : 1;
+    }
+    CHECK(retrievals_with_labels > 3);
+    if (kind == sc::test::StreamKind::invalid_mixed) CHECK(single.rejections().rejected() > 0);
+  }
+}
+
+TEST_CASE("insert_batch: an empty batch changes nothing; a range overload takes containers") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params());
+  const std::vector<sc::Point> none;
+  CHECK(engine.insert_batch(none) == 0);
+  CHECK(engine.insert_batch(none.begin(), none.end()) == 0);
+  CHECK(engine.offered() == 0);
+  const std::vector<sc::Point> two{at(5.0f, 0.0f, 1.0), at(std::numeric_limits<float>::quiet_NaN(), 0.0f, 1.1),
+                                   at(5.5f, 0.0f, 1.2)};
+  CHECK(engine.insert_batch(two) == 2);
+  CHECK(engine.offered() == 3);
+  CHECK(engine.rejections()[sc::RejectReason::non_finite] == 1);
+  const auto& result = engine.retrieve();
+  REQUIRE(result.points.size() == 2);
+  CHECK(result.points[1].stream_index == 2);
   CHECK(result.points[0].label == result.points[1].label);
 }
 

@@ -82,10 +82,27 @@ std::vector<PointHandle> contents(const I& index, CellIndex c) {
   return out;
 }
 
+/// The cell as `gather` hands it over: the first n entries of a buffer of
+/// max_cell_size() + 1 whose last entry, past the promised room, must stay
+/// untouched.
+template <class I>
+std::vector<PointHandle> gathered(const I& index, CellIndex c) {
+  constexpr PointHandle kGuard = 0xDEADBEEFu;
+  std::vector<PointHandle> buffer(index.max_cell_size() + 1, kGuard);
+  const std::size_t n = index.gather(c, buffer.data());
+  REQUIRE(n <= index.max_cell_size());
+  REQUIRE(buffer.back() == kGuard);
+  buffer.resize(n);
+  return buffer;
+}
+
 template <class I>
 void check_equal(const I& index, const Model& model) {
   REQUIRE(index.size() == model.size());
-  for (CellIndex c = 0; c < model.cells.size(); ++c) REQUIRE(contents(index, c) == model.cells[c]);
+  for (CellIndex c = 0; c < model.cells.size(); ++c) {
+    REQUIRE(contents(index, c) == model.cells[c]);
+    if constexpr (streamclust::has_spatial_index_gather_v<I>) REQUIRE(gathered(index, c) == model.cells[c]);
+  }
 }
 
 }  // namespace
@@ -331,6 +348,22 @@ TEST_CASE("BucketGrid: overflow of the inline capacity keeps insertion order and
     all.push_back(h);
   }
   CHECK(contents(reserved, 0) == all);
+}
+
+TEST_CASE("the capped grid offers gather; the unbounded and overwrite grids do not need it") {
+  static_assert(streamclust::has_spatial_index_gather_v<CappedGrid>);
+  static_assert(!streamclust::has_spatial_index_gather_v<BucketGrid>);
+  CappedGrid grid{{3}};
+  grid.reset(GridShape{1, 2, false});
+  CHECK(gathered(grid, 0).empty());
+  grid.insert(0, 7);
+  grid.insert(0, 8);
+  CHECK(gathered(grid, 0) == std::vector<PointHandle>{7, 8});
+  grid.remove(0, 7);  // the stale slot behind the count is not handed over
+  CHECK(gathered(grid, 0) == std::vector<PointHandle>{8});
+  for (PointHandle h = 9; h < 13; ++h) grid.insert(0, h);  // full: the oldest are displaced
+  CHECK(gathered(grid, 0) == std::vector<PointHandle>{10, 11, 12});
+  CHECK(gathered(grid, 1).empty());
 }
 
 TEST_CASE_TEMPLATE("the standard indexes offer the prefetch hint, which changes nothing", I, BucketGrid, CappedGrid,

@@ -193,6 +193,7 @@ struct Options {
   bool list = false;
   bool trace_allocs = false;       ///< print the stacks of steady-state engine allocations to stderr
   std::size_t spin_up_s = 3;       ///< busy seconds before each scenario (CPU frequency ramp), 0 = none
+  std::size_t packet = 96;         ///< points per insert_batch call (a Livox packet), 0 = insert() per point
 };
 
 // ------------------------------------------------------------------- inputs
@@ -375,6 +376,21 @@ class TruthLog {
   std::uint64_t base_ = 0;
 };
 
+/// Feeds one slice to the engine as a driver would: insert_batch on packets
+/// of `packet` points (96: a Livox packet), or insert() per point when
+/// `packet` is 0.
+template <class Engine>
+void feed(Engine& engine, const std::vector<sim::SimPoint>& slice, std::size_t packet) {
+  if (packet == 0) {
+    for (const auto& p : slice) engine.insert(p);
+    return;
+  }
+  for (std::size_t i = 0; i < slice.size(); i += packet) {
+    const auto first = slice.begin() + static_cast<std::ptrdiff_t>(i);
+    engine.insert_batch(first, first + static_cast<std::ptrdiff_t>(std::min(packet, slice.size() - i)));
+  }
+}
+
 /// Drives one configuration over one scenario's stream. The engine calibrates
 /// its grid on the first complete window (T_B), as in the paper; retrievals
 /// start once it has.
@@ -419,7 +435,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     const sc::Clustering* result = nullptr;
     {
       sc::bench::AllocScope scope;
-      for (const auto& p : slice) engine->insert(p);
+      feed(*engine, slice, o.packet);
       // No retrieval while the first window is buffered (it would return an
       // empty result and measure nothing).
       if (!engine->calibrating()) result = &engine->retrieve();
@@ -512,7 +528,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
 
 /// The timed pass: phase split averaged over `cycles` cycles after warm-up.
 template <class Config, class SensorModel>
-void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, ScenarioResult& r) {
+void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, SensorModel sensor, ScenarioResult& r) {
   using T = Timed<Config>;
   sc::StreamClusterer<T> engine(rebind_params<T>(engine_params<Config>(s)));
   SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
@@ -525,7 +541,7 @@ void drive_timed(const Scenario& s, std::size_t cycles, SensorModel sensor, Scen
   for (std::size_t cycle = 0; cycle < warmup + cycles; ++cycle) {
     source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
     const auto t0 = Clock::now();
-    for (const auto& p : slice) engine.insert(p);
+    feed(engine, slice, packet);
     if (!engine.calibrating()) engine.retrieve();
     const auto t1 = Clock::now();
     if (cycle < warmup) continue;
@@ -588,7 +604,7 @@ ScenarioResult run_scenario(const Scenario& s, const Options& o) {
     r.sensor_source = source;
     drive<Config>(s, o, sensor, r);
     r.peak_rss_mb = peak_rss_mb();
-    if (o.timed_cycles > 0 && (s.window > 0.45 || o.smoke)) drive_timed<Config>(s, o.timed_cycles, sensor, r);
+    if (o.timed_cycles > 0 && (s.window > 0.45 || o.smoke)) drive_timed<Config>(s, o.timed_cycles, o.packet, sensor, r);
   });
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - w0).count();
   return r;
@@ -840,13 +856,16 @@ Options parse(int argc, char** argv) {
       o.trace_allocs = true;
     } else if (a == "--prune-witnesses") {
       g_prune_witnesses = static_cast<long>(parse_count(a, value(), 0));
+    } else if (a == "--packet") {
+      o.packet = parse_count(a, value(), 0);
     } else if (a == "--spin-up") {
       o.spin_up_s = parse_count(a, value(), 0);
       spin_given = true;
     } else if (a == "--help" || a == "-h") {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
                    "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
-                   "                     [--list] [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]\n";
+                   "                     [--list] [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]\n"
+                   "                     [--packet POINTS]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");

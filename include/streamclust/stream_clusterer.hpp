@@ -16,10 +16,12 @@
 #include <streamclust/types.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -105,6 +107,10 @@ struct RetrievalStats {
 /// edges) instead of O(N + E) (proof at `fold_forest`). Under it
 /// `for_each_neighbor` and the back/forward edge accessors (hence the
 /// Boost.Graph point view) do not compile (STREAMCLUST_NO_POINT_EDGES).
+///
+/// Input: `insert(p)` per point, or `insert_batch(packet)` per packet of
+/// points (the same result; the points are projected and their mask cells
+/// prefetched a few points ahead).
 ///
 /// Time: monotone stream time in seconds. A point earlier than the previous
 /// accepted one is rejected (`time_backwards`). Memory: 72 bytes per
@@ -221,6 +227,42 @@ class StreamClusterer {
   RejectReason insert(const P& p, double time) {
     static_assert(is_point_v<P>, "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
     return insert_position(position(p), intensity(p), time);
+  }
+
+  /// Offers the points of [first, last) in order: the same stream indexes,
+  /// rejections and clusters as `insert(p)` on each, but faster on a batch
+  /// such as a sensor packet (a Livox packet holds 96 points). Each point is
+  /// projected, and its mask's index cells prefetched, kInsertLookahead
+  /// points before it is linked, so those cache misses overlap the linking
+  /// of the points before it. Returns the points accepted. Amortised as
+  /// `insert` per point; no allocation of its own.
+  template <class It>
+  std::size_t insert_batch(It first, It last) {
+    static_assert(is_point_v<typename std::iterator_traits<It>::value_type>,
+                  "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
+    std::array<AheadPoint, kInsertLookahead> ahead;
+    std::size_t queued = 0;
+    It lead = first;
+    for (; queued < kInsertLookahead && lead != last; ++queued, ++lead) ahead[queued] = look_ahead(*lead);
+    std::size_t accepted = 0;
+    for (std::size_t i = 0; first != last; ++first, ++i) {
+      const std::size_t at = i % kInsertLookahead;
+      const AheadPoint p = ahead[at];
+      if (lead != last) {
+        ahead[at] = look_ahead(*lead);
+        ++lead;
+      }
+      accepted += insert_projected(p.position, p.intensity, p.time, p.projected, p.cell) == RejectReason::accepted;
+    }
+    return accepted;
+  }
+
+  /// `insert_batch` over a range of points (a std::vector, a span, a view).
+  template <class Range>
+  std::size_t insert_batch(const Range& points) {
+    using std::begin;
+    using std::end;
+    return insert_batch(begin(points), end(points));
   }
 
   /// Evicts the points that have left the window at stream time `time` [s]
@@ -600,6 +642,11 @@ class StreamClusterer {
   static constexpr std::uint32_t kResultPrefetchDistance = 16;
   /// Components from which those passes prefetch: 4096 summaries are 288 KB.
   static constexpr std::uint32_t kResultPrefetchMinComponents = 4096;
+  /// Points that `insert_batch` projects and prefetches ahead of the one it
+  /// links [points].
+  static constexpr std::size_t kInsertLookahead = 4;
+  /// No cell found (yet).
+  static constexpr CellIndex kNoCell = std::numeric_limits<CellIndex>::max();
   /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
   static constexpr PointHandle kEvictPrefetchDistance = 8;
   /// Smallest point ring [slots].
@@ -656,9 +703,42 @@ class StreamClusterer {
   }
 
   RejectReason insert_position(const Eigen::Vector3f& pos, float point_intensity, double time) {
+    return insert_projected(pos, point_intensity, time, projection_.project(pos), kNoCell);
+  }
+
+  /// A point of `insert_batch` taken ahead of its turn: read, projected and,
+  /// once the grid is known, its cell found and its mask prefetched.
+  struct AheadPoint {
+    Eigen::Vector3f position = Eigen::Vector3f::Zero();
+    float intensity = 0.0f;
+    double time = 0.0;
+    Projected projected;
+    CellIndex cell = kNoCell;  ///< kNoCell: not found yet (calibrating, or rejected)
+  };
+
+  template <class P>
+  AheadPoint look_ahead(const P& p) {
+    AheadPoint a;
+    a.position = position(p);
+    a.intensity = intensity(p);
+    a.time = stamp(p);
+    a.projected = projection_.project(a.position);
+    if (a.projected.accepted() && !calibrating_) {
+      a.cell = grid_.cell_of(a.projected.u, a.projected.v);
+      if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) {
+        detail::for_each_mask_cell(grid_, a.cell, half_, [&](CellIndex c) { index_.prefetch(c); });
+      }
+    }
+    return a;
+  }
+
+  /// `insert` after the projection `pr` of `pos`; `cell` is pos's grid cell
+  /// when known, else kNoCell (the grid is fixed once chosen, so a cell found
+  /// ahead stays valid).
+  RejectReason insert_projected(const Eigen::Vector3f& pos, float point_intensity, double time, const Projected& pr,
+                                CellIndex known_cell) {
     const std::uint64_t stream_index = params_.first_stream_index + offered_++;
     if (!std::isfinite(time)) return reject(RejectReason::non_finite);
-    const Projected pr = projection_.project(pos);
     if (!pr.accepted()) return reject(pr.reason);
     if (has_time_ && time < last_time_) return reject(RejectReason::time_backwards);
     has_time_ = true;
@@ -677,7 +757,7 @@ class StreamClusterer {
     }
     // The mask is listed (and its index cells prefetched) before the
     // eviction, so those cache misses overlap the eviction's work.
-    const CellIndex cell = grid_.cell_of(pr.u, pr.v);
+    const CellIndex cell = known_cell != kNoCell ? known_cell : grid_.cell_of(pr.u, pr.v);
     list_mask_cells(cell);
     const auto t0 = clock_now();
     evict_expired(time, size() + 1);
@@ -774,6 +854,64 @@ class StreamClusterer {
     mask_count_ = n;
   }
 
+  /// Pass (2) of `link`: the handles of the listed mask cells into
+  /// `candidates_[0, count)`, with their ring slots (`with_slots`) and mask
+  /// cells (`pruning`), each candidate's payload or sample prefetched.
+  /// Returns count. An index with `gather` (bounded cells) is read cell by
+  /// cell without a branch on the occupancy: the buffers keep room for a
+  /// full mask (w^2 K) and the stale handles past each cell's count are
+  /// overwritten by the next cell's. O(w^2 K).
+  std::size_t gather_candidates(bool pruning, bool with_slots) {
+    const auto prefetch_candidate = [&](std::uint32_t slot) {
+      if constexpr (uses_payload) {
+        detail::prefetch(&payloads_[slot]);
+      } else {
+        detail::prefetch(&samples_[slot]);
+      }
+    };
+    if constexpr (has_spatial_index_gather_v<spatial_index_type>) {
+      const std::size_t per_cell = index_.max_cell_size();
+      const std::size_t room = mask_count_ * per_cell;
+      if (candidates_.size() < room) candidates_.resize(room);  // once per grid: reserved to w^2 K in set_grid
+      if (keeps_forest && pruning && candidate_cells_.size() < room) candidate_cells_.resize(room);
+      PointHandle* const cand = candidates_.data();
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < mask_count_; ++i) {
+        const std::size_t n = index_.gather(mask_cells_[i], cand + count);
+        if constexpr (keeps_forest) {
+          if (pruning) std::fill_n(candidate_cells_.data() + count, per_cell, static_cast<std::uint16_t>(i));
+        }
+        count += n;
+      }
+      if (with_slots && candidate_slots_.size() < room) candidate_slots_.resize(room);
+      std::uint32_t* const slots = candidate_slots_.data();
+      const PointHandle origin = ring_origin_;
+      const std::uint32_t ring_capacity = ring_capacity_;
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t slot = ring_slot(cand[k], origin, ring_capacity);
+        if (with_slots) slots[k] = slot;
+        prefetch_candidate(slot);
+      }
+      return count;
+    } else {
+      candidates_.clear();
+      candidate_slots_.clear();
+      if constexpr (keeps_forest) candidate_cells_.clear();
+      for (std::size_t i = 0; i < mask_count_; ++i) {
+        index_.for_each(mask_cells_[i], [&](PointHandle n) {
+          const std::uint32_t slot = ring_slot(n);
+          candidates_.push_back(n);
+          if (with_slots) candidate_slots_.push_back(slot);
+          if constexpr (keeps_forest) {
+            if (pruning) candidate_cells_.push_back(static_cast<std::uint16_t>(i));
+          }
+          prefetch_candidate(slot);
+        });
+      }
+      return candidates_.size();
+    }
+  }
+
   /// Finds the neighbours of freshly appended point `h`, records its edges
   /// and applies isolation, expansion or bridging. Requires
   /// `list_mask_cells(point(h).cell)` since the last link.
@@ -792,29 +930,11 @@ class StreamClusterer {
       // mask cells for the filter only; else the test reads the slot itself.
       const bool pruning = connectivity_prune_witnesses(connectivity_) != 0;
       const bool with_slots = tests_many || pruning;
-      candidates_.clear();
-      candidate_slots_.clear();
-      if constexpr (keeps_forest) candidate_cells_.clear();
-      for (std::size_t i = 0; i < mask_count_; ++i) {
-        index_.for_each(mask_cells_[i], [&](PointHandle n) {
-          const std::uint32_t slot = ring_slot(n);
-          candidates_.push_back(n);
-          if (with_slots) candidate_slots_.push_back(slot);
-          if constexpr (keeps_forest) {
-            if (pruning) candidate_cells_.push_back(static_cast<std::uint16_t>(i));
-          }
-          if constexpr (uses_payload) {
-            detail::prefetch(&payloads_[slot]);
-          } else {
-            detail::prefetch(&samples_[slot]);
-          }
-        });
-      }
+      const std::size_t count = gather_candidates(pruning, with_slots);
       // The linkage decisions with a branch-free compaction (whether a
       // candidate links is close to a coin flip: a branch on it would
       // mispredict often); with the filter, slots and mask cells are
       // compacted in place beside the neighbours.
-      const std::size_t count = candidates_.size();
       // Same capacity as candidates_: they grow only when they do.
       if (neighbours_.capacity() < candidates_.capacity()) neighbours_.reserve(candidates_.capacity());
       neighbours_.resize(count);

@@ -3,8 +3,11 @@
 // Random and adversarial point streams for the property tests.
 
 #include <streamclust/point_traits.hpp>
+#include <streamclust/types.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -23,6 +26,26 @@ enum class StreamKind {
   invalid_mixed,    // NaN, inf, zero range and backwards time among good points
   count_,
 };
+
+/// Offers stream[first, last) to `engine`: point by point with insert() when
+/// `packet_max` is 0, else through insert_batch in packets of 1 to
+/// `packet_max` points (sizes drawn from `rng`). Returns the points accepted.
+template <class Engine, class Rng>
+std::size_t offer(Engine& engine, const std::vector<Point>& stream, std::size_t first, std::size_t last,
+                  std::size_t packet_max, Rng& rng) {
+  std::size_t accepted = 0;
+  if (packet_max == 0) {
+    for (std::size_t i = first; i < last; ++i) accepted += engine.insert(stream[i]) == RejectReason::accepted;
+    return accepted;
+  }
+  while (first < last) {
+    const std::size_t end = std::min(last, first + 1 + static_cast<std::size_t>(rng() % packet_max));
+    accepted += engine.insert_batch(stream.begin() + static_cast<std::ptrdiff_t>(first),
+                                    stream.begin() + static_cast<std::ptrdiff_t>(end));
+    first = end;
+  }
+  return accepted;
+}
 
 inline const char* to_string(StreamKind k) {
   static const char* names[] = {"blobs", "one_cell", "seam", "fov_borders", "duplicates", "bursts", "quiet_gaps",

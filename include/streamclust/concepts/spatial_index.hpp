@@ -23,11 +23,13 @@
 /// | `ci.prefetch(cell)`        | any         | hint that `for_each(cell, f)` follows soon (e.g. prefetch the cell's memory); must not change the contents | O(1) |
 /// | `ci.heap_bytes()`          | std::size_t | heap bytes held (capacities, not sizes), for `StreamClusterer::memory_usage()`; without it the index's memory is reported as unknown | any |
 /// | `ci.max_cell_size()`       | std::size_t | the most handles one cell can ever hold (a bounded index); the engine then sizes its neighbour-search scratch once (w^2 x this) instead of growing it with the densest mask seen so far | O(1) |
+/// | `ci.gather(cell, out)`     | std::size_t | with `max_cell_size()`: write the cell's handles, in `for_each` order, to `out[0, n)` and return n; `out[n, max_cell_size())` may be overwritten with anything. Lets the engine gather a mask without a branch on each cell's occupancy | O(max) |
 ///
 /// The engine calls `prefetch` for every cell of the mask before it visits
 /// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`);
 /// `is_spatial_index_heap_reporting_v` detects `heap_bytes`,
-/// `has_spatial_index_cell_bound_v` detects `max_cell_size`.
+/// `has_spatial_index_cell_bound_v` detects `max_cell_size`,
+/// `has_spatial_index_gather_v` both `max_cell_size` and `gather`.
 ///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
@@ -95,6 +97,23 @@ struct has_spatial_index_cell_bound<I, std::void_t<decltype(std::declval<const I
 /// (its cells are bounded).
 template <class I>
 inline constexpr bool has_spatial_index_cell_bound_v = detail::has_spatial_index_cell_bound<I>::value;
+
+namespace detail {
+template <class I, class = void>
+struct has_spatial_index_gather : std::false_type {};
+template <class I>
+struct has_spatial_index_gather<
+    I, std::void_t<decltype(std::declval<const I&>().gather(CellIndex{}, std::declval<PointHandle*>()))>>
+    : std::bool_constant<
+          has_spatial_index_cell_bound<I>::value &&
+          std::is_convertible_v<decltype(std::declval<const I&>().gather(CellIndex{}, std::declval<PointHandle*>())),
+                                std::size_t>> {};
+}  // namespace detail
+
+/// True when index `I` has bounded cells and the optional
+/// `std::size_t gather(CellIndex, PointHandle* out) const`.
+template <class I>
+inline constexpr bool has_spatial_index_gather_v = detail::has_spatial_index_gather<I>::value;
 
 /// True when spatial index `I` offers the optional `prefetch(CellIndex) const`.
 template <class I>

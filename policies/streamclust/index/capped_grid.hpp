@@ -113,6 +113,17 @@ class CappedGrid {
     for (unsigned i = 0; i < count; ++i) f(slots[i]);
   }
 
+  /// Optional SpatialIndex capability: the cell's handles, oldest first, to
+  /// out[0, count); returns count. Copies all K slots whatever the count
+  /// (out needs room for K; those past count are stale), so gathering a
+  /// mask takes no branch on the cells' occupancy, which varies from cell
+  /// to cell and would mispredict. O(K).
+  std::size_t gather(CellIndex cell, PointHandle* out) const {
+    const PointHandle* const slots = slots_.data() + std::size_t{cell} * k_;
+    for (unsigned i = 0; i < k_; ++i) out[i] = slots[i];
+    return counts_[cell];
+  }
+
   /// Optional SpatialIndex capability: hint that `for_each(cell, ...)`,
   /// `insert` or `remove` on the cell follows soon (prefetches the cell's
   /// slots and its count). O(1).
