@@ -82,18 +82,30 @@ std::vector<PointHandle> contents(const I& index, CellIndex c) {
   return out;
 }
 
-/// The cell as `gather` hands it over: the first n entries of a buffer of
-/// max_cell_size() + 1 whose last entry, past the promised room, must stay
-/// untouched.
+/// The cell as `gather` hands it over, asked with several rooms: exactly
+/// the count, one more, the index's own copy width and plenty; and, for a
+/// non-empty cell, one less than the count (it must then report the count
+/// and nothing else). A guard entry right after the room must stay untouched.
 template <class I>
 std::vector<PointHandle> gathered(const I& index, CellIndex c) {
   constexpr PointHandle kGuard = 0xDEADBEEFu;
-  std::vector<PointHandle> buffer(index.max_cell_size() + 1, kGuard);
-  const std::size_t n = index.gather(c, buffer.data());
-  REQUIRE(n <= index.max_cell_size());
-  REQUIRE(buffer.back() == kGuard);
-  buffer.resize(n);
-  return buffer;
+  const std::size_t n = index.cell_size(c);
+  std::vector<PointHandle> first;
+  for (const std::size_t room : {n, n + 1, std::size_t{4}, std::size_t{6}, std::size_t{64}}) {
+    if (room < n) continue;
+    std::vector<PointHandle> buffer(room + 1, kGuard);
+    REQUIRE(index.gather(c, buffer.data(), room) == n);
+    REQUIRE(buffer.back() == kGuard);
+    buffer.resize(n);
+    if (room == n) first = buffer;
+    REQUIRE(buffer == first);
+  }
+  if (n > 0) {
+    std::vector<PointHandle> short_buffer(n, kGuard);  // room n - 1, guard at [n - 1]
+    REQUIRE(index.gather(c, short_buffer.data(), n - 1) == n);
+    REQUIRE(short_buffer.back() == kGuard);
+  }
+  return first;
 }
 
 template <class I>
@@ -350,9 +362,10 @@ TEST_CASE("BucketGrid: overflow of the inline capacity keeps insertion order and
   CHECK(contents(reserved, 0) == all);
 }
 
-TEST_CASE("the capped grid offers gather; the unbounded and overwrite grids do not need it") {
+TEST_CASE("the capped and bucket grids offer gather; stale slots are never handed over") {
   static_assert(streamclust::has_spatial_index_gather_v<CappedGrid>);
-  static_assert(!streamclust::has_spatial_index_gather_v<BucketGrid>);
+  static_assert(streamclust::has_spatial_index_gather_v<BucketGrid>);
+  static_assert(!streamclust::has_spatial_index_gather_v<OverwriteGrid>);
   CappedGrid grid{{3}};
   grid.reset(GridShape{1, 2, false});
   CHECK(gathered(grid, 0).empty());
@@ -364,6 +377,18 @@ TEST_CASE("the capped grid offers gather; the unbounded and overwrite grids do n
   for (PointHandle h = 9; h < 13; ++h) grid.insert(0, h);  // full: the oldest are displaced
   CHECK(gathered(grid, 0) == std::vector<PointHandle>{10, 11, 12});
   CHECK(gathered(grid, 1).empty());
+  // A bucket cell past its six inline handles: the spill follows them, in order.
+  BucketGrid buckets{{}};
+  buckets.reset(GridShape{1, 1, false});
+  std::vector<PointHandle> all;
+  for (PointHandle h = 100; h < 111; ++h) {
+    buckets.insert(0, h);
+    all.push_back(h);
+    CHECK(gathered(buckets, 0) == all);
+  }
+  buckets.remove(0, 100);  // the oldest spilled handle moves inline
+  all.erase(all.begin());
+  CHECK(gathered(buckets, 0) == all);
 }
 
 TEST_CASE_TEMPLATE("the standard indexes offer the prefetch hint, which changes nothing", I, BucketGrid, CappedGrid,

@@ -645,6 +645,9 @@ class StreamClusterer {
   /// Points that `insert_batch` projects and prefetches ahead of the one it
   /// links [points].
   static constexpr std::size_t kInsertLookahead = 4;
+  /// Gather room per mask cell for an index with unbounded cells [handles]
+  /// (grown when a crowded mask needs more).
+  static constexpr std::size_t kGatherCellRoom = 8;
   /// No cell found (yet).
   static constexpr CellIndex kNoCell = std::numeric_limits<CellIndex>::max();
   /// Evictions ahead whose index cell `evict_oldest` prefetches [points].
@@ -857,10 +860,11 @@ class StreamClusterer {
   /// Pass (2) of `link`: the handles of the listed mask cells into
   /// `candidates_[0, count)`, with their ring slots (`with_slots`) and mask
   /// cells (`pruning`), each candidate's payload or sample prefetched.
-  /// Returns count. An index with `gather` (bounded cells) is read cell by
-  /// cell without a branch on the occupancy: the buffers keep room for a
-  /// full mask (w^2 K) and the stale handles past each cell's count are
-  /// overwritten by the next cell's. O(w^2 K).
+  /// Returns count. An index with `gather` is read cell by cell without a
+  /// branch on the occupancy: the buffers stay sized to a room (w^2 K for
+  /// bounded cells, at least w^2 kGatherCellRoom otherwise, grown when a
+  /// crowded cell does not fit) and the stale handles past each cell's count
+  /// are overwritten by the next cell's. O(w^2 k).
   std::size_t gather_candidates(bool pruning, bool with_slots) {
     const auto prefetch_candidate = [&](std::uint32_t slot) {
       if constexpr (uses_payload) {
@@ -870,20 +874,37 @@ class StreamClusterer {
       }
     };
     if constexpr (has_spatial_index_gather_v<spatial_index_type>) {
-      const std::size_t per_cell = index_.max_cell_size();
-      const std::size_t room = mask_count_ * per_cell;
-      if (candidates_.size() < room) candidates_.resize(room);  // once per grid: reserved to w^2 K in set_grid
-      if (keeps_forest && pruning && candidate_cells_.size() < room) candidate_cells_.resize(room);
-      PointHandle* const cand = candidates_.data();
+      constexpr bool bounded = has_spatial_index_cell_bound_v<spatial_index_type>;
+      std::size_t per_cell = kGatherCellRoom;
+      if constexpr (bounded) per_cell = index_.max_cell_size();
+      const bool with_cells = keeps_forest && pruning;
+      const auto grow = [&](std::size_t room) {  // O(room); once per grid, or when a crowded cell needs more
+        candidates_.resize(room);
+        if (with_slots) candidate_slots_.resize(room);
+        if (with_cells) candidate_cells_.resize(room);
+      };
+      if (candidates_.size() < mask_count_ * per_cell) grow(mask_count_ * per_cell);  // reserved in set_grid when bounded
+      if (with_slots && candidate_slots_.size() < candidates_.size()) candidate_slots_.resize(candidates_.size());
+      if (with_cells && candidate_cells_.size() < candidates_.size()) candidate_cells_.resize(candidates_.size());
       std::size_t count = 0;
       for (std::size_t i = 0; i < mask_count_; ++i) {
-        const std::size_t n = index_.gather(mask_cells_[i], cand + count);
+        std::size_t n = 0;
+        if constexpr (bounded) {  // n <= K, and K of room are left: count <= i K
+          n = index_.gather(mask_cells_[i], candidates_.data() + count, per_cell);
+        } else {
+          const std::size_t room = candidates_.size() - count;
+          n = index_.gather(mask_cells_[i], candidates_.data() + count, room);
+          if (n > room) {  // a crowded cell: grow and gather it again
+            grow(std::max(2 * candidates_.size(), count + n + mask_count_ * per_cell));
+            n = index_.gather(mask_cells_[i], candidates_.data() + count, candidates_.size() - count);
+          }
+        }
         if constexpr (keeps_forest) {
-          if (pruning) std::fill_n(candidate_cells_.data() + count, per_cell, static_cast<std::uint16_t>(i));
+          if (with_cells) std::fill_n(candidate_cells_.data() + count, n, static_cast<std::uint16_t>(i));
         }
         count += n;
       }
-      if (with_slots && candidate_slots_.size() < room) candidate_slots_.resize(room);
+      const PointHandle* const cand = candidates_.data();
       std::uint32_t* const slots = candidate_slots_.data();
       const PointHandle origin = ring_origin_;
       const std::uint32_t ring_capacity = ring_capacity_;

@@ -23,13 +23,13 @@
 /// | `ci.prefetch(cell)`        | any         | hint that `for_each(cell, f)` follows soon (e.g. prefetch the cell's memory); must not change the contents | O(1) |
 /// | `ci.heap_bytes()`          | std::size_t | heap bytes held (capacities, not sizes), for `StreamClusterer::memory_usage()`; without it the index's memory is reported as unknown | any |
 /// | `ci.max_cell_size()`       | std::size_t | the most handles one cell can ever hold (a bounded index); the engine then sizes its neighbour-search scratch once (w^2 x this) instead of growing it with the densest mask seen so far | O(1) |
-/// | `ci.gather(cell, out)`     | std::size_t | with `max_cell_size()`: write the cell's handles, in `for_each` order, to `out[0, n)` and return n; `out[n, max_cell_size())` may be overwritten with anything. Lets the engine gather a mask without a branch on each cell's occupancy | O(max) |
+/// | `ci.gather(cell, out, room)` | std::size_t | return n, the cell's handle count; when n <= room, `out[0, n)` holds its handles in `for_each` order. `out[0, room)` may be overwritten with anything, nothing past it. The engine passes room >= `max_cell_size()` (bounded cells), grows its buffer and asks again when n > room. Lets it gather a mask without a branch on each cell's occupancy | O(k) |
 ///
 /// The engine calls `prefetch` for every cell of the mask before it visits
 /// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`);
 /// `is_spatial_index_heap_reporting_v` detects `heap_bytes`,
 /// `has_spatial_index_cell_bound_v` detects `max_cell_size`,
-/// `has_spatial_index_gather_v` both `max_cell_size` and `gather`.
+/// `has_spatial_index_gather_v` detects `gather`.
 ///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
@@ -102,16 +102,15 @@ namespace detail {
 template <class I, class = void>
 struct has_spatial_index_gather : std::false_type {};
 template <class I>
-struct has_spatial_index_gather<
-    I, std::void_t<decltype(std::declval<const I&>().gather(CellIndex{}, std::declval<PointHandle*>()))>>
-    : std::bool_constant<
-          has_spatial_index_cell_bound<I>::value &&
-          std::is_convertible_v<decltype(std::declval<const I&>().gather(CellIndex{}, std::declval<PointHandle*>())),
-                                std::size_t>> {};
+struct has_spatial_index_gather<I, std::void_t<decltype(std::declval<const I&>().gather(
+                                       CellIndex{}, std::declval<PointHandle*>(), std::size_t{}))>>
+    : std::is_convertible<decltype(std::declval<const I&>().gather(CellIndex{}, std::declval<PointHandle*>(),
+                                                                   std::size_t{})),
+                          std::size_t> {};
 }  // namespace detail
 
-/// True when index `I` has bounded cells and the optional
-/// `std::size_t gather(CellIndex, PointHandle* out) const`.
+/// True when index `I` has the optional
+/// `std::size_t gather(CellIndex, PointHandle* out, std::size_t room) const`.
 template <class I>
 inline constexpr bool has_spatial_index_gather_v = detail::has_spatial_index_gather<I>::value;
 

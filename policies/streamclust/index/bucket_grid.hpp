@@ -142,6 +142,27 @@ class BucketGrid {
     for (std::size_t i = s.head, n = s.items.size(); i < n; ++i) f(s.items[i]);
   }
 
+  /// Optional SpatialIndex capability: the cell's handle count n and, when
+  /// n <= room, its handles, oldest first, in out[0, n). With room >= 6 the
+  /// six inline slots are copied whatever the count (one 24-byte move; those
+  /// past n are stale), so gathering a mask takes no branch on the cells'
+  /// occupancy; a spilled cell's bucket follows. Writes nothing past
+  /// out + room. O(k).
+  std::size_t gather(CellIndex cell, PointHandle* out, std::size_t room) const {
+    const Cell& c = cells_[cell];
+    if (room >= kInlineCapacity) {
+      for (std::uint32_t i = 0; i < kInlineCapacity; ++i) out[i] = c.items[i];
+    } else {
+      std::copy_n(c.items, std::min<std::size_t>(c.count, room), out);
+    }
+    if (c.spill == kNoSpill) return c.count;
+    const Spill& s = spills_[c.spill];
+    const auto first = s.items.begin() + static_cast<std::ptrdiff_t>(s.head);
+    const std::size_t n = c.count + static_cast<std::size_t>(s.items.end() - first);
+    if (n <= room) std::copy(first, s.items.end(), out + c.count);
+    return n;
+  }
+
   /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
   /// soon (prefetches the cell's record; no effect on the contents). O(1).
   void prefetch(CellIndex cell) const { detail::prefetch(cells_.data() + cell); }

@@ -113,15 +113,21 @@ class CappedGrid {
     for (unsigned i = 0; i < count; ++i) f(slots[i]);
   }
 
-  /// Optional SpatialIndex capability: the cell's handles, oldest first, to
-  /// out[0, count); returns count. Copies all K slots whatever the count
-  /// (out needs room for K; those past count are stale), so gathering a
-  /// mask takes no branch on the cells' occupancy, which varies from cell
-  /// to cell and would mispredict. O(K).
-  std::size_t gather(CellIndex cell, PointHandle* out) const {
+  /// Optional SpatialIndex capability: the cell's handle count n and, when
+  /// n <= room, its handles, oldest first, in out[0, n). With room >= K (as
+  /// the engine gives) all K slots are copied whatever the count (those past
+  /// n are stale), so gathering a mask takes no branch on the cells'
+  /// occupancy, which varies from cell to cell and would mispredict. Writes
+  /// nothing past out + room. O(K).
+  std::size_t gather(CellIndex cell, PointHandle* out, std::size_t room) const {
     const PointHandle* const slots = slots_.data() + std::size_t{cell} * k_;
-    for (unsigned i = 0; i < k_; ++i) out[i] = slots[i];
-    return counts_[cell];
+    const unsigned count = counts_[cell];
+    if (room >= k_) {
+      for (unsigned i = 0; i < k_; ++i) out[i] = slots[i];
+    } else {
+      std::copy_n(slots, std::min<std::size_t>(count, room), out);
+    }
+    return count;
   }
 
   /// Optional SpatialIndex capability: hint that `for_each(cell, ...)`,
