@@ -9,6 +9,7 @@
 #include <streamclust/streamclust.hpp>
 
 #include "support/partition.hpp"
+#include "support/presets.hpp"
 #include "support/streams.hpp"
 
 #include <algorithm>
@@ -242,10 +243,7 @@ TEST_CASE_TEMPLATE("insert_batch gives exactly what insert gives: rejections, st
   // calibration ends inside a packet. Packets of 1 to 130 points, cut at the
   // retrievals; the reference engine gets the same points one by one.
   for (std::uint64_t seed = 0; seed < 12; ++seed) {
-    auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
-    params.window.duration = 0.05;
-    params.resolution.initial_rows = 8;
-    params.resolution.initial_cols = 32;
+    const auto params = sc::test::short_window_params<Preset>();
     sc::StreamClusterer<Preset> single(params);
     sc::StreamClusterer<Preset> batched(params);
     const auto kind = seed % 2 == 0 ? sc::test::StreamKind::invalid_mixed : sc::test::StreamKind::blobs;

@@ -26,6 +26,7 @@
 #include <streamclust/window/time_window.hpp>
 
 #include "support/oracle.hpp"
+#include "support/presets.hpp"
 #include "support/streams.hpp"
 
 #include <algorithm>
@@ -265,10 +266,7 @@ TEST_CASE_TEMPLATE("the C-ARC presets with adaptive resolution agree with the ba
                    Preset, sc::CArcConfig, sc::CArcFastConfig, sc::CArcCappedFastConfig, sc::CArcRebuildConfig,
                    sc::CArcCappedRebuildConfig) {
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
-    auto params = sc::to_clusterer_params<Preset>(sc::CArcParams{});
-    params.window.duration = 0.05;
-    params.resolution.initial_rows = 8;
-    params.resolution.initial_cols = 32;
+    const auto params = st::short_window_params<Preset>();
     sc::StreamClusterer<Preset> engine(params);
     sc::BatchClusterer<Preset> batch(params);
     const auto stream = st::make_stream(st::StreamKind::blobs, 600, seed, 4000.0);
