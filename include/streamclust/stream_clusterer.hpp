@@ -735,9 +735,9 @@ class StreamClusterer {
     return a;
   }
 
-  /// `insert` after the projection `pr` of `pos`; `cell` is pos's grid cell
-  /// when known, else kNoCell (the grid is fixed once chosen, so a cell found
-  /// ahead stays valid).
+  /// `insert` after the projection `pr` of `pos`; `known_cell` is pos's grid
+  /// cell when found already, else kNoCell (the grid is fixed once chosen,
+  /// so a cell found ahead stays valid).
   RejectReason insert_projected(const Eigen::Vector3f& pos, float point_intensity, double time, const Projected& pr,
                                 CellIndex known_cell) {
     const std::uint64_t stream_index = params_.first_stream_index + offered_++;
