@@ -1794,6 +1794,7 @@ class StreamClusterer {
     if (votes_.capacity() == 0) reserve_first_votes(old_clusters);
     reserve_geometric(cluster_size_, components);
     cluster_size_.assign(components, 0);
+    std::uint32_t multiple = 0;  // components of two or more points
     // Prefetch only when the per-cluster records outgrow the L1/L2 caches
     // (a fragmented window); otherwise it only costs instructions.
     const bool scattered_old = old_clusters >= kResultPrefetchMinComponents;
@@ -1806,7 +1807,7 @@ class StreamClusterer {
       const ClusterId old = r.cluster;
       const std::uint32_t k = parent_[i];
       r.cluster = k;
-      ++cluster_size_[k];
+      multiple += ++cluster_size_[k] == 2 ? 1u : 0u;
       if (old < old_clusters) {  // else inserted since the last retrieval
         std::uint32_t& head = claim_head_[old];
         if (head == kSoleMark) {
@@ -1857,14 +1858,12 @@ class StreamClusterer {
     reserve_geometric(result_.components, components);
     result_.components.resize(components);
     // A sum per component of two or more points only (few of them in a
-    // fragmented window), numbered in `won_weight_` (free once the ids are
-    // resolved).
+    // fragmented window), numbered as the labels pass opens them: sum s of
+    // component k is won_weight_[k], and its place in the result is
+    // won_slot_[s] (both free once the ids are resolved).
+    reserve_geometric(sums_, multiple);
+    sums_.resize(multiple);
     std::uint32_t summed = 0;
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (cluster_size_[k] > 1) won_weight_[k] = summed++;
-    }
-    reserve_geometric(sums_, summed);
-    sums_.resize(summed);
     // Labels and summaries in window order. The components are numbered by
     // their oldest point (number_components, number_ranked_components), so a
     // point opens its component's summary exactly when its number is the
@@ -1902,7 +1901,11 @@ class StreamClusterer {
         sm.centroid = p;  // (double(p) / 1) as float is p: final for a single point
         sm.time_begin = sa.time;
         sm.time_end = sa.time;
-        if (cluster_size_[k] > 1) sums_[won_weight_[k]] = p.template cast<double>();
+        if (cluster_size_[k] > 1) {
+          won_weight_[k] = summed;
+          won_slot_[summed] = slot;
+          sums_[summed++] = p.template cast<double>();
+        }
       } else {
         sm.min = sm.min.cwiseMin(p);
         sm.max = sm.max.cwiseMax(p);
@@ -1912,11 +1915,9 @@ class StreamClusterer {
       }
     }
     // The centroids of the components of two or more points.
-    for (std::uint32_t k = 0; k < components; ++k) {
-      if (cluster_size_[k] < 2) continue;
-      const std::uint32_t slot = slot_of_[k];
-      ComponentSummary& sm = summaries[slot];
-      sm.centroid = (sums_[won_weight_[k]] / static_cast<double>(sm.size)).template cast<float>();
+    for (std::uint32_t sum = 0; sum < summed; ++sum) {
+      ComponentSummary& sm = summaries[won_slot_[sum]];
+      sm.centroid = (sums_[sum] / static_cast<double>(sm.size)).template cast<float>();
     }
     add_elapsed(stats_.phase_us.labelling, t1);
   }
@@ -2169,7 +2170,7 @@ class StreamClusterer {
   std::vector<std::uint32_t> claim_head_;   // rebuilding strategies: most recent vote per old cluster
   std::vector<Vote> votes_;
   std::vector<std::uint32_t> won_weight_;   // rebuilding strategies, per component: weight of the id it won, then the index of its sum
-  std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot
+  std::vector<std::uint32_t> won_slot_;     // per component: the last result's place of the id it kept, or kNoSlot; then (rebuilding) per sum: its component's place
   std::vector<std::uint32_t> by_slot_;      // order_components: place in the previous result -> component
   std::vector<std::uint32_t> slot_of_;      // component -> place in the result (rebuilding: kept, per local cluster)
   std::vector<std::uint32_t> cluster_size_; // rebuilding strategies: points of each local cluster still in the window
