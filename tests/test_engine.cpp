@@ -13,9 +13,11 @@
 #include "support/streams.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <set>
@@ -252,10 +254,19 @@ TEST_CASE_TEMPLATE("insert_batch gives exactly what insert gives: rejections, st
     std::size_t retrievals_with_labels = 0;
     for (std::size_t offered = 0; offered < stream.size();) {
       const std::size_t stop = std::min(stream.size(), offered + 1 + static_cast<std::size_t>(rng() % 300));
-      const std::size_t accepted_single = sc::test::offer(single, stream, offered, stop, 0, rng);
-      const std::size_t accepted_batched = sc::test::offer(batched, stream, offered, stop, 130, rng);
+      // Seeds 2, 3, 6, 7, 10, 11 also compare each point's reason (the reporting overload).
+      const bool with_reasons = seed % 4 >= 2;
+      std::vector<sc::RejectReason> reasons_single, reasons_batched;
+      const std::size_t accepted_single =
+          sc::test::offer(single, stream, offered, stop, 0, rng, with_reasons ? &reasons_single : nullptr);
+      const std::size_t accepted_batched =
+          sc::test::offer(batched, stream, offered, stop, 130, rng, with_reasons ? &reasons_batched : nullptr);
+      INFO("seed " << seed << ", after point " << stop - 1);
+      if (with_reasons) {
+        REQUIRE(reasons_single.size() == stop - offered);
+        CHECK(reasons_batched == reasons_single);
+      }
       offered = stop;
-      INFO("seed " << seed << ", after point " << offered - 1);
       CHECK(accepted_batched == accepted_single);
       REQUIRE(batched.offered() == single.offered());
       CHECK(batched.rejections().by_reason == single.rejections().by_reason);
@@ -296,6 +307,29 @@ TEST_CASE("insert_batch: an empty batch changes nothing; a range overload takes 
   REQUIRE(result.points.size() == 2);
   CHECK(result.points[1].stream_index == 2);
   CHECK(result.points[0].label == result.points[1].label);
+}
+
+TEST_CASE("insert_batch with reasons: one reason per point, in order, into any output iterator") {
+  sc::StreamClusterer<OneCellConfig> engine(one_cell_params());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<sc::Point> points{at(5.0f, 0.0f, 1.0), at(nan, 0.0f, 1.1), at(0.0f, 0.0f, 1.1),
+                                      at(5.0f, 0.0f, 0.5), at(5.5f, 0.0f, 1.2)};
+  std::array<sc::RejectReason, 6> room;
+  room.fill(sc::RejectReason::accepted);
+  room[5] = sc::RejectReason::non_finite;  // a guard: nothing is written past the batch
+  sc::RejectReason* const end = engine.insert_batch(points.begin(), points.end(), room.data());
+  CHECK(end == room.data() + 5);
+  CHECK(room[0] == sc::RejectReason::accepted);
+  CHECK(room[1] == sc::RejectReason::non_finite);
+  CHECK(room[2] == sc::RejectReason::too_close);
+  CHECK(room[3] == sc::RejectReason::time_backwards);
+  CHECK(room[4] == sc::RejectReason::accepted);
+  CHECK(room[5] == sc::RejectReason::non_finite);
+  CHECK(engine.size() == 2);
+  std::vector<sc::RejectReason> none;
+  engine.insert_batch(points.end(), points.end(), std::back_inserter(none));
+  CHECK(none.empty());
+  CHECK(engine.offered() == 5);
 }
 
 TEST_CASE("points outside the field of view are rejected") {

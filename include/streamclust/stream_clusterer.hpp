@@ -238,23 +238,20 @@ class StreamClusterer {
   /// `insert` per point; no allocation of its own.
   template <class It>
   std::size_t insert_batch(It first, It last) {
-    static_assert(is_point_v<typename std::iterator_traits<It>::value_type>,
-                  "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
-    std::array<AheadPoint, kInsertLookahead> ahead;
-    std::size_t queued = 0;
-    It lead = first;
-    for (; queued < kInsertLookahead && lead != last; ++queued, ++lead) ahead[queued] = look_ahead(*lead);
     std::size_t accepted = 0;
-    for (std::size_t i = 0; first != last; ++first, ++i) {
-      const std::size_t at = i % kInsertLookahead;
-      const AheadPoint p = ahead[at];
-      if (lead != last) {
-        ahead[at] = look_ahead(*lead);
-        ++lead;
-      }
-      accepted += insert_projected(p.position, p.intensity, p.time, p.projected, p.cell) == RejectReason::accepted;
-    }
+    insert_each(first, last, [&accepted](RejectReason r) { accepted += r == RejectReason::accepted; });
     return accepted;
+  }
+
+  /// `insert_batch(first, last)` that also writes what `insert` would have
+  /// returned for each point, in order, to `reasons` (an output iterator of
+  /// RejectReason, e.g. a std::back_inserter, or a pointer to room for
+  /// last - first values): for a driver that reports rejected records by
+  /// their index. Returns `reasons` past the last value written.
+  template <class It, class ReasonOut>
+  ReasonOut insert_batch(It first, It last, ReasonOut reasons) {
+    insert_each(first, last, [&reasons](RejectReason r) { *reasons++ = r; });
+    return reasons;
   }
 
   /// `insert_batch` over a range of points (a std::vector, a span, a view).
@@ -733,6 +730,28 @@ class StreamClusterer {
       }
     }
     return a;
+  }
+
+  /// The loop of `insert_batch`: inserts [first, last) with kInsertLookahead
+  /// points projected and prefetched ahead, calling `on_reason(reason)` for
+  /// each point in order.
+  template <class It, class OnReason>
+  void insert_each(It first, It last, OnReason&& on_reason) {
+    static_assert(is_point_v<typename std::iterator_traits<It>::value_type>,
+                  "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
+    std::array<AheadPoint, kInsertLookahead> ahead;
+    std::size_t queued = 0;
+    It lead = first;
+    for (; queued < kInsertLookahead && lead != last; ++queued, ++lead) ahead[queued] = look_ahead(*lead);
+    for (std::size_t i = 0; first != last; ++first, ++i) {
+      const std::size_t at = i % kInsertLookahead;
+      const AheadPoint p = ahead[at];
+      if (lead != last) {
+        ahead[at] = look_ahead(*lead);
+        ++lead;
+      }
+      on_reason(insert_projected(p.position, p.intensity, p.time, p.projected, p.cell));
+    }
   }
 
   /// `insert` after the projection `pr` of `pos`; `known_cell` is pos's grid

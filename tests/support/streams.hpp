@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <vector>
@@ -30,18 +31,32 @@ enum class StreamKind {
 /// Offers stream[first, last) to `engine`: point by point with insert() when
 /// `packet_max` is 0, else through insert_batch in packets of 1 to
 /// `packet_max` points (sizes drawn from `rng`). Returns the points accepted.
+/// With `reasons`, appends what the engine returned for each point (the
+/// batches then go through insert_batch's reason-reporting overload).
 template <class Engine, class Rng>
 std::size_t offer(Engine& engine, const std::vector<Point>& stream, std::size_t first, std::size_t last,
-                  std::size_t packet_max, Rng& rng) {
+                  std::size_t packet_max, Rng& rng, std::vector<RejectReason>* reasons = nullptr) {
   std::size_t accepted = 0;
   if (packet_max == 0) {
-    for (std::size_t i = first; i < last; ++i) accepted += engine.insert(stream[i]) == RejectReason::accepted;
+    for (std::size_t i = first; i < last; ++i) {
+      const RejectReason r = engine.insert(stream[i]);
+      accepted += r == RejectReason::accepted;
+      if (reasons) reasons->push_back(r);
+    }
     return accepted;
   }
   while (first < last) {
     const std::size_t end = std::min(last, first + 1 + static_cast<std::size_t>(rng() % packet_max));
-    accepted += engine.insert_batch(stream.begin() + static_cast<std::ptrdiff_t>(first),
-                                    stream.begin() + static_cast<std::ptrdiff_t>(end));
+    const auto from = stream.begin() + static_cast<std::ptrdiff_t>(first);
+    const auto to = stream.begin() + static_cast<std::ptrdiff_t>(end);
+    if (reasons) {
+      const std::size_t before = reasons->size();
+      engine.insert_batch(from, to, std::back_inserter(*reasons));
+      accepted += static_cast<std::size_t>(
+          std::count(reasons->begin() + static_cast<std::ptrdiff_t>(before), reasons->end(), RejectReason::accepted));
+    } else {
+      accepted += engine.insert_batch(from, to);
+    }
     first = end;
   }
   return accepted;

@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -326,16 +327,46 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   };
 
   std::vector<io::Record> chunk;
+  std::vector<RejectReason> reasons;  // of the records being offered
+  // Offers chunk[from, to) (the engine takes them as one batch) and books
+  // each record's outcome under its stream index.
+  auto offer_records = [&](std::size_t from, std::size_t to) {
+    if (from == to) return;
+    reasons.clear();
+    const auto first = chunk.begin() + static_cast<std::ptrdiff_t>(from);
+    const auto last = chunk.begin() + static_cast<std::ptrdiff_t>(to);
+    if (engine) {
+      engine->insert_batch(first, last, std::back_inserter(reasons));
+    } else {
+      for (auto r = first; r != last; ++r) reasons.push_back(frame->offer(*r, records + reasons.size()));
+    }
+    for (std::size_t i = from; i < to; ++i) {
+      const RejectReason reason = reasons[i - from];
+      const std::uint64_t index = records++;
+      ++rejected_by_reason[reason];
+      if (reason == RejectReason::accepted) {
+        ++inserted_since;
+        last_time = chunk[i].t;
+      } else {
+        rejected.push_back(index);
+      }
+    }
+  };
   for (;;) {
     chunk.clear();
     if (reader->read(chunk, 65536) == 0) break;
-    for (const io::Record& r : chunk) {
+    std::size_t offered = 0;  // chunk[0, offered) went to the clusterer
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      const io::Record& r = chunk[i];
       if (!started && std::isfinite(r.t)) {
         started = true;
         first_time = r.t;
         next_retrieval = first_time + period;
       }
       if (started && std::isfinite(r.t) && r.t >= next_retrieval) {
+        // The records before this one first, then the retrieval.
+        offer_records(offered, i);
+        offered = i;
         // No cycle while the engine buffers its first window for the grid.
         if (engine) engine->advance_to(next_retrieval);
         const bool calibrating = engine && engine->calibrating();
@@ -347,21 +378,8 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
         next_k = std::max(next_k + 1.0, std::floor((r.t - first_time) / period) + 1.0);
         next_retrieval = first_time + next_k * period;
       }
-      const std::uint64_t index = records++;
-      RejectReason reason;
-      if (engine) {
-        reason = engine->insert(r, r.t);
-      } else {
-        reason = frame->offer(r, index);
-      }
-      ++rejected_by_reason[reason];
-      if (reason == RejectReason::accepted) {
-        ++inserted_since;
-        last_time = r.t;
-      } else {
-        rejected.push_back(index);
-      }
     }
+    offer_records(offered, chunk.size());
     if (progress && std::chrono::steady_clock::now() - last_progress > std::chrono::milliseconds(250)) {
       last_progress = std::chrono::steady_clock::now();
       if (declared && *declared > 0) {
