@@ -38,8 +38,9 @@ void for_each_mask_cell_at(const GridShape& grid, CellIndex center, int half, F&
     c0 = std::max<std::int64_t>(0, c0);
     c1 = std::min<std::int64_t>(cols - 1, c1);
   }
-  // The first column wrapped once; then one compare per cell, no division.
-  const std::int64_t first = ((c0 % cols) + cols) % cols;
+  // The first column wrapped once (c0 >= -half > -cols when the mask is
+  // narrower than the ring, else 0); then one compare per cell, no division.
+  const std::int64_t first = c0 < 0 ? c0 + cols : c0;
   const std::int64_t width = c1 - c0 + 1;
   for (std::int64_t r = r0; r <= r1; ++r) {
     const std::int64_t row_start = r * cols;
