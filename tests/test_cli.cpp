@@ -145,6 +145,45 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
   CHECK(fs::file_size(dir / "last.ply") > 0);
 }
 
+TEST_CASE("cluster --connectivity forest: the partition of lazy-bfs in every cycle, verified; not in frame mode") {
+  const fs::path dir = temp_dir("connectivity");
+  write_stream_csv(dir / "stream.csv", 0.35);
+  std::map<std::string, std::vector<LabelRow>> rows;
+  for (const std::string connectivity : {"lazy-bfs", "forest"}) {
+    const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30",
+                                 "--window-time", "0.1", "--index", "capped", "--connectivity", connectivity, "--verify",
+                                 "--labels", (dir / (connectivity + ".csv")).string(), "--cycles", "all", "--report",
+                                 (dir / (connectivity + ".json")).string()});
+    INFO(result.err);
+    REQUIRE(result.code == 0);  // --verify: every cycle equals the batch clusterer's partition
+    rows[connectivity] = read_labels(dir / (connectivity + ".csv"));
+    CHECK(slurp(dir / (connectivity + ".json")).find("\"connectivity\": \"" + connectivity + "\"") !=
+          std::string::npos);
+  }
+  const auto& lazy = rows["lazy-bfs"];
+  const auto& forest = rows["forest"];
+  REQUIRE(forest.size() == lazy.size());
+  std::map<std::uint64_t, std::pair<std::vector<std::int64_t>, std::vector<std::int64_t>>> cycles;
+  for (std::size_t i = 0; i < lazy.size(); ++i) {
+    REQUIRE(forest[i].cycle == lazy[i].cycle);
+    REQUIRE(forest[i].index == lazy[i].index);
+    CHECK((forest[i].label == -1) == (lazy[i].label == -1));
+    cycles[lazy[i].cycle].first.push_back(lazy[i].label);
+    cycles[lazy[i].cycle].second.push_back(forest[i].label);
+  }
+  CHECK(cycles.size() >= 6);
+  for (const auto& entry : cycles) {
+    INFO("cycle " << entry.first);
+    CHECK(sc::test::partition_mismatch(entry.second.second, entry.second.first) == "");
+  }
+  const auto frame = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--connectivity", "forest"});
+  CHECK(frame.code == 2);
+  CHECK(frame.err.find("--connectivity") != std::string::npos);
+  const auto bad = run_cli({"cluster", (dir / "stream.csv").string(), "--connectivity", "bfs"});
+  CHECK(bad.code == 2);
+  CHECK(bad.err.find("--connectivity: expected lazy-bfs|forest") != std::string::npos);
+}
+
 TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabelled") {
   const fs::path dir = temp_dir("frame");
   write_stream_csv(dir / "stream.csv", 0.2);

@@ -19,6 +19,7 @@
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -317,6 +318,25 @@ TEST_CASE("evaluate: an ego-motion burst merges objects until its points leave t
   CHECK(rows == e.cycles.at("carc").size() + 1);
 }
 
+TEST_CASE("evaluate: --connectivity forest scores every retrieval as lazy-bfs does") {
+  // Same partitions, so the same metrics, retrieval for retrieval (the
+  // series has no cost column); the JSON names the strategy.
+  const sc::test::TempDir dir("evaluate", "evaluate_connectivity");
+  std::map<std::string, std::string> series, json;
+  for (const std::string connectivity : {"lazy-bfs", "forest"}) {
+    const auto r = run_cli({"evaluate", "--sensor", "avia", "--scene", "office", "--duration", "0.3", "--theta", "80",
+                            "--method", "carc", "--connectivity", connectivity, "--series",
+                            dir.path(connectivity + ".csv"), "--json", dir.path(connectivity + ".json"), "--quiet"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    series[connectivity] = slurp(dir.path(connectivity + ".csv"));
+    json[connectivity] = slurp(dir.path(connectivity + ".json"));
+  }
+  CHECK(std::count(series["forest"].begin(), series["forest"].end(), '\n') >= 4);
+  CHECK(series["forest"] == series["lazy-bfs"]);
+  CHECK(json["forest"].find("\"connectivity\": \"forest\"") != std::string::npos);
+  CHECK(json["lazy-bfs"].find("\"connectivity\": \"lazy-bfs\"") != std::string::npos);
+}
+
 TEST_CASE("evaluate: usage errors exit 2 with a clear message") {
   const auto expect = [](const std::vector<std::string>& args, const std::string& says) {
     const auto r = run_cli(args);
@@ -330,6 +350,7 @@ TEST_CASE("evaluate: usage errors exit 2 with a clear message") {
   expect({"evaluate", "--sensor", "synthetic", "--scene", "room"}, "simulated sensor");
   expect({"evaluate", "--burst", "1"}, "--burst: expected START:LENGTH");
   expect({"evaluate", "--frames", "x"}, "--frames: expected sliding|tumbling");
+  expect({"evaluate", "--connectivity", "bfs"}, "--connectivity: expected lazy-bfs|forest");
   expect({"evaluate", "--structure", "x"}, "--structure: expected keep|drop");
   expect({"evaluate", "--mask", "4"}, "--mask");
   expect({"evaluate", "--theta", "95"}, "theta");

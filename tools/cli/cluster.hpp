@@ -34,13 +34,14 @@
 
 namespace streamclust::cli {
 
-/// The tool's configuration: projection and index are compiled in (they
-/// shape the data structures); linkage, window and resolution are chosen at
-/// run time. Phases are timed for the report.
-template <class Projection, class Index>
+/// The tool's configuration: projection, index and connectivity are
+/// compiled in (they shape the data structures); linkage, window and
+/// resolution are chosen at run time. Phases are timed for the report.
+template <class Projection, class Index, class Connectivity = LazyBfsConnectivity>
 struct ToolConfig {
   using projection = Projection;
   using spatial_index = Index;
+  using connectivity = Connectivity;
   using linkage = RuntimeLinkage;
   using window = RuntimeWindow;
   using resolution = RuntimeResolution;
@@ -159,11 +160,25 @@ inline std::optional<std::size_t> first_partition_mismatch(const std::vector<std
   return std::nullopt;
 }
 
+/// A policy type as a value, for generic lambdas.
+template <class T>
+struct TypeTag {
+  using type = T;
+};
+
+/// Calls `f(TypeTag<Connectivity>{})` with the connectivity policy that
+/// `kind` names and returns what it returns.
+template <class F>
+decltype(auto) with_connectivity(ConnectivityKind kind, F&& f) {
+  if (kind == ConnectivityKind::spanning_forest) return f(TypeTag<SpanningForestConnectivity>{});
+  return f(TypeTag<LazyBfsConnectivity>{});
+}
+
 /// Runs `streamclust cluster`. Returns the exit code; throws io::InputError
 /// (exit 4) and UsageError (exit 2).
-template <class Projection, class Index>
+template <class Projection, class Index, class Connectivity>
 int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
-  using Config = ToolConfig<Projection, Index>;
+  using Config = ToolConfig<Projection, Index, Connectivity>;
   const ClustererParams<Config> params = [&] {
     try {
       return make_params<Config>(o);
@@ -202,6 +217,9 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   report.input = o.input;
   report.format = io::to_string(reader->info().format);
   report.mode = o.mode == Mode::continuous ? "continuous" : "frame";
+  if (engine) {  // named from the engine's type: what ran, not what was asked
+    report.connectivity = Connectivity::strategy == ConnectivityStrategy::spanning_forest ? "forest" : "lazy-bfs";
+  }
 
   RejectionCounts rejected_by_reason{};
   std::deque<std::uint64_t> rejected;  // stream indices of rejected records, ascending
@@ -428,21 +446,25 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   return kOk;
 }
 
-/// Dispatches on projection and index, the two compiled-in policies.
+/// Dispatches on projection, index and connectivity, the compiled-in
+/// policies (frame mode runs no engine: its connectivity is the default).
 inline int run_cluster(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
-  if (o.projection == ProjectionKind::spherical) {
-    switch (o.index) {
-      case IndexKind::bucket: return run_cluster_with<SphericalProjection, BucketGrid>(o, out, err);
-      case IndexKind::capped: return run_cluster_with<SphericalProjection, CappedGrid>(o, out, err);
-      case IndexKind::overwrite: return run_cluster_with<SphericalProjection, OverwriteGrid>(o, out, err);
+  return with_connectivity(o.connectivity, [&](auto connectivity) {
+    using C = typename decltype(connectivity)::type;
+    if (o.projection == ProjectionKind::spherical) {
+      switch (o.index) {
+        case IndexKind::bucket: return run_cluster_with<SphericalProjection, BucketGrid, C>(o, out, err);
+        case IndexKind::capped: return run_cluster_with<SphericalProjection, CappedGrid, C>(o, out, err);
+        case IndexKind::overwrite: return run_cluster_with<SphericalProjection, OverwriteGrid, C>(o, out, err);
+      }
     }
-  }
-  switch (o.index) {
-    case IndexKind::bucket: return run_cluster_with<CylindricalProjection, BucketGrid>(o, out, err);
-    case IndexKind::capped: return run_cluster_with<CylindricalProjection, CappedGrid>(o, out, err);
-    case IndexKind::overwrite: return run_cluster_with<CylindricalProjection, OverwriteGrid>(o, out, err);
-  }
-  return kUsage;
+    switch (o.index) {
+      case IndexKind::bucket: return run_cluster_with<CylindricalProjection, BucketGrid, C>(o, out, err);
+      case IndexKind::capped: return run_cluster_with<CylindricalProjection, CappedGrid, C>(o, out, err);
+      case IndexKind::overwrite: return run_cluster_with<CylindricalProjection, OverwriteGrid, C>(o, out, err);
+    }
+    return static_cast<int>(kUsage);
+  });
 }
 
 }  // namespace streamclust::cli

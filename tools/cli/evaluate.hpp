@@ -272,10 +272,10 @@ inline bool window_is_full(double time, double first_time, double window_seconds
 /// C-ARC on `grid`; with `baseline_labelled` (one entry per evaluated
 /// retrieval, from run_baseline_method) each retrieval is also scored on the
 /// points the baseline labelled.
-template <class Index>
+template <class Index, class Connectivity>
 MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Record>& records, GridSize grid,
                              const LabelledSets* baseline_labelled = nullptr) {
-  using Config = ToolConfig<SphericalProjection, Index>;
+  using Config = ToolConfig<SphericalProjection, Index, Connectivity>;
   ClusterOptions c = o.policy;
   c.grid = std::make_pair(grid.rows, grid.cols);
   StreamClusterer<Config> engine(make_params<Config>(c));
@@ -423,9 +423,11 @@ inline Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<i
     if (o.run_baseline) baseline = run_baseline_method(o, records, e.grid.grid, both ? &labelled : nullptr);
     if (o.run_carc) {
       const LabelledSets* sets = both ? &labelled : nullptr;
-      e.methods.push_back(o.policy.index == IndexKind::capped
-                              ? run_carc_method<CappedGrid>(o, records, e.grid.grid, sets)
-                              : run_carc_method<BucketGrid>(o, records, e.grid.grid, sets));
+      e.methods.push_back(with_connectivity(o.policy.connectivity, [&](auto connectivity) {
+        using C = typename decltype(connectivity)::type;
+        return o.policy.index == IndexKind::capped ? run_carc_method<CappedGrid, C>(o, records, e.grid.grid, sets)
+                                                   : run_carc_method<BucketGrid, C>(o, records, e.grid.grid, sets);
+      }));
     }
     if (baseline) e.methods.push_back(std::move(*baseline));
   } catch (const std::invalid_argument& ex) {
@@ -498,6 +500,8 @@ inline void write_evaluation_json(std::ostream& out, const EvaluateOptions& o, c
       << ", \"distance\": " << json_number(static_cast<double>(p.distance)) << ", \"mask\": " << p.mask
       << ", \"window_time\": " << json_number(p.window_seconds) << ", \"rate\": " << json_number(p.rate_hz)
       << ", \"index\": " << json_string(p.index == IndexKind::capped ? "capped" : "bucket") << ", \"cap\": " << p.cap
+      << ", \"connectivity\": "
+      << json_string(p.connectivity == ConnectivityKind::spanning_forest ? "forest" : "lazy-bfs")
       << ", \"multiplicity\": " << json_number(static_cast<double>(p.max_multiplicity))
       << ", \"frames\": " << json_string(o.frames == FrameSchedule::sliding ? "sliding" : "tumbling")
       << ", \"min_points\": " << o.min_points

@@ -61,6 +61,8 @@ policies (a preset first, then every option below overrides it):
   --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)
   --mask W                          odd mask width in cells (default 5)
   --index bucket|capped|overwrite   --cap K (capped grid, default 4)
+  --connectivity lazy-bfs|forest    the engine's components: the paper's (default) or the
+                                    spanning forest (same partition, faster; own stable ids)
   --projection spherical|cylindrical
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
   --min-range M                     closer points are rejected (default 0.1)
@@ -155,6 +157,7 @@ methods:
   --multiplicity T_M                adaptive-loop target (default 2; the paper's fine grid: 1.25)
   --grid auto|HxW                   a given grid instead of the adaptive loop's
   --index bucket|capped  --cap K    C-ARC's grid (default bucket)
+  --connectivity lazy-bfs|forest    C-ARC's components (default lazy-bfs; same scores)
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX   (default: the sensor's FOV)
   --min-range M                     (default 0.1)
   --structure keep|drop             drop: remove the ground-truth structure points (ground, walls)

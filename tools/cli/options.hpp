@@ -30,6 +30,9 @@ enum class ProjectionKind { spherical, cylindrical };
 enum class IndexKind { bucket, capped, overwrite };
 enum class LinkageKind { angular, euclidean };
 enum class Mode { continuous, frame };
+/// How the engine keeps its components: the paper's lazy BFS, or the
+/// spanning forest (same partition, faster; see docs/policies.md).
+enum class ConnectivityKind { lazy_bfs, spanning_forest };
 
 /// Everything `streamclust cluster` needs, after presets and overrides.
 struct ClusterOptions {
@@ -50,6 +53,7 @@ struct ClusterOptions {
   double rate_hz = 20.0;
   std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
   float max_multiplicity = 2.0f;
+  ConnectivityKind connectivity = ConnectivityKind::lazy_bfs;
   Mode mode = Mode::continuous;
   // field of view (spherical: degrees; cylindrical: azimuth degrees, z metres)
   float azimuth_min = -180.0f, azimuth_max = 180.0f;
@@ -152,7 +156,7 @@ class ArgCursor {
 
 /// Parses one clustering-policy option shared by `cluster` and `evaluate`
 /// (window time, rate, linkage, theta, min ray angle, distance, mask, index,
-/// cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
+/// connectivity, cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
 /// under the cursor is not one of them (nothing consumed).
 inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   const std::string& a = c.option();
@@ -174,6 +178,9 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   } else if (a == "--index") {
     const std::string v = c.choice({"bucket", "capped", "overwrite"});
     o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
+  } else if (a == "--connectivity") {
+    o.connectivity =
+        c.choice({"lazy-bfs", "forest"}) == "forest" ? ConnectivityKind::spanning_forest : ConnectivityKind::lazy_bfs;
   } else if (a == "--cap") {
     o.cap = static_cast<std::uint32_t>(parse_count(a, c.value()));
   } else if (a == "--grid") {
@@ -291,6 +298,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   o.window_is_count = window_count_set;
   validate_policy_options(o);
   if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
+  if (o.connectivity != ConnectivityKind::lazy_bfs && o.mode == Mode::frame)
+    throw UsageError("--connectivity chooses the continuous engine's strategy: use --mode continuous");
   return o;
 }
 

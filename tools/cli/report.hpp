@@ -34,6 +34,7 @@ struct CycleReport {
 
 struct Report {
   std::string input, format, mode;
+  std::string connectivity;  ///< continuous mode: "lazy-bfs" or "forest"; empty in frame mode
   std::uint32_t grid_rows = 0, grid_cols = 0;
   bool grid_wraps = false;
   bool adaptive = false;
@@ -85,7 +86,9 @@ void write_label_rows(std::ostream& out, const Rows& w) {
 inline void write_report(std::ostream& o, const Report& r) {
   o.precision(9);
   o << "{\n  \"input\": " << json_string(r.input) << ",\n  \"format\": " << json_string(r.format)
-    << ",\n  \"mode\": " << json_string(r.mode) << ",\n";
+    << ",\n  \"mode\": " << json_string(r.mode);
+  if (!r.connectivity.empty()) o << ", \"connectivity\": " << json_string(r.connectivity);
+  o << ",\n";
   o << "  \"grid\": {\"rows\": " << r.grid_rows << ", \"cols\": " << r.grid_cols
     << ", \"wrap_columns\": " << (r.grid_wraps ? "true" : "false") << ", \"adaptive\": " << (r.adaptive ? "true" : "false")
     << ", \"stop\": " << json_string(to_string(r.stop)) << ", \"trace\": [";
