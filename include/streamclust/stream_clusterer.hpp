@@ -779,7 +779,6 @@ class StreamClusterer {
     }
     // The mask is listed (and its index cells prefetched) before the
     // eviction, so those cache misses overlap the eviction's work.
-    // (A cell found ahead had its mask prefetched then: no second round.)
     const CellIndex cell = known_cell != kNoCell ? known_cell : grid_.cell_of(pr.u, pr.v);
     list_mask_cells(cell);
     const auto t0 = clock_now();
@@ -858,9 +857,8 @@ class StreamClusterer {
   }
 
   /// Lists the mask cells around `cell` into `mask_cells_` for the next
-  /// `link` and, when the index offers it and `prefetch` is set, prefetches
-  /// them. O(w^2).
-  void list_mask_cells(CellIndex cell, bool prefetch = true) {
+  /// `link` and, when the index offers it, prefetches them. O(w^2).
+  void list_mask_cells(CellIndex cell) {
     const auto width = static_cast<std::size_t>(2 * half_ + 1);
     if (mask_cells_.size() < width * width) mask_cells_.resize(width * width);  // once: at most w^2 cells
     if constexpr (keeps_forest) {
@@ -873,9 +871,7 @@ class StreamClusterer {
     detail::for_each_mask_cell_at(grid_, cell, half_, [&](CellIndex c, std::int64_t row, std::int64_t col) {
       if (with_at) at[n] = MaskCellAt{static_cast<std::int32_t>(row), static_cast<std::int32_t>(col)};
       out[n++] = c;
-      if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) {
-        if (prefetch) index_.prefetch(c);
-      }
+      if constexpr (has_spatial_index_prefetch_v<spatial_index_type>) index_.prefetch(c);
     });
     mask_count_ = n;
   }
