@@ -37,6 +37,7 @@
 //                      [--timed-cycles N] [--filter TEXT] [--out DIR]
 //                      [--scenario NAME] [--data DIR] [--smoke] [--list]
 //                      [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]
+//                      [--capacity K] [--packet POINTS]
 // (--scenario: exactly one scenario, by its --list name; bench/run.sh runs
 // every scenario as its own process, two at a time, and merges the outputs
 // with merge_summaries.py.)
@@ -217,12 +218,18 @@ sc::CArcParams sensor_params(Sensor s, double window) {
 /// --prune-witnesses N: SpanningForestConnectivity::Params::prune_witnesses
 /// of the spanning-forest configurations (-1: the default), for A/B runs.
 long g_prune_witnesses = -1;
+/// --capacity K: CappedGrid::Params::capacity of the capped configurations
+/// (-1: the default), for A/B runs.
+long g_capacity = -1;
 
 template <class Config>
 sc::ClustererParams<Config> engine_params(const Scenario& s) {
   auto params = sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
   if constexpr (std::is_same_v<typename sc::config_traits<Config>::connectivity, sc::SpanningForestConnectivity>) {
     if (g_prune_witnesses >= 0) params.connectivity.prune_witnesses = static_cast<std::uint32_t>(g_prune_witnesses);
+  }
+  if constexpr (std::is_same_v<typename sc::config_traits<Config>::spatial_index, sc::CappedGrid>) {
+    if (g_capacity >= 0) params.spatial_index.capacity = static_cast<std::uint32_t>(g_capacity);
   }
   return params;
 }
@@ -856,6 +863,9 @@ Options parse(int argc, char** argv) {
       o.trace_allocs = true;
     } else if (a == "--prune-witnesses") {
       g_prune_witnesses = static_cast<long>(parse_count(a, value(), 0));
+    } else if (a == "--capacity") {
+      g_capacity = static_cast<long>(parse_count(a, value(), 1));
+      if (g_capacity > 255) throw std::invalid_argument("--capacity: expected 1 to 255 points per cell");
     } else if (a == "--packet") {
       o.packet = parse_count(a, value(), 0);
     } else if (a == "--spin-up") {
@@ -865,7 +875,7 @@ Options parse(int argc, char** argv) {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
                    "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
                    "                     [--list] [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]\n"
-                   "                     [--packet POINTS]\n";
+                   "                     [--capacity K] [--packet POINTS]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");
