@@ -70,6 +70,24 @@ sc::ComponentId label_of(const Engine& e, std::uint64_t stream_index) {
   return sc::kNoComponent;
 }
 
+/// The two results are the same: every point's stream index and label, and
+/// every component's id, size, centroid and time span.
+void check_same_result(const sc::Clustering& a, const sc::Clustering& b) {
+  REQUIRE(b.points.size() == a.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    REQUIRE(b.points[i].stream_index == a.points[i].stream_index);
+    REQUIRE(b.points[i].label == a.points[i].label);
+  }
+  REQUIRE(b.components.size() == a.components.size());
+  for (std::size_t k = 0; k < a.components.size(); ++k) {
+    CHECK(b.components[k].id == a.components[k].id);
+    CHECK(b.components[k].size == a.components[k].size);
+    CHECK(b.components[k].centroid == a.components[k].centroid);
+    CHECK(b.components[k].time_begin == a.components[k].time_begin);
+    CHECK(b.components[k].time_end == a.components[k].time_end);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("isolation, expansion and bridging into the most recently created cluster") {
@@ -274,21 +292,64 @@ TEST_CASE_TEMPLATE("insert_batch gives exactly what insert gives: rejections, st
       CHECK(batched.size() == single.size());
       const sc::Clustering& a = single.retrieve();
       const sc::Clustering& b = batched.retrieve();
-      REQUIRE(b.points.size() == a.points.size());
-      for (std::size_t i = 0; i < a.points.size(); ++i) {
-        REQUIRE(b.points[i].stream_index == a.points[i].stream_index);
-        REQUIRE(b.points[i].label == a.points[i].label);
-      }
-      REQUIRE(b.components.size() == a.components.size());
-      for (std::size_t k = 0; k < a.components.size(); ++k) {
-        CHECK(b.components[k].id == a.components[k].id);
-        CHECK(b.components[k].size == a.components[k].size);
-        CHECK(b.components[k].centroid == a.components[k].centroid);
-      }
+      check_same_result(a, b);
       retrievals_with_labels += a.points.empty() ? 0 : 1;
     }
     CHECK(retrievals_with_labels > 3);
     if (kind == sc::test::StreamKind::invalid_mixed) CHECK(single.rejections().rejected() > 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("reserve() changes nothing a result shows, wherever the stream is when it is called", Preset,
+                   sc::CArcConfig, sc::CArcCappedFastConfig, sc::CArcRebuildConfig) {
+  // 3,000 points at 4 kHz through a 50 ms window (about 200 points): the
+  // rings' first 1,024 slots wrap, so a reservation after point 1,024 moves
+  // a window that straddles the wrap. Reservations before the first point,
+  // during the calibration (point 50), mid-stream (point 1,500), and one
+  // smaller than the rings (point 2,200: a no-op); a retrieval every 100
+  // points, compared with an engine that never reserves.
+  struct Call {
+    std::size_t at;      // points offered before the call
+    std::size_t points;  // reserve(points)
+  };
+  const Call calls[] = {{0, 4000}, {50, 5000}, {1500, 34000}, {2200, 100}};
+  for (std::uint64_t seed = 0; seed < 4; ++seed) {
+    const auto params = sc::test::short_window_params<Preset>();
+    sc::StreamClusterer<Preset> plain(params);
+    sc::StreamClusterer<Preset> reserved(params);
+    const auto stream = sc::test::make_stream(sc::test::StreamKind::blobs, 3000, seed, 4000.0);
+    std::mt19937_64 rng(seed);
+    std::size_t retrievals_with_labels = 0;
+    std::size_t offered = 0;
+    const auto offer_until = [&](std::size_t end) {
+      while (offered < end) {
+        const std::size_t stop = std::min(end, offered + 100);
+        sc::test::offer(plain, stream, offered, stop, 0, rng);
+        sc::test::offer(reserved, stream, offered, stop, 0, rng);
+        offered = stop;
+        const sc::Clustering& a = plain.retrieve();
+        const sc::Clustering& b = reserved.retrieve();
+        INFO("seed " << seed << ", after point " << stop - 1);
+        check_same_result(a, b);
+        retrievals_with_labels += a.points.empty() ? 0 : 1;
+      }
+    };
+    std::size_t most = 0;  // the largest reservation so far
+    for (const Call& call : calls) {
+      offer_until(call.at);
+      const std::size_t ring_before = reserved.memory_usage().point_ring;
+      reserved.reserve(call.points);
+      const std::size_t ring_after = reserved.memory_usage().point_ring;
+      INFO("seed " << seed << ", reserve(" << call.points << ") after point " << call.at);
+      if (call.points > most) {
+        CHECK(ring_after >= call.points * 16);  // at least a 16-byte record per slot
+        most = call.points;
+      } else {
+        CHECK(ring_after == ring_before);  // never shrinks
+      }
+    }
+    offer_until(stream.size());
+    CHECK(retrievals_with_labels > 20);
   }
 }
 

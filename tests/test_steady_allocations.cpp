@@ -177,19 +177,26 @@ void run_blocks(Engine& engine, double rate, double seconds, bool retrieve, std:
   }
 }
 
+/// The fixed grid with a 0.1 s time window, K handles per cell and the
+/// Euclidean linkage at 0.05 m.
+template <class Config>
+sc::ClustererParams<Config> time_params(std::uint32_t capacity) {
+  sc::ClustererParams<Config> p;
+  p.resolution = {kRows, kCols};
+  p.window.duration = 0.1;  // [s]
+  p.spatial_index.capacity = capacity;
+  p.linkage.max_distance = 0.05f;  // [m]
+  p.mask_size = 5;
+  return p;
+}
+
 /// A window that grows back to a size its point rings have held already
 /// (a sensor whose rate dips and recovers) allocates nothing: the per-point
 /// vectors of the retrieval (labels, union-find) follow the rings'
 /// capacity, not the largest window retrieved so far.
 template <class Config>
 void check_window_regrowth() {
-  sc::ClustererParams<Config> p;
-  p.resolution = {kRows, kCols};
-  p.window.duration = 0.1;  // [s]
-  p.spatial_index.capacity = 4;
-  p.linkage.max_distance = 0.05f;  // [m]
-  p.mask_size = 5;
-  sc::StreamClusterer<Config> engine(p);
+  sc::StreamClusterer<Config> engine(time_params<Config>(4));
   std::size_t i = 0;
   double t = 0.0;
   run_blocks(engine, 3000.0, 0.3, false, i, t);  // the rings grow to about 300 points
@@ -203,6 +210,41 @@ void check_window_regrowth() {
   CHECK(engine.last_result().points.size() == engine.size());
   CHECK(engine.last_result().components.size() == 25);
   CHECK(scope.allocations() == 0);
+}
+
+/// A window that grows past every size it has had (a scene that opens up:
+/// the Avia forest's window grows from 71,000 to 80,000 points long after
+/// start-up) allocates nothing when `reserve` covered it: the rings, the
+/// per-point vectors of the retrieval and the band table were sized up
+/// front. Without the reservation the same stream allocates. What grows
+/// with the edges stays the same: one point per cell (K = 1), so each point
+/// links to its cell's previous point only, and a retrieval every 300
+/// points, so each fold takes as many new edges at any rate. Returns the
+/// allocations counted while the window grows from about 1,500 to about
+/// 2,500 points.
+template <class Config>
+std::uint64_t allocations_while_the_window_grows(std::size_t reserve_points) {
+  sc::StreamClusterer<Config> engine(time_params<Config>(1));
+  if (reserve_points > 0) engine.reserve(reserve_points);
+  std::size_t i = 0;
+  double t = 0.0;
+  const auto run = [&](double rate, std::size_t points) {  // [points/s], points
+    for (std::size_t k = 1; k <= points; ++k) {
+      t += 1.0 / rate;
+      engine.insert(block_point(i++, t));
+      if (k % 300 == 0) engine.retrieve();
+    }
+  };
+  run(15000.0, 7500);  // 0.5 s, about 1,500 points in the window: rings of about 1,690
+  REQUIRE(engine.size() < 1600);
+  REQUIRE(engine.last_result().components.size() == 25);
+
+  CountingScope scope;
+  run(25000.0, 7500);  // 0.3 s, about 2,500: past those rings
+  CHECK(engine.size() > 2400);
+  CHECK(engine.last_result().points.size() == engine.size());
+  CHECK(engine.last_result().components.size() == 25);
+  return scope.allocations();
 }
 
 }  // namespace
@@ -229,4 +271,10 @@ TEST_CASE("capped-grid presets allocate nothing in steady state, even when the m
 TEST_CASE("a window growing back within its rings allocates nothing") {
   SUBCASE("spanning forest") { check_window_regrowth<CappedTimeConfig<sc::SpanningForestConnectivity>>(); }
   SUBCASE("union-find rebuild") { check_window_regrowth<CappedTimeConfig<sc::UnionFindRebuildConnectivity>>(); }
+}
+
+TEST_CASE("reserve(): a window growing to a new maximum within the reservation allocates nothing") {
+  using Config = CappedTimeConfig<sc::SpanningForestConnectivity>;  // CArcCappedFastConfig's strategy
+  CHECK(allocations_while_the_window_grows<Config>(3000) == 0);
+  CHECK(allocations_while_the_window_grows<Config>(0) > 0);  // the control: the rings had to grow
 }

@@ -37,7 +37,7 @@
 //                      [--timed-cycles N] [--filter TEXT] [--out DIR]
 //                      [--scenario NAME] [--data DIR] [--smoke] [--list]
 //                      [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]
-//                      [--capacity K] [--packet POINTS]
+//                      [--capacity K] [--reserve POINTS] [--packet POINTS]
 // (--scenario: exactly one scenario, by its --list name; bench/run.sh runs
 // every scenario as its own process, two at a time, and merges the outputs
 // with merge_summaries.py.)
@@ -221,6 +221,9 @@ long g_prune_witnesses = -1;
 /// --capacity K: CappedGrid::Params::capacity of the capped configurations
 /// (-1: the default), for A/B runs.
 long g_capacity = -1;
+/// --reserve POINTS: StreamClusterer::reserve(POINTS) right after
+/// construction (0: none, the default), to measure a pre-sized engine.
+std::size_t g_reserve = 0;
 
 template <class Config>
 sc::ClustererParams<Config> engine_params(const Scenario& s) {
@@ -413,6 +416,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
   {
     sc::bench::AllocScope scope;
     engine.emplace(params);
+    if (g_reserve > 0) engine->reserve(g_reserve);
   }
   sc::BatchClusterer<Config> batch(params, sc::BatchMode::insertion_order);
   using Frame = WithOverwrite<Config>;
@@ -866,6 +870,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--capacity") {
       g_capacity = static_cast<long>(parse_count(a, value(), 1));
       if (g_capacity > 255) throw std::invalid_argument("--capacity: expected 1 to 255 points per cell");
+    } else if (a == "--reserve") {
+      g_reserve = parse_count(a, value(), 0);
     } else if (a == "--packet") {
       o.packet = parse_count(a, value(), 0);
     } else if (a == "--spin-up") {
@@ -875,7 +881,7 @@ Options parse(int argc, char** argv) {
       std::cout << "usage: bench_latency [--cycles N] [--peer-every K] [--pcl-every K] [--timed-cycles N]\n"
                    "                     [--filter TEXT] [--scenario NAME] [--out DIR] [--data DIR] [--smoke]\n"
                    "                     [--list] [--trace-allocs] [--spin-up SECONDS] [--prune-witnesses N]\n"
-                   "                     [--capacity K] [--packet POINTS]\n";
+                   "                     [--capacity K] [--reserve POINTS] [--packet POINTS]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (try --help)");

@@ -262,6 +262,24 @@ class StreamClusterer {
     return insert_batch(begin(points), end(points));
   }
 
+  /// Sizes the engine now for windows of up to `window_points` points, so
+  /// that a window growing up to that size later allocates nothing for its
+  /// points: the point rings, the per-point vectors of the retrieval (which
+  /// follow the rings' capacity at the next retrieval: labels, union-find,
+  /// forest) and the spanning forest's band table (for a window plus as
+  /// many new points between two folds). Without it they grow with the
+  /// window, by 1/8 past each new maximum, which a scene that opens up can
+  /// reach long after start-up. For a real-time loop that must not allocate
+  /// once running: reserve the most points the window can hold, e.g. the
+  /// sensor's point rate x T_B plus a margin. What grows with the edges and
+  /// the components (edge storage, summaries, votes) still grows at its
+  /// first peaks, as without it. Never shrinks. O(window_points + size());
+  /// memory as `memory_usage()`'s point ring, result and scratch per point.
+  void reserve(std::size_t window_points) {
+    if (window_points > ring_capacity_) grow_rings(std::max<std::size_t>(window_points, kMinRingCapacity));
+    if constexpr (keeps_forest) fresh_.reserve_span(2 * std::size_t{ring_capacity_});
+  }
+
   /// Evicts the points that have left the window at stream time `time` [s]
   /// without inserting anything (a quiet sensor). A time earlier than the
   /// newest point's is ignored; later points earlier than `time` are then
@@ -2084,7 +2102,13 @@ class StreamClusterer {
   /// growing from empty reallocates O(log N) times (factor 1.125).
   void reserve_points(std::size_t needed) {
     if (needed <= ring_capacity_) return;
-    const std::size_t capacity = std::max<std::size_t>(needed + needed / 8, kMinRingCapacity);
+    grow_rings(std::max<std::size_t>(needed + needed / 8, kMinRingCapacity));
+  }
+
+  /// Reallocates the point rings to `capacity` (> ring_capacity_) slots;
+  /// the live points move to slots [0, size) and the origin to the oldest
+  /// point. O(capacity).
+  void grow_rings(std::size_t capacity) {
     std::vector<PointRecord> grown(capacity);
     std::vector<StoredSample> grown_samples(capacity);
     std::vector<payload_type> grown_payloads(uses_payload ? capacity : 0);  // no ring without a payload

@@ -78,6 +78,14 @@ class AgeBands {
     edges_ += count;
   }
 
+  /// Sizes the band table for older endpoints spanning up to `handles`
+  /// points from `base` (12 bytes per kBandPoints points), so that `append`
+  /// does not grow it below that span. Never shrinks. O(bands).
+  void reserve_span(std::size_t handles) {
+    const std::size_t bands = handles / kBandPoints + 2;
+    if (bands > bands_.size()) bands_.resize(bands);
+  }
+
   /// Edges appended since the last reset, expired ones included.
   std::size_t size() const { return edges_; }
   bool empty() const { return edges_ == 0; }
