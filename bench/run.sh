@@ -35,7 +35,7 @@
 # Expected duration of the latency part with the defaults (72 scenarios then,
 # 78 now; measured on 2026-11-22: 21 min 27 s with 2 jobs on a quiet machine,
 # 35 min 16 s on 2026-11-23 on a host about 2x slower, 21 min 44 s on
-# 2026-11-24),
+# 2026-11-24, 19 min 26 s on 2026-11-26),
 # 1000 cycles), on the 2-core reference VM, estimated from a 50-cycle run of
 # every scenario with bench/latency/estimate_duration.py (engine of main
 # 0596598, see docs/benchmarks.md "Run time of the full record"):
