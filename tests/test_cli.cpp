@@ -11,6 +11,7 @@
 
 #include "support/cli_run.hpp"
 #include "support/partition.hpp"
+#include "support/temp_dir.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -31,12 +32,6 @@ using streamclust::test::run_cli;
 using streamclust::test::RunResult;
 using streamclust::test::slurp;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("streamclust_cli_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 /// Writes `seconds` of the synthetic stream as CSV; every 50th record gets a
 /// NaN coordinate (it must come back with label -1).
@@ -90,7 +85,8 @@ std::pair<std::uint32_t, std::uint32_t> report_grid(const std::string& json) {
 }  // namespace
 
 TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the batch clusterer") {
-  const fs::path dir = temp_dir("e2e");
+  const sc::test::TempDir tmp("cli", "e2e");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   const auto points = write_stream_csv(dir / "stream.csv", 0.35);
   const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30", "--window-time",
                            "0.1", "--rate", "20", "--labels", (dir / "labels.csv").string(), "--cycles", "all", "--report",
@@ -146,7 +142,8 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
 }
 
 TEST_CASE("cluster --connectivity forest: the partition of lazy-bfs in every cycle, verified; not in frame mode") {
-  const fs::path dir = temp_dir("connectivity");
+  const sc::test::TempDir tmp("cli", "connectivity");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   write_stream_csv(dir / "stream.csv", 0.35);
   std::map<std::string, std::vector<LabelRow>> rows;
   for (const std::string connectivity : {"lazy-bfs", "forest"}) {
@@ -185,7 +182,8 @@ TEST_CASE("cluster --connectivity forest: the partition of lazy-bfs in every cyc
 }
 
 TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabelled") {
-  const fs::path dir = temp_dir("frame");
+  const sc::test::TempDir tmp("cli", "frame");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   write_stream_csv(dir / "stream.csv", 0.2);
   const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--grid", "16x64",
                            "--labels", (dir / "labels.csv").string(), "--quiet"});
@@ -200,7 +198,8 @@ TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabel
 }
 
 TEST_CASE("info reports format, count and time span") {
-  const fs::path dir = temp_dir("info");
+  const sc::test::TempDir tmp("cli", "info");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   const auto points = write_stream_csv(dir / "stream.csv", 0.05);
   const auto result = run_cli({"info", (dir / "stream.csv").string()});
   INFO(result.err);
@@ -226,7 +225,8 @@ TEST_CASE("exit codes: help 0, usage 2, input 4") {
   CHECK(run_cli({"cluster", "a.csv", "--frobnicate"}).code == 2);
   CHECK(run_cli({"cluster", "a.csv", "--mode", "frame", "--verify"}).code == 2);
 
-  const fs::path dir = temp_dir("codes");
+  const sc::test::TempDir tmp("cli", "codes");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   const auto missing = run_cli({"cluster", (dir / "missing.csv").string()});
   CHECK(missing.code == 4);
   CHECK(missing.err.find("missing.csv") != std::string::npos);
@@ -258,7 +258,8 @@ TEST_CASE("the --verify comparison finds the first point where two partitions di
 }
 
 TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {
-  const fs::path dir = temp_dir("simulate");
+  const sc::test::TempDir tmp("cli", "simulate");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   const auto sim = run_cli({"simulate", "--sensor", "synthetic", "--scene", "room", "--seconds", "0.1", "--point-rate",
                         "20000", "--out", (dir / "s.csv").string()});
   INFO(sim.err);
@@ -301,7 +302,8 @@ TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor
   // (the same double as the literal 0.7), but (0.7 - 0.3) / 0.1 is
   // 3.9999999999999996 in double: floor() + 1 schedules 0.7 s again, and the
   // record at 0.72 s would trigger a second retrieval at 0.7 s.
-  const fs::path dir = temp_dir("schedule");
+  const sc::test::TempDir tmp("cli", "schedule");  // unique: the C++17 and C++20 builds run side by side
+  const fs::path& dir = tmp.dir;
   {
     std::ofstream f(dir / "stream.csv");
     f.precision(17);

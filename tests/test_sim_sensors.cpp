@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.hpp"
+
 namespace sim = streamclust::sim;
 namespace fs = std::filesystem;
 
@@ -190,8 +192,11 @@ Comparison circular_comparison(double radius) {
   return c;
 }
 
+/// A file in this process's own temp directory (the C++17 and C++20 builds
+/// of this test run side by side), removed at exit.
 fs::path temp_file(const char* name, const std::vector<unsigned char>& bytes) {
-  const fs::path p = fs::temp_directory_path() / (std::string("streamclust_test_sim_sensors_") + name);
+  static const streamclust::test::TempDir dir("sim_sensors", "files");
+  const fs::path p = dir.dir / name;
   std::ofstream out(p, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return p;
@@ -450,7 +455,7 @@ TEST_CASE("TableReplay: short, odd-sized, empty, missing or out-of-range files t
   check_throws_naming<RE>([&] { sim::TableReplay::mid360(empty.string()); }, "byte offset 0");
   const fs::path range = temp_file("range.bin", {0, 0, 0, 0, 0xA0, 0x8C, 0, 0});  // azimuth code 36000
   check_throws_naming<RE>([&] { sim::TableReplay::mid360(range.string()); }, "byte offset 4");
-  const fs::path missing = fs::temp_directory_path() / "streamclust_test_sim_sensors_missing.bin";
+  const fs::path missing = odd.parent_path() / "missing.bin";
   fs::remove(missing);
   check_throws_naming<RE>([&] { sim::TableReplay::mid360(missing.string()); }, missing.string());
   fs::remove(odd);
