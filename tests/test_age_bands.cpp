@@ -164,20 +164,30 @@ namespace {
 /// One fold, in place (detail::merge_forest) and by the reference (a new
 /// vector, std::stable_sort of kept + new edges, kept first on equal ages):
 /// the same forest, edge for edge. `kept` must be a forest in increasing
-/// age. Returns the merge's displaced count.
+/// age. Also checks the merge's counts of new edges read and accepted.
+/// Returns the merge's displaced count.
 std::size_t check_fold(const std::vector<Edge>& kept, const std::vector<Edge>& added, sc::PointHandle oldest,
                        std::uint32_t window, std::size_t capacity) {
   const sc::PointHandle newest = oldest + window - 1;
   const auto age = [newest](const auto& e) { return static_cast<std::uint32_t>(newest - e.older); };
-  std::vector<Edge> all = kept;
+  struct Tagged {
+    Edge edge;
+    bool is_new;
+  };
+  std::vector<Tagged> all;
+  for (const Edge& e : kept) all.push_back(Tagged{e, false});
   const std::vector<Edge> sorted_added = reference_order(added, oldest, window, newest);
-  all.insert(all.end(), sorted_added.begin(), sorted_added.end());
-  std::stable_sort(all.begin(), all.end(), [&](const Edge& a, const Edge& b) { return age(a) < age(b); });
+  for (const Edge& e : sorted_added) all.push_back(Tagged{e, true});
+  std::stable_sort(all.begin(), all.end(), [&](const Tagged& a, const Tagged& b) { return age(a.edge) < age(b.edge); });
   scd::UnionFind reference_sets;
   reference_sets.reset(window);
   std::vector<Edge> expected;
-  for (const Edge& e : all) {
-    if (joined(reference_sets, e.older - oldest, e.newer - oldest)) expected.push_back(e);
+  std::size_t expected_new_accepted = 0;
+  for (const Tagged& t : all) {
+    if (joined(reference_sets, t.edge.older - oldest, t.edge.newer - oldest)) {
+      expected.push_back(t.edge);
+      expected_new_accepted += t.is_new ? 1u : 0u;
+    }
   }
 
   std::vector<scd::HandleEdge> forest;
@@ -192,13 +202,16 @@ std::size_t check_fold(const std::vector<Edge>& kept, const std::vector<Edge>& a
   scd::RingQueue<scd::HandleEdge> displaced;
   scd::UnionFind sets;
   sets.reset(window);
-  const std::size_t moved = scd::merge_forest(forest, bands, displaced, oldest, window, age, [&](const scd::HandleEdge& e) {
-    return joined(sets, e.older - oldest, e.newer - oldest);
-  });
+  const scd::MergeCounts counts = scd::merge_forest(forest, bands, displaced, oldest, window, age,
+                                                    [&](const scd::HandleEdge& e) {
+                                                      return joined(sets, e.older - oldest, e.newer - oldest);
+                                                    });
   std::vector<Edge> got;
   for (const scd::HandleEdge& e : forest) got.push_back(Edge{e.older, e.newer});
   CHECK(got == expected);
-  return moved;
+  CHECK(counts.new_read == sorted_added.size());
+  CHECK(counts.new_accepted == expected_new_accepted);
+  return counts.displaced;
 }
 
 /// Kruskal's forest (increasing age) of random edges among `n` points from `oldest`.

@@ -31,6 +31,8 @@ struct Run {
   std::vector<sc::Clustering> retrievals;
   std::uint64_t edges_found = 0;
   std::uint64_t edges_pruned = 0;
+  std::uint64_t edges_folded = 0;
+  std::uint64_t edges_accepted = 0;
   std::size_t edge_storage_bytes = 0;  // at the end
 };
 
@@ -51,8 +53,18 @@ Run run(std::uint32_t witnesses) {
     engine.insert(sc::Point{p.x, p.y, p.z, p.intensity, p.t});
     if (p.t >= next_retrieval) {
       out.retrievals.push_back(engine.retrieve());
-      out.edges_found += engine.last_stats().edges_found;
-      out.edges_pruned += engine.last_stats().edges_pruned;
+      const sc::RetrievalStats& stats = engine.last_stats();
+      out.edges_found += stats.edges_found;
+      out.edges_pruned += stats.edges_pruned;
+      out.edges_folded += stats.edges_folded;
+      out.edges_accepted += stats.edges_accepted;
+      // The folds read only the kept new edges (the live ones), accept only
+      // some of them, and leave a spanning forest: one edge fewer than
+      // points per component.
+      CHECK(stats.edges_folded <= stats.edges_found - stats.edges_pruned);
+      CHECK(stats.edges_accepted <= stats.edges_folded);
+      const sc::Clustering& c = out.retrievals.back();
+      CHECK(stats.forest_edges == c.points.size() - c.components.size());
       next_retrieval += 0.05;
     }
   }
@@ -103,9 +115,16 @@ TEST_CASE_TEMPLATE("spanning forest: dropping redundant edges changes no label, 
   CHECK(one.edges_pruned * 5 > all.edges_found);  // > 20 %
   CHECK(three.edges_pruned > one.edges_pruned);
   CHECK(three.edge_storage_bytes < all.edge_storage_bytes);
+  // Most new edges close a cycle and the folds reject them; the filter drops
+  // edges before they reach a fold. (The forests may differ with it, the
+  // components at every moment do not.)
+  CHECK(all.edges_accepted > 0);
+  CHECK(all.edges_accepted * 2 < all.edges_folded);
+  CHECK(one.edges_folded < all.edges_folded);
   MESSAGE("new edges " << all.edges_found << ", dropped with 1 witness " << one.edges_pruned << ", with 3 "
-                       << three.edges_pruned << "; edge storage " << all.edge_storage_bytes << " -> "
-                       << three.edge_storage_bytes << " bytes");
+                       << three.edges_pruned << "; folded " << all.edges_folded << ", accepted " << all.edges_accepted
+                       << " (1 witness: " << one.edges_accepted << ", 3: " << three.edges_accepted
+                       << "); edge storage " << all.edge_storage_bytes << " -> " << three.edge_storage_bytes << " bytes");
 }
 
 TEST_CASE("spanning forest: prune_witnesses is validated") {

@@ -314,6 +314,9 @@ struct ScenarioResult {
   sc::PhaseTimes phase_mean{};
   double edges_found_mean = 0.0;  // spanning_forest: new edges found per cycle
   double edges_kept_mean = 0.0;   // of those, kept after pruning
+  double edges_folded_mean = 0.0;    // spanning_forest: new edges the folds read per cycle
+  double edges_accepted_mean = 0.0;  // of those, accepted into the forest
+  double forest_edges_mean = 0.0;    // the forest after the retrieval [edges]
   double timed_median_us = 0.0;
   double wall_seconds = 0.0;
 };
@@ -548,6 +551,9 @@ void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, Sens
   sc::PhaseTimes sum{};
   double edges_found = 0.0;
   double edges_kept = 0.0;
+  double edges_folded = 0.0;
+  double edges_accepted = 0.0;
+  double forest_edges = 0.0;
   const std::size_t warmup = warmup_cycles(s.window);
   for (std::size_t cycle = 0; cycle < warmup + cycles; ++cycle) {
     source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
@@ -560,6 +566,9 @@ void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, Sens
     const sc::PhaseTimes& ph = engine.last_stats().phase_us;
     edges_found += static_cast<double>(engine.last_stats().edges_found);
     edges_kept += static_cast<double>(engine.last_stats().edges_found - engine.last_stats().edges_pruned);
+    edges_folded += static_cast<double>(engine.last_stats().edges_folded);
+    edges_accepted += static_cast<double>(engine.last_stats().edges_accepted);
+    forest_edges += static_cast<double>(engine.last_stats().forest_edges);
     sum.insertion += ph.insertion;
     sum.eviction += ph.eviction;
     sum.validation += ph.validation;
@@ -573,6 +582,9 @@ void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, Sens
   r.timed_median_us = summarize(lat).median;
   r.edges_found_mean = edges_found / n;
   r.edges_kept_mean = edges_kept / n;
+  r.edges_folded_mean = edges_folded / n;
+  r.edges_accepted_mean = edges_accepted / n;
+  r.forest_edges_mean = forest_edges / n;
 }
 
 /// Calls f(sensor model, description) with this scenario's sensor.
@@ -721,7 +733,9 @@ void write_outputs(const Options& o, const Written& w) {
          << ", \"eviction\": " << r.phase_mean.eviction * 1e-3 << ", \"validation\": " << r.phase_mean.validation * 1e-3
          << ", \"component_update\": " << r.phase_mean.component_update * 1e-3
          << ", \"labelling\": " << r.phase_mean.labelling * 1e-3 << "}, \"new_edges_per_cycle\": " << r.edges_found_mean
-         << ", \"kept_edges_per_cycle\": " << r.edges_kept_mean << ", \"timed_median_ms\": " << r.timed_median_us * 1e-3
+         << ", \"kept_edges_per_cycle\": " << r.edges_kept_mean << ", \"folded_edges_per_cycle\": " << r.edges_folded_mean
+         << ", \"accepted_edges_per_cycle\": " << r.edges_accepted_mean << ", \"forest_edges\": " << r.forest_edges_mean
+         << ", \"timed_median_ms\": " << r.timed_median_us * 1e-3
          << ", \"wall_seconds\": " << r.wall_seconds << "\n  }" << (k + 1 < w.all.size() ? "," : "") << '\n';
   }
   json << "  ]\n}\n";
@@ -792,15 +806,16 @@ void write_outputs(const Options& o, const Written& w) {
   }
   md << "\n## Phase split (timed configuration, mean per cycle) [ms]\n\n";
   md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median | new "
-        "edges / cycle (kept) |\n";
-  md << "|---|---|---|---|---|---|---|---|---|\n";
+        "edges / cycle (kept) | folded (accepted) | forest edges |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     if (r.timed_cycles == 0) continue;
     const sc::PhaseTimes& ph = r.phase_mean;
     md << "| " << r.name << " | " << r.timed_cycles << " | " << fmt(ph.insertion * 1e-3) << " | "
        << fmt(ph.eviction * 1e-3) << " | " << fmt(ph.validation * 1e-3) << " | " << fmt(ph.component_update * 1e-3)
        << " | " << fmt(ph.labelling * 1e-3) << " | " << fmt(r.timed_median_us * 1e-3) << " | "
-       << fmt(r.edges_found_mean, 0) << " (" << fmt(r.edges_kept_mean, 0) << ") |\n";
+       << fmt(r.edges_found_mean, 0) << " (" << fmt(r.edges_kept_mean, 0) << ") | " << fmt(r.edges_folded_mean, 0)
+       << " (" << fmt(r.edges_accepted_mean, 0) << ") | " << fmt(r.forest_edges_mean, 0) << " |\n";
   }
 }
 

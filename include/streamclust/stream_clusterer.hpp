@@ -62,6 +62,9 @@ struct RetrievalStats {
   std::uint64_t edges_found = 0;        ///< spanning_forest: edges of the inserted points to older neighbours
   std::uint64_t edges_pruned = 0;       ///< spanning_forest: of those, dropped as redundant (prune_witnesses)
   std::uint64_t forest_displaced = 0;   ///< spanning_forest: kept forest edges a fold moved aside (detail::merge_forest)
+  std::uint64_t edges_folded = 0;       ///< spanning_forest: new edges the folds read (those still live at their fold)
+  std::uint64_t edges_accepted = 0;     ///< spanning_forest: of those, accepted into the forest (the rest closed cycles)
+  std::uint64_t forest_edges = 0;       ///< spanning_forest: edges of the forest after this retrieval (window points - components)
   PhaseTimes phase_us{};                ///< timed configs only
 };
 
@@ -2087,9 +2090,14 @@ class StreamClusterer {
                   forest_.end());
     reserve_window(forest_, n);  // room for any forest of the window: merge_forest's gap
     const PointHandle base = oldest_;
-    stats_.forest_displaced += detail::merge_forest(forest_, fresh_, displaced_, oldest_, n, age, [&](const ForestEdge& e) {
-      return unite_ranked(static_cast<std::uint32_t>(e.older - base), static_cast<std::uint32_t>(e.newer - base));
-    });
+    const detail::MergeCounts counts =
+        detail::merge_forest(forest_, fresh_, displaced_, oldest_, n, age, [&](const ForestEdge& e) {
+          return unite_ranked(static_cast<std::uint32_t>(e.older - base), static_cast<std::uint32_t>(e.newer - base));
+        });
+    stats_.forest_displaced += counts.displaced;
+    stats_.edges_folded += counts.new_read;
+    stats_.edges_accepted += counts.new_accepted;
+    stats_.forest_edges = forest_.size();
     fresh_.reset(oldest_);
     fold_mark_ = next_;
   }

@@ -16,6 +16,13 @@
 
 namespace streamclust::detail {
 
+/// What one merge_forest pass did [edges].
+struct MergeCounts {
+  std::size_t displaced = 0;     ///< kept edges that went through the queue
+  std::size_t new_read = 0;      ///< live new edges read from the bands
+  std::size_t new_accepted = 0;  ///< of those, accepted into the forest
+};
+
 /// Kruskal over `forest` (the kept edges, live and in increasing age) and
 /// the live new edges of `bands` (older endpoint in [oldest, oldest +
 /// window)), taking the edges by increasing age, a kept edge before a new
@@ -29,11 +36,11 @@ namespace streamclust::detail {
 /// When a write would land on a kept edge not read yet (the accepted new
 /// edges outnumbered the rejected kept ones by the whole gap), that edge
 /// moves to `displaced` first, and kept edges are read from the queue before
-/// the array. Returns the number of kept edges that went through the queue.
+/// the array. Returns what the pass counted (MergeCounts).
 /// O(kept + new edges + bands x 2^AgeBands::kBandBits) plus the unions;
 /// allocates only when `displaced` or a sorted band outgrows its capacity.
 template <class Age, class Unite>
-std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQueue<HandleEdge>& displaced,
+MergeCounts merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQueue<HandleEdge>& displaced,
                          PointHandle oldest, std::uint32_t window, const Age& age, Unite&& unite) {
   const std::size_t kept_count = forest.size();
   const std::size_t total = forest.capacity();
@@ -44,7 +51,7 @@ std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQ
   bands.rewind();
   std::size_t read = total - kept_count;  // the next kept edge in f, neither read nor displaced
   std::size_t written = 0;                // accepted edges, at the front of f
-  std::size_t moved = 0;
+  MergeCounts counts;
   const HandleEdge* added = nullptr;
   std::size_t added_count = 0;
   std::size_t j = 0;
@@ -61,7 +68,8 @@ std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQ
     const std::uint32_t kept_age = from_queue ? age(displaced.front()) : read < total ? age(f[read]) : window;
     const std::uint32_t added_age = j < added_count ? age(added[j]) : window;
     HandleEdge e;
-    if (kept_age <= added_age) {
+    const bool is_new = kept_age > added_age;
+    if (!is_new) {
       if (kept_age >= window) break;
       if (from_queue) {
         e = displaced.front();
@@ -72,16 +80,18 @@ std::size_t merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQ
     } else {
       e = added[j++];
     }
+    counts.new_read += is_new ? 1u : 0u;
     if (unite(e)) {
       if (written == read && read < total) {
         displaced.push(f[read++]);
-        ++moved;
+        ++counts.displaced;
       }
       f[written++] = e;
+      counts.new_accepted += is_new ? 1u : 0u;
     }
   }
   forest.resize(written);
-  return moved;
+  return counts;
 }
 
 }  // namespace streamclust::detail
