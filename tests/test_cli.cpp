@@ -32,7 +32,6 @@ using streamclust::test::run_cli;
 using streamclust::test::RunResult;
 using streamclust::test::slurp;
 
-
 /// Writes `seconds` of the synthetic stream as CSV; every 50th record gets a
 /// NaN coordinate (it must come back with label -1).
 std::vector<sc::SyntheticPoint> write_stream_csv(const fs::path& path, double seconds) {
@@ -85,7 +84,7 @@ std::pair<std::uint32_t, std::uint32_t> report_grid(const std::string& json) {
 }  // namespace
 
 TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the batch clusterer") {
-  const sc::test::TempDir tmp("cli", "e2e");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "e2e");
   const fs::path& dir = tmp.dir;
   const auto points = write_stream_csv(dir / "stream.csv", 0.35);
   const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "carc", "--theta", "30", "--window-time",
@@ -142,7 +141,7 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
 }
 
 TEST_CASE("cluster --connectivity forest: the partition of lazy-bfs in every cycle, verified; not in frame mode") {
-  const sc::test::TempDir tmp("cli", "connectivity");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "connectivity");
   const fs::path& dir = tmp.dir;
   write_stream_csv(dir / "stream.csv", 0.35);
   std::map<std::string, std::vector<LabelRow>> rows;
@@ -182,7 +181,7 @@ TEST_CASE("cluster --connectivity forest: the partition of lazy-bfs in every cyc
 }
 
 TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabelled") {
-  const sc::test::TempDir tmp("cli", "frame");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "frame");
   const fs::path& dir = tmp.dir;
   write_stream_csv(dir / "stream.csv", 0.2);
   const auto result = run_cli({"cluster", (dir / "stream.csv").string(), "--preset", "baseline", "--grid", "16x64",
@@ -198,7 +197,7 @@ TEST_CASE("frame mode with the baseline preset leaves overwritten points unlabel
 }
 
 TEST_CASE("info reports format, count and time span") {
-  const sc::test::TempDir tmp("cli", "info");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "info");
   const fs::path& dir = tmp.dir;
   const auto points = write_stream_csv(dir / "stream.csv", 0.05);
   const auto result = run_cli({"info", (dir / "stream.csv").string()});
@@ -225,7 +224,7 @@ TEST_CASE("exit codes: help 0, usage 2, input 4") {
   CHECK(run_cli({"cluster", "a.csv", "--frobnicate"}).code == 2);
   CHECK(run_cli({"cluster", "a.csv", "--mode", "frame", "--verify"}).code == 2);
 
-  const sc::test::TempDir tmp("cli", "codes");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "codes");
   const fs::path& dir = tmp.dir;
   const auto missing = run_cli({"cluster", (dir / "missing.csv").string()});
   CHECK(missing.code == 4);
@@ -258,7 +257,7 @@ TEST_CASE("the --verify comparison finds the first point where two partitions di
 }
 
 TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {
-  const sc::test::TempDir tmp("cli", "simulate");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "simulate");
   const fs::path& dir = tmp.dir;
   const auto sim = run_cli({"simulate", "--sensor", "synthetic", "--scene", "room", "--seconds", "0.1", "--point-rate",
                         "20000", "--out", (dir / "s.csv").string()});
@@ -302,7 +301,7 @@ TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor
   // (the same double as the literal 0.7), but (0.7 - 0.3) / 0.1 is
   // 3.9999999999999996 in double: floor() + 1 schedules 0.7 s again, and the
   // record at 0.72 s would trigger a second retrieval at 0.7 s.
-  const sc::test::TempDir tmp("cli", "schedule");  // unique: the C++17 and C++20 builds run side by side
+  const sc::test::TempDir tmp("cli", "schedule");
   const fs::path& dir = tmp.dir;
   {
     std::ofstream f(dir / "stream.csv");

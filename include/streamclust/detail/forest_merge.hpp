@@ -61,6 +61,7 @@ MergeCounts merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQ
       bands_left = bands.next_band(oldest, window);
       added = bands_left ? bands.band().data() : nullptr;
       added_count = bands_left ? bands.band().size() : 0;
+      counts.new_read += added_count;  // a band is read to its end before the pass stops
       j = 0;
     }
     // Age `window`: that list is exhausted.
@@ -80,7 +81,6 @@ MergeCounts merge_forest(std::vector<HandleEdge>& forest, AgeBands& bands, RingQ
     } else {
       e = added[j++];
     }
-    counts.new_read += is_new ? 1u : 0u;
     if (unite(e)) {
       if (written == read && read < total) {
         displaced.push(f[read++]);
