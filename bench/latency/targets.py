@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The six performance targets of issue 5, each marked met / missed with the
-measured ratio, from bench_latency's summary.json (printed as markdown).
+"""The six performance targets of the engine (docs/performance.md, "Targets"),
+each marked met / missed with the measured value, from bench_latency's
+summary.json (printed as markdown).
 
     python3 bench/latency/targets.py build/bench-run/results/latency/summary.json
 
@@ -14,6 +15,12 @@ Euclidean preset) is printed as well, marked "paper", for comparison.
 
 Target 5 (insertion throughput) uses the timed pass's insertion + eviction
 phases; a scenario that was not run is reported as "not measured".
+
+Targets 3 and 6 are the restated ones: the engine's median at most 1/3 of
+batch re-clustering (BATCH_RATIO_BAR), and at most 128 bytes per window point
+with zero steady allocations on the Mid-360 office at T_B = 0.5 s (the
+scenario of TARGET6_SCENARIO; the other capped-grid scenarios are printed
+for information, without a verdict).
 """
 import json
 import sys
@@ -21,6 +28,10 @@ import sys
 BUDGET_MS = 50.0
 ARI_TOLERANCE = 0.02
 TB = ("0.1", "0.2", "0.3", "0.4", "0.5")
+BATCH_RATIO_BAR = 3.0  # target 3: batch median / engine median >= 3
+BYTES_PER_POINT_BAR = 128.0  # target 6
+TARGET6_SCENARIO = ("mid360", "office", "0.5")
+CAPPED_CONFIGS = ("capped", "capfast", "caprebuild")
 
 
 def main(path):
@@ -85,7 +96,7 @@ def main(path):
             add(2, f"Avia office T_B {tb}: ARI {c} {s['ari_engine_mean']:.4f} vs bucket (carc) "
                    f"{bucket['ari_engine_mean']:.4f}", f"{d:+.4f}", ">= -0.02", d >= -ARI_TOLERANCE)
 
-    # 3. Mid-360, T_B = 0.5: engine median <= 1/5 of batch re-clustering.
+    # 3. Mid-360, T_B = 0.5: engine median <= 1/3 of batch re-clustering.
     def batch_ratio(s):
         return None if s["batch"] is None else s["batch"]["ms"]["median"] / median(s)
 
@@ -94,14 +105,14 @@ def main(path):
         c, s = best("mid360", scene, "0.5", ("carc", "fast", "capfast", "rebuild"), "carc",
                     lambda x: None if batch_ratio(x) is None else -batch_ratio(x))
         if s is None:
-            add(3, f"Mid-360 {scene} T_B 0.5 batch/engine", "-", ">= 5x", None)
+            add(3, f"Mid-360 {scene} T_B 0.5 batch/engine", "-", f">= {BATCH_RATIO_BAR:g}x", None)
             continue
         for role, cfg, x in (("paper", "carc", paper), ("best", c, s)):
             if x is None or batch_ratio(x) is None or (role == "paper" and c == "carc"):
                 continue
             r = batch_ratio(x)
             add(3, f"Mid-360 {scene} T_B 0.5, {cfg}: batch median {x['batch']['ms']['median']:.2f} ms / engine "
-                   f"{median(x):.2f} ms", f"{r:.2f}x", ">= 5x", r >= 5, role)
+                   f"{median(x):.2f} ms", f"{r:.2f}x", f">= {BATCH_RATIO_BAR:g}x", r >= BATCH_RATIO_BAR, role)
 
     # 4. >= 20x faster than PCL per window (median, T_B = 0.5): Euclidean scenarios (PCL runs only there).
     def pcl_ratio(s):
@@ -146,15 +157,26 @@ def main(path):
             add(5, f"Mid-360 {scene} T_B 0.5, {cfg}: {x['points_per_cycle_mean']:.0f} points per {ins:.2f} ms "
                    "(insertion + eviction phases)", f"{mps:.2f} M/s", ">= 2 M/s", mps >= 2, role)
 
-    # 6. <= 128 bytes per windowed point and zero steady-state allocations, capped-grid presets.
-    for name, s in sorted(sc.items()):
-        if s["config"] not in ("capped", "capfast", "caprebuild"):
-            continue
-        role = "paper" if s["config"] == "capped" else "best"
-        bpp = s["bytes_per_point"]["median"]
-        add(6, f"{name}: bytes per window point (median)", f"{bpp:.0f} B", "<= 128 B", bpp <= 128, role)
+    # 6. <= 128 bytes per windowed point and zero steady-state allocations, Mid-360 office at T_B = 0.5 s,
+    #    best capped-grid preset (fewest bytes); the other capped-grid scenarios for information.
+    sensor, scene, tb = TARGET6_SCENARIO
+    bpp = lambda x: x["bytes_per_point"]["median"]  # noqa: E731
+    c, s = best(sensor, scene, tb, CAPPED_CONFIGS, "carc", bpp)
+    if s is None:
+        add(6, f"{sensor}-{scene} T_B {tb}, capped grid: bytes per window point", "-",
+            f"<= {BYTES_PER_POINT_BAR:g} B", None)
+    else:
+        name = s["name"]
+        add(6, f"{name}: bytes per window point (median)", f"{bpp(s):.1f} B", f"<= {BYTES_PER_POINT_BAR:g} B",
+            bpp(s) <= BYTES_PER_POINT_BAR)
         add(6, f"{name}: heap allocations after warm-up",
-            f"{s['steady_allocations']} in {s['latency_ms']['count']} cycles", "0", s["steady_allocations"] == 0, role)
+            f"{s['steady_allocations']} in {s['latency_ms']['count']} cycles", "0", s["steady_allocations"] == 0)
+    for name, x in sorted(sc.items()):
+        if x["config"] not in CAPPED_CONFIGS or (s is not None and x is s):
+            continue
+        rows.append((6, f"{name}: bytes per window point (median); heap allocations after warm-up",
+                     f"{bpp(x):.1f} B; {x['steady_allocations']} in {x['latency_ms']['count']} cycles", "(information)",
+                     "-"))
 
     print("| target | measurement | measured | bar | verdict |")
     print("|---|---|---|---|---|")
