@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 #
-# One command for every benchmark figure of docs/benchmarks.md:
+# One command for every benchmark figure of docs/performance.md:
 #   bench/run.sh
 # 1. installs what it needs with apt-get when missing (libpcl-dev for the PCL
 #    peer, gnuplot-nox for the plots; idempotent, needs root only if missing);
@@ -32,17 +32,13 @@
 # processes share the memory bus and L3: set BENCH_LATENCY_JOBS=1 for a
 # strictly sequential record.
 #
-# Expected duration of the latency part with the defaults (72 scenarios then,
-# 78 now; measured on 2026-11-22: 21 min 27 s with 2 jobs on a quiet machine,
-# 35 min 16 s on 2026-11-23 on a host about 2x slower, 21 min 44 s on
-# 2026-11-24, 19 min 26 s on 2026-11-26),
-# 1000 cycles), on the 2-core reference VM, estimated from a 50-cycle run of
-# every scenario with bench/latency/estimate_duration.py (engine of main
-# 0596598, see docs/benchmarks.md "Run time of the full record"):
-#   idle machine:  about 25 min with 2 jobs, 50 min with BENCH_LATENCY_JOBS=1
-#   load avg ~6:   about 1 h 45 min with 2 jobs
-# plus the build (a few minutes) and the microbenchmarks. A faster engine
-# shortens it; PCL (10 windows of 7-22 s per Euclidean scenario) does not.
+# Expected duration of the latency part with the defaults (78 scenarios,
+# 1000 cycles) on the 2-core reference VM: about 20-25 min with 2 jobs on a
+# quiet machine (19 min 26 s for the record in docs/performance.md), about
+# twice that with BENCH_LATENCY_JOBS=1, about 1 h 45 min at a load average of
+# 6; plus the build (a few minutes) and the microbenchmarks.
+# bench/latency/estimate_duration.py projects it from a short run. A faster
+# engine shortens it; PCL (10 windows of 7-22 s per Euclidean scenario) does not.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -170,4 +166,4 @@ echo "latency summary:        ${results}/latency/summary.md (and summary.json)"
 echo "per-cycle latencies:    ${results}/latency/cycles.csv"
 echo "targets:                ${results}/latency/targets.md"
 for p in "${plots[@]}"; do echo "plot:                   ${p}"; done
-echo "Record the figures in docs/benchmarks.md."
+echo "Record the figures in docs/performance.md."
