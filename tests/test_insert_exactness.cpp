@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The insertion fast paths (docs/optimization-log.md, sections 8 and 10)
+// The insertion fast paths (docs/design-decisions.md: link_many, compact points)
 // against their reference formulations: the branch-free AngularLinkage, on
 // Samples and on its compact payload, against the original branchy code, bit
 // for bit (the reference below is that code, kept on purpose); the
@@ -41,7 +41,7 @@ struct ReferenceAngular {
     cos_min = static_cast<float>(std::cos(static_cast<double>(params.min_ray_angle_deg) * deg));
   }
   // Equal ranges are ordered by direction alone since the compact payload
-  // (optimization log, section 10; the payload holds no position). Without
+  // (the payload holds no position). Without
   // FMA contraction the order of tied operands does not change the result.
   static bool precedes(const Sample& a, const Sample& b) {
     if (a.range != b.range) return a.range > b.range;

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace sc = streamclust;
@@ -44,7 +45,7 @@ TEST_CASE_TEMPLATE("point rings: origin wraps and growth under a changing window
   params.resolution = {32, 256};
   params.window.duration = 0.01;  // 10 ms: 2,000 points at 200 kHz
   params.linkage.theta_deg = 30.0f;
-  if constexpr (sc::config_traits<Config>::connectivity::strategy == sc::ConnectivityStrategy::spanning_forest) {
+  if constexpr (std::is_same_v<typename sc::config_traits<Config>::connectivity, sc::SpanningForestConnectivity>) {
     params.connectivity.min_fold_edges = 500;  // folds between retrievals too
   }
   sc::StreamClusterer<Config> engine(params);

@@ -16,6 +16,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace sc = streamclust;
@@ -39,15 +40,22 @@ struct NoSlotConfig {
   using resolution = sc::FixedResolution;
 };
 
-struct MissingStrategy {
+struct MissingStrategy {  // no PointState, no stores_point_edges, no State
   struct Params {};
   explicit MissingStrategy(const Params&) {}
 };
-struct WrongStrategyType {
+struct WrongStrategyType {  // stores_point_edges of the wrong type
   struct Params {};
   explicit WrongStrategyType(const Params&) {}
-  static constexpr int strategy = 1;
+  struct PointState {};
+  static constexpr int stores_point_edges = 1;
 };
+
+/// The connectivity policy of a configuration.
+template <class Config>
+using connectivity_of = typename sc::config_traits<Config>::connectivity;
+template <class Config, class Policy>
+constexpr bool uses = std::is_same_v<connectivity_of<Config>, Policy>;
 
 template <class Config>
 sc::ClustererParams<Config> chain_params(double window) {
@@ -92,23 +100,16 @@ TEST_CASE("connectivity concept: both policies model it, incomplete types do not
   CHECK_FALSE(sc::is_connectivity_policy_v<MissingStrategy>);
   CHECK_FALSE(sc::is_connectivity_policy_v<WrongStrategyType>);
   CHECK_FALSE(sc::is_connectivity_policy_v<int>);
-  CHECK(sc::config_traits<NoSlotConfig>::connectivity::strategy == sc::ConnectivityStrategy::lazy_bfs);
-  CHECK(sc::config_traits<Rebuild>::connectivity::strategy == sc::ConnectivityStrategy::union_find_rebuild);
-  CHECK_FALSE(sc::StreamClusterer<NoSlotConfig>::rebuilds_components);
-  CHECK(sc::StreamClusterer<Rebuild>::rebuilds_components);
-  CHECK(sc::StreamClusterer<sc::CArcFastConfig>::rebuilds_components);
-  CHECK_FALSE(sc::StreamClusterer<sc::CArcConfig>::rebuilds_components);
-  CHECK(sc::config_traits<Forest>::connectivity::strategy == sc::ConnectivityStrategy::spanning_forest);
-  CHECK(sc::StreamClusterer<Forest>::rebuilds_components);  // no local-cluster bookkeeping either
-  CHECK(sc::StreamClusterer<Forest>::keeps_forest);
+  CHECK(uses<NoSlotConfig, sc::LazyBfsConnectivity>);
+  CHECK(uses<Rebuild, sc::UnionFindRebuildConnectivity>);
+  CHECK(uses<Forest, sc::SpanningForestConnectivity>);
+  CHECK(uses<sc::CArcConfig, sc::LazyBfsConnectivity>);
+  CHECK(uses<sc::CArcFastConfig, sc::SpanningForestConnectivity>);
+  CHECK(uses<sc::CArcCappedFastConfig, sc::SpanningForestConnectivity>);
+  CHECK(uses<sc::CArcRebuildConfig, sc::UnionFindRebuildConnectivity>);
   CHECK_FALSE(sc::StreamClusterer<Forest>::stores_point_edges);
-  CHECK_FALSE(sc::StreamClusterer<Rebuild>::keeps_forest);
   CHECK(sc::StreamClusterer<Rebuild>::stores_point_edges);
   CHECK(sc::StreamClusterer<Lazy>::stores_point_edges);
-  CHECK(sc::StreamClusterer<sc::CArcFastConfig>::keeps_forest);
-  CHECK(sc::StreamClusterer<sc::CArcCappedFastConfig>::keeps_forest);
-  CHECK_FALSE(sc::StreamClusterer<sc::CArcRebuildConfig>::keeps_forest);
-  CHECK(sc::StreamClusterer<sc::CArcRebuildConfig>::rebuilds_components);
 }
 
 TEST_CASE("spanning forest: min_fold_edges is validated") {
@@ -307,7 +308,7 @@ TEST_CASE_TEMPLATE("a long chain evicted from its old end stays one component, w
   // A path (points 0.6 m apart, linkage 1.0 m: each links its predecessor
   // only) 2,000 points long through a window of 50 points.
   auto params = chain_params<Config>(0.495);
-  if constexpr (sc::StreamClusterer<Config>::keeps_forest) params.connectivity = {1, 1};
+  if constexpr ((uses<Config, sc::SpanningForestConnectivity>)) params.connectivity = {1, 1};
   for (const int every : {1, 7, 1000000}) {
     sc::StreamClusterer<Config> engine(params);
     std::uint64_t folds = 0;
@@ -326,7 +327,7 @@ TEST_CASE_TEMPLATE("a long chain evicted from its old end stays one component, w
         }
       }
     }
-    if constexpr (sc::StreamClusterer<Config>::keeps_forest) {
+    if constexpr ((uses<Config, sc::SpanningForestConnectivity>)) {
       if (every == 1000000) CHECK(folds > 30);  // about one fold per 51 edges without labelling
     }
   }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Heap allocations of the engine in steady state (issue 5, target 6): once a
+// Heap allocations of the engine in steady state (docs/performance.md, target 6): once a
 // window of the same size has been through it, the capped-grid presets
 // allocate nothing, however crowded the masks become (the capped grid bounds
 // the neighbour search: w^2 x K candidates, reserved when the grid is set).

@@ -7,9 +7,11 @@
 /// oracle of the engine and, with an overwrite grid in range-image mode, the
 /// classic frame-based baseline (Bogoslavskyi & Stachniss).
 
+#include <streamclust/acceptance.hpp>
 #include <streamclust/config.hpp>
 #include <streamclust/detail/mask.hpp>
 #include <streamclust/detail/union_find.hpp>
+#include <streamclust/grid_choice.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
 
@@ -87,24 +89,21 @@ class BatchClusterer {
     for (const auto& p : points) {
       const Eigen::Vector3f pos = position(p);
       Projected pr = projection_.project(pos);
-      if (pr.accepted() && !std::isfinite(stamp(p))) pr.reason = RejectReason::non_finite;
+      pr.reason = judge_point(pr, stamp(p));  // the engine's rule, without the time order (a batch is a window)
       ++result_.rejections[pr.reason];
       coords_.push_back(pr);
       samples_.push_back(pr.accepted() ? make_sample(pos, pr.range, intensity(p), stamp(p)) : Sample{});
     }
-    GridSize size;
     if (fixed_grid_) {
-      size = *fixed_grid_;
+      result_.grid = grid_shape_for(*fixed_grid_, projection_);
     } else {
       accepted_.clear();
       for (const Projected& pr : coords_) {
         if (pr.accepted()) accepted_.push_back(pr);
       }
       typename traits::resolution resolution(params_.resolution);
-      size = resolution.calibrate(accepted_, projection_.fov_aspect());
+      result_.grid = choose_grid(resolution, projection_, accepted_);
     }
-    if (size.rows == 0 || size.cols == 0) size = GridSize{1, 1};
-    result_.grid = GridShape{size.rows, size.cols, projection_.wraps_horizontally()};
     index_.reset(result_.grid);
 
     const std::size_t n = samples_.size();

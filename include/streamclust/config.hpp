@@ -23,6 +23,7 @@
 
 #include <streamclust/concepts.hpp>
 #include <streamclust/concepts/connectivity.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
 
 #include <cstdint>
 #include <stdexcept>
@@ -63,7 +64,7 @@ struct slot_visitor<C, std::void_t<typename C::visitor>> {
 
 template <class C, class = void>
 struct slot_connectivity {
-  using type = DefaultConnectivity;
+  using type = LazyBfsConnectivity;
 };
 template <class C>
 struct slot_connectivity<C, std::void_t<typename C::connectivity>> {
@@ -97,7 +98,7 @@ struct config_traits {
   using window = typename detail::slot_window<Config>::type;
   using resolution = typename detail::slot_resolution<Config>::type;
   using visitor = typename detail::slot_visitor<Config>::type;
-  /// Optional slot; absent => the paper's lazy BFS (ConnectivityStrategy::lazy_bfs).
+  /// Optional slot; absent => the paper's strategy (LazyBfsConnectivity).
   using connectivity = typename detail::slot_connectivity<Config>::type;
   /// `static constexpr bool timed = true;` in a config makes the engine
   /// measure its phases (RetrievalStats::phase_us); off by default, free when off.

@@ -218,7 +218,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   report.format = io::to_string(reader->info().format);
   report.mode = o.mode == Mode::continuous ? "continuous" : "frame";
   if (engine) {  // named from the engine's type: what ran, not what was asked
-    report.connectivity = Connectivity::strategy == ConnectivityStrategy::spanning_forest ? "forest" : "lazy-bfs";
+    report.connectivity = std::is_same_v<Connectivity, SpanningForestConnectivity> ? "forest" : "lazy-bfs";
   }
 
   RejectionCounts rejected_by_reason{};

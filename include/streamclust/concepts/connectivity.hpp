@@ -3,37 +3,54 @@
 
 /// \file
 /// The Connectivity policy concept: how the engine keeps the connected
-/// components of the window's point graph up to date as points leave.
+/// components of the window's point graph up to date as points arrive and
+/// leave, and how it answers a retrieval.
 ///
-/// | expression                   | type                   | meaning                                               | complexity |
-/// |------------------------------|------------------------|-------------------------------------------------------|------------|
-/// | `typename C::Params`         | aggregate              | parameters with defaults (may be empty)               |            |
-/// | `C c{params}`                |                        | construct; throws std::invalid_argument if bad        |            |
-/// | `C::strategy`                | `ConnectivityStrategy` | static constexpr: the algorithm the engine runs       | compile time |
+/// A connectivity policy is a strategy with its own state and algorithm.
+/// The engine finds each new point's older neighbours (the mask search) and
+/// hands them over; the strategy stores what it needs, reacts to evictions
+/// and, at a retrieval, numbers the window's components and has the engine's
+/// one result writer (ComponentResult) write them. Everything is resolved at
+/// compile time: no virtual call, no run-time dispatch on the hot path.
 ///
-/// Why a strategy selector and not callbacks: the algorithms work on the
-/// engine's own ring buffers (points, back/forward edge lists, local
-/// clusters); exposing those through a callback interface would put an
-/// indirection on every edge of the hot path. The policy therefore names one
-/// of the engine's strategies at compile time (`if constexpr`, no run-time
-/// cost) and carries its parameters; a new strategy is added to the enum and
-/// the engine. Every strategy gives exactly the batch partition
-/// (tests/test_oracle.cpp).
+/// | expression                       | type / value           | meaning                                                  | complexity |
+/// |----------------------------------|------------------------|----------------------------------------------------------|------------|
+/// | `typename C::Params`             | aggregate              | parameters with defaults (may be empty)                  |            |
+/// | `C c{params}`                    |                        | construct; throws std::invalid_argument if bad           |            |
+/// | `typename C::PointState`         | trivially copyable     | the strategy's per-point bookkeeping, default-constructed when a point enters the window; the point ring keeps it beside each point (`ring.record(h).state`) | |
+/// | `C::stores_point_edges`          | `static constexpr bool`| the point-level edges can be walked (`s.edges()`, a PointEdges): the engine's neighbour accessors and the Boost.Graph point view need it | compile time |
+/// | `C::prune_witnesses()` (optional)| std::uint32_t          | witnesses of the neighbour search's redundant-edge filter (0 or absent: every edge is handed over; only for a strategy that needs the components alone) | O(1) |
+/// | `typename C::template State<R>`  | class S                | the strategy's state for a point ring of type R          |            |
+/// | `S s(c)`                         |                        | an empty window                                          | O(1)       |
+/// | `s.on_link(ctx, h, nb, count)`   | void                   | point h was appended and its `count` older neighbours `nb` found (the engine inserts h into the index afterwards) | the strategy's |
+/// | `s.on_evict(ctx, h)`             | void                   | h, the oldest point, leaves; the engine then drops it from the index and the ring | the strategy's |
+/// | `s.retrieve(ctx)`                | `const Clustering&`    | the window's components, written through `ctx.result`    | the strategy's |
+/// | `s.begin_replay(ctx)`, `s.end_replay(ctx)` | void         | the buffered first window is linked at once between them (calibration) | |
+/// | `s.reserve(ring)`                | void                   | the ring was sized for the largest window expected        | O(window)  |
+/// | `s.cluster_of(ring, h)`          | ClusterId              | h's local cluster, or kNoCluster                          | O(1)       |
+/// | `s.cluster_slots()`, `s.cluster_alive(c)`, `s.cluster_count()`, `s.cluster_size(c)`, `s.cluster_pending(c)`, `s.bridges(c)` | | the local clusters and their bridges (`const std::vector<ClusterBridge>&`), as the engine shows them | |
+/// | `s.add_memory(m)`                | void                   | adds the state's heap bytes to MemoryUsage `m`, by part    | O(clusters) |
 ///
-/// | strategy             | insertion / eviction                               | retrieval                                     |
-/// |----------------------|----------------------------------------------------|-----------------------------------------------|
-/// | `lazy_bfs` (paper)   | local clusters, bridges with multiplicities; an eviction walks the point's forward edges and may mark its cluster pending | BFS over every pending cluster, splits; BFS over the component graph: O(pending points + edges + N) |
-/// | `union_find_rebuild` | edges only: no cluster or bridge bookkeeping        | one union-find pass over the live edges in ring (FIFO) order: O(N + E), independent of what is pending |
-/// | `spanning_forest`    | appends each new edge to a list (no edge ring, no per-point adjacency); eviction drops the point | folds the new edges into a maximum spanning forest (weight = older endpoint) by Kruskal: O(N + F + edges inserted since the last retrieval), F < N |
+/// `ctx` is a ConnectivityContext: the point ring, the visitor, the stats,
+/// the result writer and the next fresh component id. Every strategy gives
+/// exactly the batch partition (tests/test_oracle.cpp).
 ///
-/// A `spanning_forest` policy also has `c.fold_threshold(points)` (std::size_t:
-/// the new-edge count past which the engine folds without a retrieval, for a
-/// window of `points` points) and may have `c.prune_witnesses()`
-/// (std::uint32_t: witnesses per inserted point for dropping redundant new
-/// edges, see SpanningForestConnectivity::Params; 0 when absent,
-/// `connectivity_prune_witnesses(c)`).
+/// | strategy                        | insertion / eviction                               | retrieval                                     |
+/// |---------------------------------|----------------------------------------------------|-----------------------------------------------|
+/// | LazyBfsConnectivity (paper)     | local clusters, bridges with multiplicities; an eviction walks the point's forward edges and may mark its cluster pending | BFS over every pending cluster, splits; BFS over the component graph: O(pending points + edges + N) |
+/// | UnionFindRebuildConnectivity    | edges only: no cluster or bridge bookkeeping        | one union-find pass over the live edges in ring (FIFO) order: O(N + E) |
+/// | SpanningForestConnectivity      | appends each new edge to age bands (no edge ring, no per-point adjacency); eviction drops the point | folds the new edges into a maximum spanning forest (weight = older endpoint) by Kruskal: O(N + F + new edges), F < N |
 ///
-/// Not thread-safe state is kept by the engine; a policy object is immutable.
+/// A new strategy is one new file: a policy with the members above (see
+/// union_find_rebuild.hpp, the shortest).
+/// Thread safety: a policy object is immutable; a State belongs to one
+/// engine, driven from one thread.
+
+#include <streamclust/clustering.hpp>
+#include <streamclust/concepts/visitor.hpp>
+#include <streamclust/engine/component_result.hpp>
+#include <streamclust/engine/retrieval_stats.hpp>
+#include <streamclust/types.hpp>
 
 #include <cstdint>
 #include <type_traits>
@@ -41,33 +58,61 @@
 
 namespace streamclust {
 
-/// The connectivity-maintenance algorithms the engine implements.
-enum class ConnectivityStrategy : std::uint8_t {
-  lazy_bfs,            ///< the paper's: local clusters + bridges, lazy BFS validation of pending clusters
-  union_find_rebuild,  ///< edges only; components rebuilt by union-find over the live edges at each retrieval
-  spanning_forest,     ///< new edges only; folded into a maximum spanning forest of the window at each retrieval
+/// A bridge of the component graph: another local cluster and the number of
+/// live point-level edges between the two.
+struct ClusterBridge {
+  ClusterId other;
+  std::uint32_t multiplicity;
+};
+
+/// What a connectivity strategy sees of the engine at each call: the window
+/// (`points`, whose records hold the strategy's PointState), the visitor,
+/// the counters, the result writer, the next fresh component id and the
+/// stream time of the newest point [s]. `Clock` times the phases of a timed
+/// configuration (free otherwise).
+template <class Ring, class Visitor, bool Timed>
+struct ConnectivityContext {
+  using Clock = detail::PhaseClock<Timed>;
+  Ring& points;
+  Visitor& visitor;
+  RetrievalStats& stats;
+  ComponentResult& result;
+  ComponentId& next_id;
+  double time;
 };
 
 namespace detail {
-/// Default of the optional `connectivity` slot: the paper's strategy (same
-/// as `LazyBfsConnectivity` in <streamclust/connectivity/lazy_bfs.hpp>).
-struct DefaultConnectivity {
-  struct Params {};
-  explicit DefaultConnectivity(const Params&) {}
-  static constexpr ConnectivityStrategy strategy = ConnectivityStrategy::lazy_bfs;
-};
 
 template <class C, class = void>
 struct is_connectivity_policy : std::false_type {};
 template <class C>
 struct is_connectivity_policy<C, std::void_t<typename C::Params, decltype(C{std::declval<const typename C::Params&>()}),
-                                             decltype(C::strategy)>>
-    : std::is_same<std::remove_cv_t<decltype(C::strategy)>, ConnectivityStrategy> {};
+                                             typename C::PointState, decltype(C::stores_point_edges)>>
+    : std::bool_constant<std::is_same_v<std::remove_cv_t<decltype(C::stores_point_edges)>, bool> &&
+                         std::is_trivially_copyable_v<typename C::PointState> &&
+                         std::is_default_constructible_v<typename C::PointState>> {};
 
 template <class C, class = void>
 struct has_prune_witnesses : std::false_type {};
 template <class C>
 struct has_prune_witnesses<C, std::void_t<decltype(std::declval<const C&>().prune_witnesses())>> : std::true_type {};
+
+/// The members a strategy's State must have for a context type Ctx.
+template <class S, class Ctx, class = void>
+struct is_connectivity_state : std::false_type {};
+template <class S, class Ctx>
+struct is_connectivity_state<
+    S, Ctx,
+    std::void_t<decltype(std::declval<S&>().on_link(std::declval<Ctx&>(), PointHandle{},
+                                                    std::declval<const PointHandle*>(), std::size_t{})),
+                decltype(std::declval<S&>().on_evict(std::declval<Ctx&>(), PointHandle{})),
+                decltype(std::declval<S&>().retrieve(std::declval<Ctx&>())),
+                decltype(std::declval<S&>().begin_replay(std::declval<Ctx&>())),
+                decltype(std::declval<S&>().end_replay(std::declval<Ctx&>())),
+                decltype(std::declval<const S&>().cluster_slots()),
+                decltype(std::declval<const S&>().cluster_count())>>
+    : std::is_convertible<decltype(std::declval<S&>().retrieve(std::declval<Ctx&>())), const Clustering&> {};
+
 }  // namespace detail
 
 /// `c.prune_witnesses()` when the policy has it, else 0 (keep every edge).
@@ -83,6 +128,10 @@ std::uint32_t connectivity_prune_witnesses(const C& c) {
 template <class C>
 inline constexpr bool is_connectivity_policy_v = detail::is_connectivity_policy<C>::value;
 
+/// True when State type S has the members the engine calls with context Ctx.
+template <class S, class Ctx>
+inline constexpr bool is_connectivity_state_v = detail::is_connectivity_state<S, Ctx>::value;
+
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class C>
 concept ConnectivityPolicy = is_connectivity_policy_v<C>;
@@ -90,8 +139,8 @@ concept ConnectivityPolicy = is_connectivity_policy_v<C>;
 
 }  // namespace streamclust
 
-#define STREAMCLUST_CHECK_CONNECTIVITY_POLICY(C)                                                             \
-  static_assert(::streamclust::is_connectivity_policy_v<C>,                                                  \
-                "STREAMCLUST_CONNECTIVITY_POLICY_INVALID: the connectivity slot needs a nested Params "       \
-                "aggregate, a constructor from Params and `static constexpr ConnectivityStrategy strategy` " \
-                "(see docs/policies.md)")
+#define STREAMCLUST_CHECK_CONNECTIVITY_POLICY(C)                                                                \
+  static_assert(::streamclust::is_connectivity_policy_v<C>,                                                     \
+                "STREAMCLUST_CONNECTIVITY_POLICY_INVALID: the connectivity slot needs a nested Params "          \
+                "aggregate, a constructor from Params, a trivially copyable `PointState`, `static constexpr " \
+                "bool stores_point_edges` and a `State<Ring>` template (see concepts/connectivity.hpp)")

@@ -16,6 +16,7 @@
 /// Called from the thread that drives the engine.
 
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -23,6 +24,8 @@ namespace streamclust {
 
 /// Local cluster id inside one engine (recycled after `cluster_evicted`).
 using ClusterId = std::uint32_t;
+/// No local cluster (e.g. a point buffered for calibration).
+inline constexpr ClusterId kNoCluster = std::numeric_limits<ClusterId>::max();
 
 /// Observer with no-op hooks: the default visitor.
 struct NullVisitor {

@@ -18,11 +18,11 @@ namespace streamclust {
 /// Spatial index storing every handle of a cell (the bucket-based range grid
 /// of C-ARC): nothing is ever displaced, so `insert` always returns kNoPoint.
 ///
-/// Layout (chosen for the engine's neighbour search, docs/optimization-log.md
-/// section 8): every cell is one 32-byte, 32-byte-aligned record in ONE
-/// row-major array, holding up to `kInlineCapacity` = 6 handles inline, oldest
-/// first. A cell holding more keeps its 6 oldest handles inline and the newer
-/// ones in a spill bucket (a `std::vector` plus a head offset) taken from a
+/// Layout (chosen for the engine's neighbour search, docs/design-decisions.md):
+/// every cell is one 32-byte, 32-byte-aligned record in ONE row-major array,
+/// holding up to `kInlineCapacity` = 6 handles inline, oldest first. A cell
+/// holding more keeps its 6 oldest handles inline and the newer ones in a
+/// spill bucket (a `std::vector` plus a head offset) taken from a
 /// recycled pool. With the C-ARC grid (about 2 points per occupied cell) the
 /// search of a cell is ONE cache line, and the cells of a mask row are
 /// contiguous; only crowded cells (the Avia rosette's centre) pay a second

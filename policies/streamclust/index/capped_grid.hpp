@@ -38,7 +38,7 @@ namespace streamclust {
 /// Memory: cells x (4 K + 1) bytes, allocated by `reset` only; no allocation
 /// afterwards. (A ring per cell with a head byte made every move O(1) for one
 /// more byte per cell: 1.4 to 2.4 bytes per windowed point on the simulated
-/// Livox streams, optimization log section 16.) Thread safety: not
+/// Livox streams; docs/design-decisions.md.) Thread safety: not
 /// thread-safe (one writer, no concurrent readers).
 ///
 /// Usage:
