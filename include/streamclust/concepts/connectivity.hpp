@@ -81,6 +81,17 @@ struct ConnectivityContext {
   double time;
 };
 
+/// Base of a State whose strategy needs none of the optional hooks: no
+/// work around the calibration replay, nothing to size up front.
+struct ConnectivityStateDefaults {
+  template <class Ctx>
+  void begin_replay(Ctx&) {}
+  template <class Ctx>
+  void end_replay(Ctx&) {}
+  template <class Ring>
+  void reserve(const Ring&) {}
+};
+
 namespace detail {
 
 template <class C, class = void>

@@ -8,6 +8,7 @@
 /// votes, and the result.
 
 #include <streamclust/clustering.hpp>
+#include <streamclust/concepts/connectivity.hpp>
 #include <streamclust/concepts/visitor.hpp>
 #include <streamclust/detail/hints.hpp>
 #include <streamclust/engine/component_result.hpp>
@@ -28,30 +29,53 @@ namespace streamclust {
 /// points still in the window. `adopt` turns a fresh component numbering
 /// into the new local clusters, resolves the stable ids (each point present
 /// at the previous retrieval votes with weight 1 for its old component) and
-/// writes the result, in one pass over the window plus the writer's.
+/// writes the result, in one pass over the window plus the writer's. The
+/// rebuilding strategies' States derive from it: its public members are
+/// their inspection members.
 /// Thread safety: none (one engine, one thread).
 class RebuiltComponents {
  public:
   /// Cluster of a point linked since the last retrieval.
   static constexpr ClusterId kUnlabelled = kNoCluster - 1;
 
-  /// The local cluster of a point as the engine reports it (kNoCluster for
-  /// a point not labelled by a retrieval yet). O(1).
-  static ClusterId reported(ClusterId stored) { return stored == kUnlabelled ? kNoCluster : stored; }
-
   /// A point was linked: it has no component yet.
-  static void on_link(ClusterId& cluster) { cluster = kUnlabelled; }
+  static void mark_linked(ClusterId& cluster) { cluster = kUnlabelled; }
   /// A point is leaving the window. O(1).
-  void on_evict(ClusterId cluster) {
+  void forget(ClusterId cluster) {
     if (cluster < sizes_.size()) --sizes_[cluster];
   }
 
-  std::size_t slots() const { return sizes_.size(); }
-  bool alive(ClusterId c) const { return c < sizes_.size() && sizes_[c] > 0; }
-  std::size_t count() const {
+  // The local clusters as the engine shows them (a strategy's inspection
+  // members, inherited).
+  /// The local cluster of a point (kNoCluster for a point not labelled by a
+  /// retrieval yet). O(1).
+  template <class Ring>
+  ClusterId cluster_of(const Ring& ring, PointHandle h) const {
+    const ClusterId stored = ring.record(h).state.cluster;
+    return stored == kUnlabelled ? kNoCluster : stored;
+  }
+  std::size_t cluster_slots() const { return sizes_.size(); }
+  bool cluster_alive(ClusterId c) const { return c < sizes_.size() && sizes_[c] > 0; }
+  std::size_t cluster_count() const {
     return static_cast<std::size_t>(std::count_if(sizes_.begin(), sizes_.end(), [](std::uint32_t n) { return n > 0; }));
   }
-  std::size_t size(ClusterId c) const { return sizes_[c]; }
+  std::size_t cluster_size(ClusterId c) const { return sizes_[c]; }
+  /// Never: nothing is validated lazily.
+  bool cluster_pending(ClusterId) const { return false; }
+  /// Always empty: no bridges.
+  const std::vector<ClusterBridge>& bridges(ClusterId) const { return no_bridges_; }
+
+  /// The retrieval's second half: `sets` (a window union-find of
+  /// detail/union_find.hpp, its sets the window's components) numbered, then
+  /// `adopt`ed. Counts the window as validated. O(N + components + votes).
+  template <class Ctx, class Sets>
+  const Clustering& adopt_sets(Ctx& ctx, Sets& sets) {
+    const auto n = static_cast<std::uint32_t>(ctx.points.size());
+    ctx.stats.points_validated += n;
+    const std::uint32_t components = sets.number_components(n);
+    return adopt(ctx.points, n, components, [&](std::uint32_t i) { return sets.component(i); }, ctx.result,
+                 ctx.next_id, ctx.time, ctx.stats, typename Ctx::Clock{});
+  }
 
   /// The window's `n` points (oldest first in `ring`) have component
   /// `component_at(i)` of `components`, numbered in order of each
@@ -130,6 +154,7 @@ class RebuiltComponents {
 
   std::vector<std::uint32_t> sizes_;  ///< points of each local cluster still in the window
   StableIdVotes votes_;
+  std::vector<ClusterBridge> no_bridges_;  ///< what bridges() returns
 };
 
 }  // namespace streamclust

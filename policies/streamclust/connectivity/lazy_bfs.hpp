@@ -58,7 +58,7 @@ struct LazyBfsConnectivity {
   };
 
   template <class Ring>
-  class State {
+  class State : public ConnectivityStateDefaults {
    public:
     explicit State(const LazyBfsConnectivity&) {}
 
@@ -123,12 +123,6 @@ struct LazyBfsConnectivity {
       }
       edges_.release(ring, h);
     }
-
-    template <class Ctx>
-    void begin_replay(Ctx&) {}
-    template <class Ctx>
-    void end_replay(Ctx&) {}
-    void reserve(const Ring&) {}
 
     // ---------------------------------------------------------- retrieval
     /// Validates the pending clusters, then labels the components of the

@@ -106,7 +106,7 @@ struct SpanningForestConnectivity {
   }
 
   template <class Ring>
-  class State {
+  class State : public RebuiltComponents {
    public:
     explicit State(const SpanningForestConnectivity& policy) : params_(policy.params()) {}
 
@@ -117,7 +117,7 @@ struct SpanningForestConnectivity {
     void on_link(Ctx& ctx, PointHandle h, const PointHandle* nb, std::size_t count) {
       Ring& ring = ctx.points;
       fresh_.append(nb, count, h);
-      RebuiltComponents::on_link(ring.record(h).state.cluster);
+      mark_linked(ring.record(h).state.cluster);
       // The calibration replay links a whole window at once: it folds at a
       // quarter window, so that it does not set the capacity of the bands and
       // the forest (which never shrink) above what a cycle needs.
@@ -129,7 +129,7 @@ struct SpanningForestConnectivity {
     }
     template <class Ctx>
     void on_evict(Ctx& ctx, PointHandle h) {
-      clusters_.on_evict(ctx.points.record(h).state.cluster);
+      forget(ctx.points.record(h).state.cluster);
     }
     template <class Ctx>
     void begin_replay(Ctx& ctx) {
@@ -153,34 +153,17 @@ struct SpanningForestConnectivity {
     /// Folds, then RebuiltComponents. O(N + F + new edges) plus the votes.
     template <class Ctx>
     const Clustering& retrieve(Ctx& ctx) {
-      using Clock = typename Ctx::Clock;
-      const auto t0 = Clock::now();
-      Ring& ring = ctx.points;
-      const auto n = static_cast<std::uint32_t>(ring.size());
-      ctx.stats.points_validated += n;
-      fold(ring, ctx.stats);
-      const std::uint32_t components = sets_.number_components(n);
-      const Clustering& out = clusters_.adopt(
-          ring, n, components, [&](std::uint32_t i) { return sets_.component(i); }, ctx.result, ctx.next_id,
-          ctx.time, ctx.stats, Clock{});
-      Clock::add_since(ctx.stats.phase_us.component_update, t0);
+      const auto t0 = Ctx::Clock::now();
+      fold(ctx.points, ctx.stats);
+      const Clustering& out = adopt_sets(ctx, sets_);
+      Ctx::Clock::add_since(ctx.stats.phase_us.component_update, t0);
       return out;
     }
 
-    ClusterId cluster_of(const Ring& ring, PointHandle h) const {
-      return RebuiltComponents::reported(ring.record(h).state.cluster);
-    }
-    std::size_t cluster_slots() const { return clusters_.slots(); }
-    bool cluster_alive(ClusterId c) const { return clusters_.alive(c); }
-    std::size_t cluster_count() const { return clusters_.count(); }
-    std::size_t cluster_size(ClusterId c) const { return clusters_.size(c); }
-    bool cluster_pending(ClusterId) const { return false; }
-    const std::vector<ClusterBridge>& bridges(ClusterId) const { return no_bridges_; }
-
     void add_memory(MemoryUsage& m) const {
       m.edge_storage += capacity_bytes(forest_) + fresh_.heap_bytes() + displaced_.heap_bytes();
-      m.clusters += clusters_.cluster_bytes();
-      m.scratch += sets_.heap_bytes() + clusters_.scratch_bytes();
+      m.clusters += cluster_bytes();
+      m.scratch += sets_.heap_bytes() + scratch_bytes();
     }
 
    private:
@@ -262,8 +245,6 @@ struct SpanningForestConnectivity {
     PointHandle fold_mark_ = 0;              ///< the ring's next() at the last fold
     bool replaying_ = false;                 ///< the calibration replay is linking the first window
     detail::RankedUnionFind sets_;
-    RebuiltComponents clusters_;
-    std::vector<ClusterBridge> no_bridges_;  ///< what bridges() returns (always empty)
   };
 
  private:

@@ -49,59 +49,38 @@ struct UnionFindRebuildConnectivity {
   };
 
   template <class Ring>
-  class State {
+  class State : public ConnectivityStateDefaults, public RebuiltComponents {
    public:
     explicit State(const UnionFindRebuildConnectivity&) {}
 
     template <class Ctx>
     void on_link(Ctx& ctx, PointHandle h, const PointHandle* nb, std::size_t count) {
       edges_.store(ctx.points, h, nb, count);
-      RebuiltComponents::on_link(ctx.points.record(h).state.cluster);
+      mark_linked(ctx.points.record(h).state.cluster);
     }
     template <class Ctx>
     void on_evict(Ctx& ctx, PointHandle h) {
-      clusters_.on_evict(ctx.points.record(h).state.cluster);
+      forget(ctx.points.record(h).state.cluster);
       edges_.release(ctx.points, h);
     }
-    template <class Ctx>
-    void begin_replay(Ctx&) {}
-    template <class Ctx>
-    void end_replay(Ctx&) {}
-    void reserve(const Ring&) {}
 
     /// One union-find pass over the live edges, then RebuiltComponents.
     /// O(N + E) plus the votes.
     template <class Ctx>
     const Clustering& retrieve(Ctx& ctx) {
-      using Clock = typename Ctx::Clock;
-      const auto t0 = Clock::now();
-      Ring& ring = ctx.points;
-      const auto n = static_cast<std::uint32_t>(ring.size());
-      ctx.stats.points_validated += n;
-      unite_edges(ring, n);
-      const std::uint32_t components = sets_.number_components(n);
-      const Clustering& out = clusters_.adopt(
-          ring, n, components, [&](std::uint32_t i) { return sets_.component(i); }, ctx.result, ctx.next_id,
-          ctx.time, ctx.stats, Clock{});
-      Clock::add_since(ctx.stats.phase_us.component_update, t0);
+      const auto t0 = Ctx::Clock::now();
+      unite_edges(ctx.points, static_cast<std::uint32_t>(ctx.points.size()));
+      const Clustering& out = adopt_sets(ctx, sets_);
+      Ctx::Clock::add_since(ctx.stats.phase_us.component_update, t0);
       return out;
     }
 
-    ClusterId cluster_of(const Ring& ring, PointHandle h) const {
-      return RebuiltComponents::reported(ring.record(h).state.cluster);
-    }
-    std::size_t cluster_slots() const { return clusters_.slots(); }
-    bool cluster_alive(ClusterId c) const { return clusters_.alive(c); }
-    std::size_t cluster_count() const { return clusters_.count(); }
-    std::size_t cluster_size(ClusterId c) const { return clusters_.size(c); }
-    bool cluster_pending(ClusterId) const { return false; }
-    const std::vector<ClusterBridge>& bridges(ClusterId) const { return no_bridges_; }
     const PointEdges& edges() const { return edges_; }
 
     void add_memory(MemoryUsage& m) const {
       m.edge_storage += edges_.heap_bytes();
-      m.clusters += clusters_.cluster_bytes();
-      m.scratch += sets_.heap_bytes() + clusters_.scratch_bytes();
+      m.clusters += cluster_bytes();
+      m.scratch += sets_.heap_bytes() + scratch_bytes();
     }
 
    private:
@@ -133,8 +112,6 @@ struct UnionFindRebuildConnectivity {
 
     PointEdges edges_;
     detail::OldestRootUnionFind sets_;
-    RebuiltComponents clusters_;
-    std::vector<ClusterBridge> no_bridges_;  ///< what bridges() returns (always empty)
   };
 };
 
