@@ -287,9 +287,9 @@ int run(Sensor sensor, const std::string& sensor_label, const Options& o) {
               p50 > 1.3 * cpu_p50 ? " (wall well above CPU: other processes share the cores)" : "");
   std::printf("           first cycle %.1f ms (after calibration: the whole first window inserted), not counted\n",
               first_cycle_ms);
-  std::printf("  quality  against the simulator's ground truth, mean over %zu windows: ARI %.3f (object points),"
-              " objects correct %.1f %% (%.1f of %.1f per window;\n"
-              "           raw stream, no ground removal: objects that touch the floor merge with it)\n",
+  std::printf("  quality  against the simulator's ground truth, mean over %zu windows: ARI %.3f (object points),\n"
+              "           objects correct %.1f %% (%.1f of %.1f per window); raw stream, no ground removal:\n"
+              "           objects that touch the floor merge with it\n",
               windows_scored, ari_sum / static_cast<double>(windows_scored),
               objects_rated == 0 ? 100.0 : 100.0 * static_cast<double>(objects_correct) / static_cast<double>(objects_rated),
               static_cast<double>(objects_correct) / static_cast<double>(windows_scored),
