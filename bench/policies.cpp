@@ -41,6 +41,7 @@
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/scenes.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
@@ -63,17 +64,17 @@ namespace {
 
 sc::SphericalProjection::Params mid360_fov() {
   sc::SphericalProjection::Params f;
-  f.elevation_min_deg = -7.5f;
-  f.elevation_max_deg = 52.5f;
+  f.elevation_min_deg = sc::livox_mid360.projection_elevation_min_deg();
+  f.elevation_max_deg = sc::livox_mid360.projection_elevation_max_deg();
   return f;
 }
 
 sc::SphericalProjection::Params avia_fov() {
   sc::SphericalProjection::Params f;
-  f.azimuth_min_deg = -35.2f;
-  f.azimuth_max_deg = 35.2f;
-  f.elevation_min_deg = -38.6f;
-  f.elevation_max_deg = 38.6f;
+  f.azimuth_min_deg = sc::livox_avia.projection_azimuth_min_deg();
+  f.azimuth_max_deg = sc::livox_avia.projection_azimuth_max_deg();
+  f.elevation_min_deg = sc::livox_avia.projection_elevation_min_deg();
+  f.elevation_max_deg = sc::livox_avia.projection_elevation_max_deg();
   return f;
 }
 

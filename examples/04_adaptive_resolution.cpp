@@ -58,10 +58,10 @@ std::vector<sc::Projected> first_window(const Pattern& p, const sc::SphericalPro
 
 int main() {
   std::vector<Pattern> patterns;
-  patterns.push_back(record("Mid-360", sc::sim::Mid360Model(), fov(180.0f, -7.5f, 52.5f), 0.5));
-  patterns.push_back(record("Mid-40", sc::sim::RisleyPairModel::mid40(), fov(20.0f, -20.0f, 20.0f), 0.5));
-  patterns.push_back(record("Mid-70", sc::sim::RisleyPairModel::mid70(), fov(36.0f, -36.0f, 36.0f), 0.5));
-  patterns.push_back(record("Avia", sc::sim::AviaModel(sc::sim::AviaModel::Params{}), fov(35.5f, -39.0f, 39.0f), 0.5));
+  patterns.push_back(record("Mid-360", sc::sim::Mid360Model(), sc::field_of_view_of(sc::livox_mid360), 0.5));
+  patterns.push_back(record("Mid-40", sc::sim::RisleyPairModel::mid40(), sc::field_of_view_of(sc::livox_mid40), 0.5));
+  patterns.push_back(record("Mid-70", sc::sim::RisleyPairModel::mid70(), sc::field_of_view_of(sc::livox_mid70), 0.5));
+  patterns.push_back(record("Avia", sc::sim::AviaModel(sc::sim::AviaModel::Params{}), sc::field_of_view_of(sc::livox_avia), 0.5));
   patterns.push_back(record("spinning-32", sc::sim::SpinningModel(sc::sim::SpinningModel::Params{}),
                             fov(180.0f, -25.5f, 15.5f), 0.5));
 

@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/presets.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
@@ -52,10 +53,10 @@ sc::SphericalProjection::Params fov(float az, float el_min, float el_max) {
 
 std::vector<Pattern> patterns(double seconds) {
   std::vector<Pattern> out;
-  out.push_back(project("mid360", sc::sim::Mid360Model(sc::sim::Mid360Model::Params{}), seconds, fov(180.0f, -7.5f, 52.5f)));
-  out.push_back(project("mid40", sc::sim::RisleyPairModel::mid40(), seconds, fov(20.0f, -20.0f, 20.0f)));
-  out.push_back(project("mid70", sc::sim::RisleyPairModel::mid70(), seconds, fov(36.0f, -36.0f, 36.0f)));
-  out.push_back(project("avia", sc::sim::AviaModel(sc::sim::AviaModel::Params{}), seconds, fov(35.5f, -39.0f, 39.0f)));
+  out.push_back(project("mid360", sc::sim::Mid360Model(sc::sim::Mid360Model::Params{}), seconds, sc::field_of_view_of(sc::livox_mid360)));
+  out.push_back(project("mid40", sc::sim::RisleyPairModel::mid40(), seconds, sc::field_of_view_of(sc::livox_mid40)));
+  out.push_back(project("mid70", sc::sim::RisleyPairModel::mid70(), seconds, sc::field_of_view_of(sc::livox_mid70)));
+  out.push_back(project("avia", sc::sim::AviaModel(sc::sim::AviaModel::Params{}), seconds, sc::field_of_view_of(sc::livox_avia)));
   out.push_back(project("spinning32", sc::sim::SpinningModel(sc::sim::SpinningModel::Params{}), seconds,
                         fov(180.0f, -25.5f, 15.5f)));
   return out;

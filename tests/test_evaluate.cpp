@@ -121,10 +121,10 @@ TEST_CASE("evaluate: JSON metrics equal the library's on the same simulated stre
   while (simulator.time() < 0.45) stream.push_back(simulator.next());
 
   sc::SphericalProjection::Params fov;  // evaluate's Mid-40 FOV
-  fov.azimuth_min_deg = -20.0f;
-  fov.azimuth_max_deg = 20.0f;
-  fov.elevation_min_deg = -20.0f;
-  fov.elevation_max_deg = 20.0f;
+  fov.azimuth_min_deg = sc::livox_mid40.projection_azimuth_min_deg();
+  fov.azimuth_max_deg = sc::livox_mid40.projection_azimuth_max_deg();
+  fov.elevation_min_deg = sc::livox_mid40.projection_elevation_min_deg();
+  fov.elevation_max_deg = sc::livox_mid40.projection_elevation_max_deg();
 
   // The grid is the adaptive loop's choice on the first window.
   sc::ClustererParams<sc::CArcConfig> adaptive;

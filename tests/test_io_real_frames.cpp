@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <streamclust/io/reader.hpp>
+#include <streamclust/sensors.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -52,18 +53,18 @@ io::ReadOptions rate(double hz) {
 TEST_CASE("real frames: horizon_highway CSV has 20,900 slots, 6,832 of them the no-return point") {
   if (!have_frames()) return;
   const fs::path p = livox_data_dir() / "frames" / "horizon_highway" / "test_data.csv";
-  auto r = io::open_reader(p.string(), rate(240000.0));
+  auto r = io::open_reader(p.string(), rate(streamclust::livox_horizon.point_rate_hz));
   CHECK(r->info().format == io::Format::csv);
   CHECK(r->info().has_intensity);
   CHECK_FALSE(r->info().has_time);
-  const auto v = load(p, rate(240000.0));
+  const auto v = load(p, rate(streamclust::livox_horizon.point_rate_hz));
   CHECK(v.size() == 20900);
   std::size_t no_return = 0;
   for (const auto& rec : v)
     if (std::fabs(rec.x + 0.089f) < 1e-3f && std::fabs(rec.y - 0.433f) < 1e-3f && std::fabs(rec.z - 0.150f) < 1e-3f)
       ++no_return;
   CHECK(no_return == 6832);
-  CHECK(v.back().t == doctest::Approx(20899.0 / 240000.0));
+  CHECK(v.back().t == doctest::Approx(20899.0 / streamclust::livox_horizon.point_rate_hz));
 }
 
 TEST_CASE("real frames: lane_detection ascii PCDs (VERSION .7), about 24,000 slots each") {
@@ -72,9 +73,9 @@ TEST_CASE("real frames: lane_detection ascii PCDs (VERSION .7), about 24,000 slo
   for (int id = 1; id <= 6; ++id) {
     const fs::path p = livox_data_dir() / "frames" / "lane_detection" / "lidar" / std::to_string(id) / "1589168946_0.pcd";
     INFO(p.string());
-    auto r = io::open_reader(p.string(), rate(240000.0));
+    auto r = io::open_reader(p.string(), rate(streamclust::livox_horizon.point_rate_hz));
     CHECK(r->info().encoding == "ascii");
-    const auto v = load(p, rate(240000.0));
+    const auto v = load(p, rate(streamclust::livox_horizon.point_rate_hz));
     CHECK(v.size() == expected[id - 1]);
   }
 }
@@ -85,10 +86,10 @@ TEST_CASE("real frames: mid100_campus binary PCDs with WIDTH 0 HEIGHT 0 load POI
   for (const auto& [name, count] : files) {
     const fs::path p = livox_data_dir() / "frames" / "mid100_campus" / name;
     INFO(p.string());
-    auto r = io::open_reader(p.string(), rate(100000.0));
+    auto r = io::open_reader(p.string(), rate(streamclust::livox_mid40.point_rate_hz));
     CHECK(r->info().encoding == "binary");
     CHECK(r->info().declared_points == count);
-    const auto v = load(p, rate(100000.0));
+    const auto v = load(p, rate(streamclust::livox_mid40.point_rate_hz));
     CHECK(v.size() == count);
     std::size_t nonzero_intensity = 0;
     for (const auto& rec : v) nonzero_intensity += rec.intensity != 0.f;
@@ -102,6 +103,6 @@ TEST_CASE("real frames: horizon_submaps binary PCDs, about 40k points") {
   for (const auto& [name, count] : files) {
     const fs::path p = livox_data_dir() / "frames" / "horizon_submaps" / name;
     INFO(p.string());
-    CHECK(load(p, rate(240000.0)).size() == count);
+    CHECK(load(p, rate(streamclust::livox_horizon.point_rate_hz)).size() == count);
   }
 }

@@ -8,6 +8,7 @@
 
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
+#include <streamclust/sensors.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +41,7 @@ Eigen::Vector3f direction_deg(double az, double el) {
 
 TEST_CASE("SphericalProjection: project(unproject(u, v, r)) returns (u, v, r)") {
   const SphericalProjection full{{}};
-  const SphericalProjection avia{{-35.2f, 35.2f, -38.6f, 38.6f, 0.1f}};
+  const SphericalProjection avia{{streamclust::livox_avia.projection_azimuth_min_deg(), streamclust::livox_avia.projection_azimuth_max_deg(), streamclust::livox_avia.projection_elevation_min_deg(), streamclust::livox_avia.projection_elevation_max_deg(), 0.1f}};
   const SphericalProjection behind{{90.0f, 270.0f, -30.0f, 10.0f, 0.5f}};
   for (const SphericalProjection* proj : {&full, &avia, &behind}) {
     const bool wraps = proj->wraps_horizontally();

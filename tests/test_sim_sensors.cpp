@@ -9,6 +9,7 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
 #include <streamclust/sim/sensors/pattern_stats.hpp>
@@ -207,25 +208,25 @@ fs::path temp_file(const char* name, const std::vector<unsigned char>& bytes) {
 TEST_CASE("sensor models: unit directions, non-decreasing time, point rate over 1 s") {
   SUBCASE("Mid-360") {
     sim::Mid360Model m;
-    check_contract(m, 200000.0);
+    check_contract(m, streamclust::livox_mid360.point_rate_hz);
   }
   SUBCASE("Mid-40") {
     auto m = sim::RisleyPairModel::mid40();
-    check_contract(m, 100000.0);
+    check_contract(m, streamclust::livox_mid40.point_rate_hz);
   }
   SUBCASE("Mid-70") {
     auto m = sim::RisleyPairModel::mid70();
-    check_contract(m, 100000.0);
+    check_contract(m, streamclust::livox_mid70.point_rate_hz);
   }
   SUBCASE("Mid-70, pure tangent-plane profile") {
     sim::RisleyPairModel::Params p = sim::RisleyPairModel::mid70().params();
     p.radial_poly = {{0.0, 0.0, 0.0, 0.0}};
     sim::RisleyPairModel m(p);
-    check_contract(m, 100000.0);
+    check_contract(m, streamclust::livox_mid70.point_rate_hz);
   }
   SUBCASE("Avia") {
     sim::AviaModel m;
-    check_contract(m, 240000.0);
+    check_contract(m, streamclust::livox_avia.point_rate_hz);
   }
   SUBCASE("spinning 32 x 1800 x 10 Hz") {
     sim::SpinningModel m;
@@ -236,7 +237,7 @@ TEST_CASE("sensor models: unit directions, non-decreasing time, point rate over 
     p.start_time = 2.5;
     sim::Mid360Model m(p);
     CHECK(m.next().time == 2.5);
-    check_contract(m, 200000.0);
+    check_contract(m, streamclust::livox_mid360.point_rate_hz);
   }
 }
 
@@ -276,7 +277,7 @@ TEST_CASE("Mid-360 model: full azimuth every 0.1 s, elevation about -7 .. 52 deg
 TEST_CASE("Mid-40 / Mid-70 models: circular FOV of 38.4 / 70.4 deg") {
   for (int k = 0; k < 2; ++k) {
     auto m = k == 0 ? sim::RisleyPairModel::mid40() : sim::RisleyPairModel::mid70();
-    const double half = k == 0 ? 19.2 : 35.2;
+    const double half = (k == 0 ? streamclust::livox_mid40 : streamclust::livox_mid70).horizontal_fov_deg / 2.0;
     const std::vector<sim::Ray> rays = sim::collect(m, 0.5);
     double off = 0.0;
     for (const sim::Ray& r : rays) off = std::max(off, sim::off_axis_deg(r.direction));
@@ -304,9 +305,9 @@ TEST_CASE("Avia model: within 70.4 x 77.2 deg, dense centre") {
     el = std::max(el, std::fabs(sim::elevation_deg(r.direction)));
   }
   INFO("reached |azimuth| " << az << ", |elevation| " << el);
-  CHECK(az <= 35.2 + 0.1);
+  CHECK(az <= streamclust::livox_avia.horizontal_fov_deg / 2.0 + 0.1);
   CHECK(az >= 34.5);
-  CHECK(el <= 38.6 + 0.1);
+  CHECK(el <= streamclust::livox_avia.vertical_fov_max_deg + 0.1);
   CHECK(el >= 37.5);
   const sim::DensityContrast d =
       sim::density_contrast(rays, {sim::AngularCoordinate::off_axis, 0.0, 11.0}, {{sim::AngularCoordinate::off_axis, 28.0, 34.0}});

@@ -4,7 +4,8 @@
 #       -DWORK_DIR=<scratch dir> -DCXX_COMPILER=<c++> [-DGENERATOR=<gen>]
 #       [-DBUILD_TYPE=<cfg>] [-DEXPECTED_VERSION=<x.y.z>] -P consumer_test.cmake
 #
-# 1. cmake --install BUILD_DIR --prefix WORK_DIR/prefix
+# 1. cmake --install BUILD_DIR --prefix WORK_DIR/prefix --component streamclust_development
+#    (the library alone: the command-line tool need not be built)
 # 2. check the installed tree (merged headers, package files)
 # 3. configure tests/consumer with CMAKE_PREFIX_PATH=WORK_DIR/prefix, build it
 # 4. run the consumer; it must exit 0
@@ -35,10 +36,11 @@ file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
 run_step("install into ${_prefix}"
-         "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${_prefix}" --config "${BUILD_TYPE}")
+         "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${_prefix}" --config "${BUILD_TYPE}"
+         --component streamclust_development)
 
 # The installed tree: both source include roots merged under include/streamclust,
-# package config + version + targets files.
+# package config + version + targets files, the four targets exported.
 file(GLOB _config "${_prefix}/*/cmake/streamclust/streamclustConfig.cmake"
                   "${_prefix}/*/*/cmake/streamclust/streamclustConfig.cmake")
 if(NOT _config)
@@ -56,6 +58,20 @@ file(GLOB_RECURSE _pol_headers RELATIVE "${_src_root}/policies" "${_src_root}/po
 foreach(_h IN LISTS _src_headers _pol_headers)
   if(NOT EXISTS "${_prefix}/include/${_h}")
     message(FATAL_ERROR "FAILED: header <${_h}> was not installed to ${_prefix}/include")
+  endif()
+endforeach()
+file(READ "${_dir}/streamclustTargets.cmake" _targets_file)
+foreach(_t streamclust io eval sim)
+  string(FIND "${_targets_file}" "add_library(streamclust::${_t} INTERFACE IMPORTED)" _pos)
+  if(_pos EQUAL -1)
+    message(FATAL_ERROR "FAILED: streamclust::${_t} is not exported in ${_dir}/streamclustTargets.cmake")
+  endif()
+endforeach()
+# The umbrella header and the presets are framework headers: a policy never
+# includes an engine.
+foreach(_h streamclust/streamclust.hpp streamclust/presets.hpp)
+  if(NOT EXISTS "${_src_root}/include/${_h}")
+    message(FATAL_ERROR "FAILED: <${_h}> is not under include/")
   endif()
 endforeach()
 list(LENGTH _src_headers _n_src)

@@ -59,8 +59,9 @@ struct EvaluateOptions {
 };
 
 /// The field of view of each simulated sensor (degrees), used unless
-/// --fov-azimuth / --fov-elevation override it; a margin of about 0.5 deg
-/// keeps every simulated ray inside. The spinning sensor's FOV is shifted so
+/// --fov-azimuth / --fov-elevation override it: the Livox sensors' from
+/// <streamclust/sensors.hpp> (a margin of kFieldOfViewMarginDeg keeps every
+/// simulated ray inside). The spinning sensor's FOV is shifted so
 /// that its natural grid (--grid 32x1800: one row per beam, one column per
 /// firing column) has a firing direction at the centre of every cell: its
 /// 32 beams span -25..15 deg (1.29 deg apart), so rows of 41.29 / 32 deg from
@@ -73,10 +74,10 @@ inline void apply_sensor_fov(const std::string& sensor, ClusterOptions& o) {
     const char* name;
     float az_min, az_max, el_min, el_max;
   };
-  static constexpr Fov kFov[] = {{"mid360", -180.0f, 180.0f, -7.5f, 52.5f},
-                                 {"mid40", -20.0f, 20.0f, -20.0f, 20.0f},
-                                 {"mid70", -36.0f, 36.0f, -36.0f, 36.0f},
-                                 {"avia", -35.5f, 35.5f, -39.0f, 39.0f},
+  static constexpr Fov kFov[] = {{"mid360", livox_mid360.projection_azimuth_min_deg(), livox_mid360.projection_azimuth_max_deg(), livox_mid360.projection_elevation_min_deg(), livox_mid360.projection_elevation_max_deg()},
+                                 {"mid40", livox_mid40.projection_azimuth_min_deg(), livox_mid40.projection_azimuth_max_deg(), livox_mid40.projection_elevation_min_deg(), livox_mid40.projection_elevation_max_deg()},
+                                 {"mid70", livox_mid70.projection_azimuth_min_deg(), livox_mid70.projection_azimuth_max_deg(), livox_mid70.projection_elevation_min_deg(), livox_mid70.projection_elevation_max_deg()},
+                                 {"avia", livox_avia.projection_azimuth_min_deg(), livox_avia.projection_azimuth_max_deg(), livox_avia.projection_elevation_min_deg(), livox_avia.projection_elevation_max_deg()},
                                  {"spinning32", -180.1f, 179.9f, -25.645f, 15.645f}};
   for (const Fov& f : kFov) {
     if (sensor == f.name) {

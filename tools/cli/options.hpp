@@ -6,6 +6,7 @@
 /// validation. Every bad option becomes a UsageError (exit code 2).
 
 #include <streamclust/io/record.hpp>
+#include <streamclust/sensors.hpp>
 
 #include <cstdint>
 #include <initializer_list>
@@ -103,14 +104,14 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
   if (name == "carc") return;  // the defaults above: theta 10, w 5, T_M 2
   if (name == "carc-mid360") {
     o.theta_deg = 30.0f;
-    o.elevation_min = -7.5f;
-    o.elevation_max = 52.5f;
+    o.elevation_min = livox_mid360.projection_elevation_min_deg();
+    o.elevation_max = livox_mid360.projection_elevation_max_deg();
   } else if (name == "carc-avia") {
     o.theta_deg = 80.0f;
-    o.azimuth_min = -35.2f;
-    o.azimuth_max = 35.2f;
-    o.elevation_min = -38.6f;
-    o.elevation_max = 38.6f;
+    o.azimuth_min = livox_avia.projection_azimuth_min_deg();
+    o.azimuth_max = livox_avia.projection_azimuth_max_deg();
+    o.elevation_min = livox_avia.projection_elevation_min_deg();
+    o.elevation_max = livox_avia.projection_elevation_max_deg();
   } else if (name == "baseline") {
     o.index = IndexKind::overwrite;
     o.mode = Mode::frame;

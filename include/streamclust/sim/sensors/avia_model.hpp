@@ -5,6 +5,7 @@
 /// A best-estimate model of the Livox Avia (240 kHz, 6 beams, 70.4 x 77.2 deg,
 /// dense centre): three rotating prisms, first-order (thin-prism) optics.
 
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/ray.hpp>
 
 #include <Eigen/Core>
@@ -51,13 +52,13 @@ class AviaModel {
     std::array<double, 3> wedge_deg{{30.8856, 29.7735, 3.1351}};     ///< wedge angles [deg], [0, 60)
     std::array<double, 3> phase_rad{{0.0, 0.0, 0.0}};                ///< prism angles at t = 0 [rad], finite
     double refractive_index = 1.51;                                   ///< (1, 3]
-    double fov_scale = 35.2 / 32.535042;  ///< scale on the summed deflection (1 = raw thin-prism), (0, 3]
+    double fov_scale = livox_avia.horizontal_fov_deg / 2.0 / 32.535042;  ///< scale on the summed deflection (1 = raw thin-prism), (0, 3]
     std::array<double, 6> beam_offset_deg{{-2.99, -1.86, -0.62, 0.62, 1.86, 3.04}};  ///< vertical beam offsets [deg], |.| < 30
-    double point_rate = 240000.0;  ///< firings per second over all six beams [Hz], > 0
+    double point_rate = livox_avia.point_rate_hz;  ///< firings per second over all six beams [Hz], > 0
     double start_time = 0.0;       ///< time of the first firing [s], >= 0
   };
 
-  static constexpr int kBeams = 6;
+  static constexpr int kBeams = livox_avia.lasers;
 
   AviaModel() : AviaModel(Params{}) {}
 

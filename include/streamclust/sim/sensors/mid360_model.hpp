@@ -5,6 +5,7 @@
 /// An analytic model of the Livox Mid-360 scan pattern (200 kHz, 4 lasers,
 /// 360 x 59 degrees), fitted to Livox's official firing table.
 
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/ray.hpp>
 
 #include <Eigen/Core>
@@ -57,11 +58,11 @@ namespace streamclust::sim {
 class Mid360Model {
  public:
   struct Params {
-    double point_rate = 200000.0;  ///< firings per second over all 4 lasers [Hz], > 0 (real sensor: 200 kHz)
+    double point_rate = livox_mid360.point_rate_hz;  ///< firings per second over all 4 lasers [Hz], > 0 (real sensor: 200 kHz)
     double start_time = 0.0;       ///< time of the first firing [s], finite, >= 0
   };
 
-  static constexpr int kLasers = 4;
+  static constexpr int kLasers = livox_mid360.lasers;
 
   Mid360Model() : Mid360Model(Params{}) {}
 

@@ -4,6 +4,7 @@
 /// \file
 /// An analytic model of a two-prism Risley scanner: Livox Mid-40 and Mid-70.
 
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/ray.hpp>
 
 #include <Eigen/Core>
@@ -58,7 +59,7 @@ class RisleyPairModel {
     double phase1 = 0.0035;          ///< prism 1 angle at t = 0 [rad], finite
     double phase2 = -0.0091;         ///< prism 2 angle at t = 0 [rad], finite
     std::array<double, 4> radial_poly{{0.978346, 0.070375, -0.430569, 0.401795}};  ///< theta(r) = c1 r + .. + c4 r^4 [rad]; all 0: atan(r). Must rise on [0, A1 + A2] and stay below pi/2
-    double point_rate = 100000.0;    ///< firings per second [Hz], > 0
+    double point_rate = livox_mid40.point_rate_hz;  ///< firings per second [Hz], > 0
     double start_time = 0.0;         ///< time of the first firing [s], >= 0
   };
 
@@ -73,6 +74,7 @@ class RisleyPairModel {
     p.phase1 = -3.1382;
     p.phase2 = 3.1325;
     p.radial_poly = {{0.763986, 0.327458, -0.699873, 0.999959}};
+    p.point_rate = livox_mid70.point_rate_hz;
     return RisleyPairModel(p);
   }
 

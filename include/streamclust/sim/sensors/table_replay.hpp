@@ -5,6 +5,7 @@
 /// Replays a real Livox firing-order direction table (the files of
 /// ../shared/data/livox/patterns, layouts in that folder's README).
 
+#include <streamclust/sensors.hpp>
 #include <streamclust/sim/ray.hpp>
 
 #include <Eigen/Core>
@@ -51,8 +52,8 @@ class TableReplay {
   struct Params {
     std::string path;                   ///< the table file
     Layout layout = Layout::mid360_u16;  ///< record layout
-    double point_rate = 200000.0;       ///< rows per second [Hz], > 0
-    int lasers = 4;                     ///< lasers interleaved in the table (slot i -> laser i mod lasers), >= 1
+    double point_rate = livox_mid360.point_rate_hz;  ///< rows per second [Hz], > 0
+    int lasers = livox_mid360.lasers;  ///< lasers interleaved in the table (slot i -> laser i mod lasers), >= 1
   };
 
   /// Loads the table. See the class comment for what throws.
@@ -66,11 +67,11 @@ class TableReplay {
 
   /// The official Mid-360 table (`mid360_u16le.bin`): 200 kHz, 4 lasers.
   static TableReplay mid360(const std::string& path) {
-    return TableReplay(Params{path, Layout::mid360_u16, 200000.0, 4});
+    return TableReplay(Params{path, Layout::mid360_u16, livox_mid360.point_rate_hz, livox_mid360.lasers});
   }
 
   /// A Mid-40 / Mid-70 table (`mid40_f32le.bin`, `mid70_f32le.bin`): one laser.
-  static TableReplay risley_f32(const std::string& path, double point_rate = 100000.0) {
+  static TableReplay risley_f32(const std::string& path, double point_rate = livox_mid40.point_rate_hz) {
     return TableReplay(Params{path, Layout::risley_f32, point_rate, 1});
   }
 

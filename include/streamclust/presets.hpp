@@ -43,6 +43,7 @@
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/resolution/fixed.hpp>
+#include <streamclust/sensors.hpp>
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/window/time_window.hpp>
 
@@ -129,23 +130,33 @@ struct CArcParams {
   SphericalProjection::Params field_of_view{};  ///< FOV bounds and minimum range
 };
 
-/// The Livox Mid-360: 360 x 59 degrees (elevation -7.2 to 52.2), theta = 30 degrees as in the paper.
+/// The projection bounds of a sensor of the table in sensors.hpp: its field
+/// of view widened by kFieldOfViewMarginDeg on each side, minimum range
+/// SphericalProjection's default.
+inline SphericalProjection::Params field_of_view_of(const SensorFacts& sensor) {
+  SphericalProjection::Params fov;
+  fov.azimuth_min_deg = sensor.projection_azimuth_min_deg();
+  fov.azimuth_max_deg = sensor.projection_azimuth_max_deg();
+  fov.elevation_min_deg = sensor.projection_elevation_min_deg();
+  fov.elevation_max_deg = sensor.projection_elevation_max_deg();
+  return fov;
+}
+
+/// The Livox Mid-360 (livox_mid360: 360 x 59 degrees, elevation -7 to 52;
+/// projection -7.5 to 52.5), theta = 30 degrees as in the paper.
 inline CArcParams carc_mid360_params() {
   CArcParams p;
   p.theta_deg = 30.0f;
-  p.field_of_view.elevation_min_deg = -7.5f;
-  p.field_of_view.elevation_max_deg = 52.5f;
+  p.field_of_view = field_of_view_of(livox_mid360);
   return p;
 }
 
-/// The Livox Avia: 70.4 x 77.2 degrees, theta = 80 degrees as in the paper.
+/// The Livox Avia (livox_avia: 70.4 x 77.2 degrees; projection 71.4 x 78.2),
+/// theta = 80 degrees as in the paper.
 inline CArcParams carc_avia_params() {
   CArcParams p;
   p.theta_deg = 80.0f;
-  p.field_of_view.azimuth_min_deg = -35.2f;
-  p.field_of_view.azimuth_max_deg = 35.2f;
-  p.field_of_view.elevation_min_deg = -38.6f;
-  p.field_of_view.elevation_max_deg = 38.6f;
+  p.field_of_view = field_of_view_of(livox_avia);
   return p;
 }
 
