@@ -24,7 +24,7 @@
 /// CArcFastConfig is the one to deploy when only the labels/components of
 /// each retrieval matter: its cost per retrieval does not depend on how much
 /// of the window is pending, and is O(N + edges inserted since the previous
-/// retrieval) (docs/optimization-log.md, sections 1 and 7). The rebuild
+/// retrieval) (docs/design-decisions.md). The rebuild
 /// presets are the previous fast presets (O(N + E) per retrieval), kept for
 /// comparison and for the point-level edge accessors, which the spanning
 /// forest does not store. The capped variants bound the work per point on
