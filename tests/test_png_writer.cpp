@@ -139,7 +139,9 @@ TEST_CASE("PNG writer: CRC-32 and Adler-32 of known strings") {
 }
 
 TEST_CASE("PNG writer: decodes to the same pixels, small and multi-block images") {
-  for (const auto& [w, h] : {std::pair<std::size_t, std::size_t>{1, 1}, {7, 3}, {300, 200}}) {
+  for (const auto& size : {std::pair<std::size_t, std::size_t>{1, 1}, {7, 3}, {300, 200}}) {
+    const std::size_t w = size.first;  // not a structured binding: INFO captures it (clang 14, C++17)
+    const std::size_t h = size.second;
     INFO(w << " x " << h);
     const io::RgbImage img = pattern(w, h);
     const Decoded d = decode(io::encode_png(img));
