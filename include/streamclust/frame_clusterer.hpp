@@ -161,6 +161,17 @@ class FrameClusterer {
     return batch_.cluster(samples_);
   }
 
+  /// Clusters a given window from scratch (a range of points with
+  /// point_traits, e.g. another clusterer's window, oldest first) on this
+  /// clusterer's grid, ignoring its own window: a frame peer for a window
+  /// that is already at hand. Before the grid is known (calibrating) the
+  /// resolution policy chooses one from `window`. Costs as `retrieve()`.
+  template <class Range>
+  const BatchResult& cluster(const Range& window) {
+    last_is_batch_ = true;
+    return batch_.cluster(window);
+  }
+
   /// The last retrieval's result (empty before the first).
   const BatchResult& last_result() const { return last_is_batch_ ? batch_.last_result() : empty_; }
 
