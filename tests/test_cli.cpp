@@ -7,6 +7,7 @@
 #include "cli/engine_config.hpp"
 #include "cli/main.hpp"
 
+#include <streamclust/batch_clusterer.hpp>
 #include <streamclust/io/reader.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
 

@@ -31,9 +31,9 @@ TEST_CASE("RetrievalSchedule: one retrieval per period, a pause skips the empty 
   CHECK_FALSE(s.started());
   CHECK_FALSE(s.on_record(std::numeric_limits<double>::quiet_NaN()).has_value());  // does not start it
   CHECK_FALSE(s.started());
-  // t0 = 1.0: retrievals due at 1.1 (before 1.1), 1.2 (before 1.25), then the
-  // pause to 1.62 gives one at 1.3 and the next is 1.7.
-  const auto due = due_times(s, {1.0, 1.05, 1.1, 1.15, 1.25, 1.62, 1.65, 1.7});
+  // t0 = 1.0: retrievals due at 1.1 (before 1.12), 1.2 (before 1.25), then
+  // the pause to 1.62 gives one at 1.3 and the next is 1.7 (before 1.71).
+  const auto due = due_times(s, {1.0, 1.05, 1.12, 1.15, 1.25, 1.62, 1.65, 1.71});
   CHECK(s.started());
   CHECK(s.first_time() == 1.0);
   REQUIRE(due.size() == 4);
