@@ -8,6 +8,7 @@ PACKAGES=(
   build-essential cmake g++ clang-14
   libboost-graph-dev libeigen3-dev librange-v3-dev
   doctest-dev libbenchmark-dev
+  nlohmann-json3-dev
 )
 
 missing=()

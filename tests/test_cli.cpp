@@ -4,16 +4,21 @@
 
 #include <doctest/doctest.h>
 
+#include "cli/engine_config.hpp"
 #include "cli/main.hpp"
 
+#include <streamclust/batch_clusterer.hpp>
 #include <streamclust/io/reader.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
+
+#include <nlohmann/json.hpp>
 
 #include "support/cli_run.hpp"
 #include "support/partition.hpp"
 #include "support/temp_dir.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -76,9 +81,8 @@ std::vector<LabelRow> read_labels(const fs::path& path) {
 }
 
 std::pair<std::uint32_t, std::uint32_t> report_grid(const std::string& json) {
-  std::smatch m;
-  REQUIRE(std::regex_search(json, m, std::regex(R"re("grid": \{"rows": (\d+), "cols": (\d+))re")));
-  return {static_cast<std::uint32_t>(std::stoul(m[1])), static_cast<std::uint32_t>(std::stoul(m[2]))};
+  const auto doc = nlohmann::json::parse(json);
+  return {doc.at("grid").at("rows").get<std::uint32_t>(), doc.at("grid").at("cols").get<std::uint32_t>()};
 }
 
 }  // namespace
@@ -107,7 +111,7 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
   for (const auto& r : rows) cycles[r.cycle].push_back(r);
   CHECK(cycles.size() >= 6);
   auto options = sc::cli::parse_cluster_options({"x", "--preset", "carc", "--theta", "30", "--window-time", "0.1"});
-  using Config = sc::cli::ToolConfig<sc::SphericalProjection, sc::BucketGrid>;
+  using Config = sc::cli::CliConfig<sc::SphericalProjection, sc::BucketGrid, sc::AngularLinkage, sc::TimeWindow>;
   sc::BatchClusterer<Config> batch(sc::cli::make_params<Config>(options));
   batch.set_grid({grid_rows, grid_cols});
   for (const auto& entry : cycles) {
@@ -248,12 +252,84 @@ TEST_CASE("exit codes: help 0, usage 2, input 4") {
   CHECK(bad.err.find("line 3") != std::string::npos);
 }
 
-TEST_CASE("the --verify comparison finds the first point where two partitions differ") {
-  using sc::cli::first_partition_mismatch;
-  CHECK_FALSE(first_partition_mismatch({0, 0, 1, 2}, {7, 7, 3, 9}).has_value());
-  CHECK(first_partition_mismatch({0, 0, 1}, {7, 8, 3}) == std::optional<std::size_t>(1));  // a split
-  CHECK(first_partition_mismatch({0, 1, 1}, {4, 4, 4}) == std::optional<std::size_t>(1));  // a merge
-  CHECK(first_partition_mismatch({0, 1}, {0, 1, 2}) == std::optional<std::size_t>(2));     // lengths differ
+TEST_CASE("info describes an input without a time field, and times it with --point-rate") {
+  const sc::test::TempDir tmp("cli", "info_untimed");
+  const fs::path& dir = tmp.dir;
+  {
+    std::ofstream f(dir / "untimed.csv");
+    f << "x,y,z\n1,2,3\n4,5,6\n7,8,9\n";
+  }
+  const auto plain = run_cli({"info", (dir / "untimed.csv").string()});
+  INFO(plain.err);
+  REQUIRE(plain.code == 0);
+  CHECK(plain.out.find("points:    3") != std::string::npos);
+  CHECK(plain.out.find("no time field (cluster needs --point-rate)") != std::string::npos);
+  CHECK(plain.out.find("x [1, 7]") != std::string::npos);
+  const auto timed = run_cli({"info", (dir / "untimed.csv").string(), "--point-rate", "10"});
+  REQUIRE(timed.code == 0);
+  CHECK(timed.out.find("span 0.2 s") != std::string::npos);
+  // The same input options as cluster, with the same messages.
+  CHECK(run_cli({"info", (dir / "untimed.csv").string(), "--format", "xyz"}).err.find("--format: expected") !=
+        std::string::npos);
+  CHECK(run_cli({"info", (dir / "untimed.csv").string(), "--point-rate", "-1"}).code == 2);
+  CHECK(run_cli({"info", (dir / "untimed.csv").string(), "--window-time", "1"}).code == 2);
+}
+
+/// <repo>/../shared/data/livox/frames/mid100_campus, or under $STREAMCLUST_LIVOX_DATA.
+fs::path mid100_frames() {
+  if (const char* env = std::getenv("STREAMCLUST_LIVOX_DATA")) return fs::path(env) / "frames" / "mid100_campus";
+  return fs::path(__FILE__).parent_path() / ".." / ".." / "shared" / "data" / "livox" / "frames" / "mid100_campus";
+}
+
+bool have_mid100_frames() {
+  std::error_code ec;
+  return fs::is_directory(mid100_frames(), ec);
+}
+
+TEST_CASE("info reads the Mid-100 PCDs of the shared data, which have no time field" *
+          doctest::skip(!have_mid100_frames())) {
+  const fs::path frames = mid100_frames();
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(frames)) {
+    if (entry.path().extension() != ".pcd" || files >= 3) continue;
+    ++files;
+    const auto r = run_cli({"info", entry.path().string()});
+    INFO(entry.path().string() << ": " << r.err);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("no time field (cluster needs --point-rate)") != std::string::npos);
+    CHECK(r.out.find("bounds:") != std::string::npos);
+  }
+  CHECK(files > 0);
+}
+
+TEST_CASE("--point-rate is the rate of a stream without its own timing in every subcommand") {
+  const sc::test::TempDir tmp("cli", "point_rate");
+  const fs::path& dir = tmp.dir;
+  const auto model = run_cli({"simulate", "--sensor", "mid360", "--point-rate", "1000", "--out", (dir / "s.csv").string()});
+  CHECK(model.code == 2);
+  CHECK(model.err.find("--point-rate") != std::string::npos);
+  CHECK(run_cli({"evaluate", "--sensor", "mid40", "--point-rate", "1000"}).code == 2);
+  // A file with a time field keeps its times whatever the rate.
+  const auto points = write_stream_csv(dir / "stream.csv", 0.05);
+  const auto info = run_cli({"info", (dir / "stream.csv").string(), "--point-rate", "1"});
+  REQUIRE(info.code == 0);
+  CHECK(info.out.find("field 't'") != std::string::npos);
+  CHECK(info.out.find("span 0.0") != std::string::npos);
+}
+
+TEST_CASE("frame mode calibrates its grid on the first complete window, as the engine does") {
+  const sc::test::TempDir tmp("cli", "frame_grid");
+  const fs::path& dir = tmp.dir;
+  write_stream_csv(dir / "stream.csv", 0.35);
+  std::map<std::string, std::pair<std::uint32_t, std::uint32_t>> grids;
+  for (const std::string mode : {"continuous", "frame"}) {
+    const auto r = run_cli({"cluster", (dir / "stream.csv").string(), "--mode", mode, "--window-time", "0.1", "--report",
+                            (dir / (mode + ".json")).string(), "--quiet"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    grids[mode] = report_grid(slurp(dir / (mode + ".json")));
+  }
+  CHECK(grids["frame"] == grids["continuous"]);
 }
 
 TEST_CASE("simulate writes a stream with ground truth that cluster reads back") {

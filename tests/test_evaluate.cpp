@@ -45,7 +45,7 @@ struct JsonCycle {
   double ari_labelled = -2.0, pq_labelled = -2.0;  ///< -2 when absent or null
 };
 
-/// What the tests read back from `evaluate --json` (one cycle per line by contract).
+/// What the tests read back from `evaluate --json` (one member of a method and one cycle per line by contract).
 struct JsonEvaluation {
   std::uint32_t rows = 0, cols = 0;
   std::map<std::string, std::map<std::string, double>> mean;  ///< method -> metric -> value
@@ -71,7 +71,7 @@ JsonEvaluation parse_evaluation(const std::string& json) {
   e.cols = static_cast<std::uint32_t>(std::stoul(m[2].str()));
   std::istringstream lines(json);
   std::string line, method;
-  static const std::regex name_re("\\{\"name\": \"([a-z]+)\"");
+  static const std::regex name_re("\"name\": \"([a-z]+)\"");
   static const std::regex mean_re("\"mean\": \\{(.*)\\}");
   static const std::regex labelled_re("\"ari_labelled\": ([-0-9.eE+]+), \"pq_labelled\": ([-0-9.eE+]+)");
   static const std::regex mean_labelled_re("\"mean_on_baseline_labelled\": \\{(.*)\\}");

@@ -10,8 +10,9 @@
 // the slice is not timed. On every k-th cycle the peers cluster the same
 // window (the engine's window at that cycle, read back from the engine):
 //   batch  BatchClusterer<Config> in insertion_order (from scratch, same grid)
-//   frame  the overwrite-grid frame baseline: BatchClusterer<Config with
-//          OverwriteGrid> in range_image mode on the same grid
+//   frame  the overwrite-grid frame baseline: FrameClusterer<Config with
+//          OverwriteGrid> (range_image mode) clustering the engine's window
+//          on the same grid
 //   pcl    pcl::EuclideanClusterExtraction (kd-tree), tolerance = the
 //          Euclidean linkage distance; Euclidean configurations only, built
 //          only when PCL is found
@@ -53,14 +54,15 @@
 
 #include "alloc_counter.hpp"
 #include "pcl_peer.hpp"
-#include "percentiles.hpp"
 
 #include <streamclust/eval/rand_index.hpp>
+#include <streamclust/frame_clusterer.hpp>
 #include <streamclust/sim/scenes.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
 #include <streamclust/sim/sensors/table_replay.hpp>
 #include <streamclust/sim/simulator.hpp>
+#include <streamclust/percentiles.hpp>
 #include <streamclust/streamclust.hpp>
 
 #include <sys/resource.h>
@@ -90,8 +92,8 @@
 namespace sc = streamclust;
 namespace sim = streamclust::sim;
 namespace fs = std::filesystem;
-using sc::bench::summarize;
-using sc::bench::LatencySummary;
+using sc::summarize;
+using sc::LatencySummary;
 
 namespace {
 
@@ -423,7 +425,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
   }
   sc::BatchClusterer<Config> batch(params, sc::BatchMode::insertion_order);
   using Frame = WithOverwrite<Config>;
-  sc::BatchClusterer<Frame> frame(rebind_params<Frame>(params), sc::BatchMode::range_image);
+  sc::FrameClusterer<Frame> frame(rebind_params<Frame>(params), sc::BatchMode::range_image);
   constexpr bool euclidean = std::is_same_v<typename sc::config_traits<Config>::linkage, sc::EuclideanLinkage>;
 
   TruthLog truth_log;
@@ -510,7 +512,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
 
       frame.set_grid(r.grid);
       const auto f0 = Clock::now();
-      const sc::BatchResult& fr = frame.cluster(window_samples);
+      const sc::BatchResult& fr = frame.cluster(window_samples);  // the engine's window, from scratch
       const auto f1 = Clock::now();
       r.frame.us.push_back(micros(f0, f1));
       r.frame.engine_us.push_back(us);

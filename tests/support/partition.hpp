@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Comparing partitions up to renaming of labels.
+// Comparing partitions up to renaming of labels, with a message for the
+// tests (the comparison itself is the library's, streamclust/partition_compare.hpp).
 
-#include <cstddef>
-#include <map>
+#include <streamclust/partition_compare.hpp>
+
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,27 +13,19 @@ namespace streamclust::test {
 
 /// Empty when `a` and `b` describe the same partition (a bijection maps the
 /// labels of one onto the other); otherwise a description of the first
-/// mismatch. Both must have the same length.
+/// mismatch.
 template <class A, class B>
 std::string partition_mismatch(const std::vector<A>& a, const std::vector<B>& b) {
-  if (a.size() != b.size()) {
-    std::ostringstream os;
+  const auto m = first_partition_mismatch(a, b);
+  if (!m) return {};
+  std::ostringstream os;
+  if (m->sizes_differ) {
     os << "sizes differ: " << a.size() << " vs " << b.size();
-    return os.str();
+  } else {
+    os << "point " << m->position << ": label " << a[m->position] << " vs " << b[m->position]
+       << " (no bijection of the labels before it extends to this pair)";
   }
-  std::map<A, B> forward;
-  std::map<B, A> backward;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const auto f = forward.emplace(a[i], b[i]).first;
-    const auto r = backward.emplace(b[i], a[i]).first;
-    if (f->second != b[i] || r->second != a[i]) {
-      std::ostringstream os;
-      os << "point " << i << ": label " << a[i] << " vs " << b[i] << " (already paired with " << f->second << " / "
-         << r->second << ")";
-      return os.str();
-    }
-  }
-  return {};
+  return os.str();
 }
 
 }  // namespace streamclust::test

@@ -10,15 +10,17 @@
 /// against the ground truth (streamclust::eval). Definitions and results:
 /// docs/evaluation.md.
 
-#include "cli/cluster.hpp"
+#include "cli/engine_config.hpp"
+#include "cli/json.hpp"
 #include "cli/options.hpp"
-#include "cli/report.hpp"
 #include "cli/simulate.hpp"
 
 #include <streamclust/eval/average.hpp>
 #include <streamclust/eval/labelled_subset.hpp>
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>
+#include <streamclust/retrieval_schedule.hpp>
+#include <streamclust/resolution/runtime_resolution.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -192,7 +194,7 @@ inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Re
     g.grid = GridSize{o.policy.grid->first, o.policy.grid->second};
     return g;
   }
-  using Config = ToolConfig<SphericalProjection, BucketGrid>;
+  using Config = CliConfig<SphericalProjection, BucketGrid, AngularLinkage, TimeWindow>;
   ClusterOptions c = o.policy;
   c.grid.reset();
   const ClustererParams<Config> params = make_params<Config>(c);
@@ -223,24 +225,15 @@ inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Re
   return g;
 }
 
-/// Drives the retrieval schedule of `cluster` (t0 + k / rate) over the
-/// records: `insert(record, index)` for each, `retrieve(time)` before the
-/// first record at or after each scheduled time.
+/// Drives the retrieval schedule of `cluster` (RetrievalSchedule: t0 + k /
+/// rate) over the records: `insert(record, index)` for each,
+/// `retrieve(time)` before the first record at or after each scheduled time.
 template <class Insert, class Retrieve>
 void run_schedule(const std::vector<io::Record>& records, double rate_hz, Insert&& insert, Retrieve&& retrieve) {
-  if (records.empty()) return;
-  const double period = 1.0 / rate_hz;
-  const double first = records.front().t;
-  double k = 1.0;  // the next retrieval is the k-th, at first + k period
+  RetrievalSchedule schedule(rate_hz);
   for (std::size_t i = 0; i < records.size(); ++i) {
-    const io::Record& r = records[i];
-    if (r.t >= first + k * period) {
-      retrieve(first + k * period);
-      // Skip the empty cycles of a pause; strictly later even when rounding
-      // puts r.t a hair below a multiple of the period.
-      k = std::max(k + 1.0, std::floor((r.t - first) / period) + 1.0);
-    }
-    insert(r, i);
+    if (const auto due = schedule.on_record(records[i].t)) retrieve(*due);
+    insert(records[i], i);
   }
 }
 
@@ -270,182 +263,9 @@ inline bool window_is_full(double time, double first_time, double window_seconds
   return time - first_time >= window_seconds - 1e-9;
 }
 
-/// C-ARC on `grid`; with `baseline_labelled` (one entry per evaluated
-/// retrieval, from run_baseline_method) each retrieval is also scored on the
-/// points the baseline labelled.
-template <class Index, class Connectivity>
-MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Record>& records, GridSize grid,
-                             const LabelledSets* baseline_labelled = nullptr) {
-  using Config = ToolConfig<SphericalProjection, Index, Connectivity>;
-  ClusterOptions c = o.policy;
-  c.grid = std::make_pair(grid.rows, grid.cols);
-  StreamClusterer<Config> engine(make_params<Config>(c));
-  MethodResult m;
-  m.name = "carc";
-  std::vector<std::int64_t> truth, predicted, reference;
-  std::vector<char> labelled_by_baseline(baseline_labelled ? records.size() : 0, 0);
-  const double first = records.empty() ? 0.0 : records.front().t;
-  run_schedule(
-      records, o.policy.rate_hz, [&](const io::Record& r, std::size_t) { engine.insert(r, r.t); },
-      [&](double time) {
-        engine.advance_to(time);
-        const Clustering& result = engine.retrieve();
-        const PhaseTimes& p = engine.last_stats().phase_us;
-        if (!window_is_full(time, first, o.policy.window_seconds)) return;
-        truth.clear();
-        predicted.clear();
-        for (const PointLabel& pl : result.points) {
-          truth.push_back(records[pl.stream_index].label);
-          predicted.push_back(static_cast<std::int64_t>(pl.label));
-        }
-        CycleQuality q;
-        q.time = time;
-        q.window = result.points.size();
-        q.cost_us = p.insertion + p.eviction + p.validation + p.component_update + p.labelling;
-        q.quality = score_window(truth, predicted, o.min_points);
-        if (baseline_labelled && m.cycles.size() < baseline_labelled->size()) {
-          const std::vector<std::size_t>& kept = (*baseline_labelled)[m.cycles.size()];
-          for (const std::size_t i : kept) labelled_by_baseline[i] = 1;
-          reference.clear();
-          for (const PointLabel& pl : result.points) reference.push_back(labelled_by_baseline[pl.stream_index] ? 0 : -1);
-          for (const std::size_t i : kept) labelled_by_baseline[i] = 0;
-          q.on_labelled = score_labelled(truth, predicted, reference, o.min_points);
-        }
-        m.cycles.push_back(q);
-      });
-  return m;
-}
-
-/// The overwrite frame baseline on `grid`; with `labelled` it is scored on
-/// its own labelled points too, and the stream indices of those points are
-/// appended for each evaluated retrieval (for run_carc_method).
-inline MethodResult run_baseline_method(const EvaluateOptions& o, const std::vector<io::Record>& records,
-                                        GridSize grid, LabelledSets* labelled = nullptr) {
-  using Config = ToolConfig<SphericalProjection, OverwriteGrid>;
-  ClusterOptions c = o.policy;
-  c.grid = std::make_pair(grid.rows, grid.cols);
-  const ClustererParams<Config> params = make_params<Config>(c);
-  FrameWindow<Config> frame(params);
-  BatchClusterer<Config> batch(params, BatchMode::range_image);
-  batch.set_grid(grid);
-  MethodResult m;
-  m.name = "baseline";
-  std::vector<Sample> samples;
-  std::vector<std::int64_t> truth;
-  std::vector<std::size_t> indices;
-  const double first = records.empty() ? 0.0 : records.front().t;
-  std::optional<double> last_frame;
-  run_schedule(
-      records, o.policy.rate_hz, [&](const io::Record& r, std::size_t i) { frame.offer(r, i); },
-      [&](double time) {
-        frame.advance_to(time);
-        if (!window_is_full(time, first, o.policy.window_seconds)) return;
-        CycleQuality q;
-        q.time = time;
-        if (o.frames == FrameSchedule::tumbling && last_frame && time - *last_frame < o.policy.window_seconds - 1e-9) {
-          // A frame-based driver still shows the last frame it published.
-          q.window = m.cycles.back().window;
-          q.quality = m.cycles.back().quality;
-          q.on_labelled = m.cycles.back().on_labelled;
-          if (labelled) labelled->push_back(labelled->back());
-          m.cycles.push_back(q);
-          return;
-        }
-        last_frame = time;
-        samples.clear();
-        truth.clear();
-        indices.clear();
-        for (const auto& e : frame.points()) {
-          samples.push_back(e.sample);
-          truth.push_back(records[e.index].label);
-          indices.push_back(e.index);
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        const BatchResult& r = batch.cluster(samples);
-        q.cost_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-        q.window = samples.size();
-        q.quality = score_window(truth, r.labels, o.min_points);
-        if (labelled) {
-          q.on_labelled = score_labelled(truth, r.labels, r.labels, o.min_points);
-          std::vector<std::size_t> kept;
-          for (std::size_t k = 0; k < indices.size(); ++k) {
-            if (r.labels[k] >= 0) kept.push_back(indices[k]);
-          }
-          labelled->push_back(std::move(kept));
-        }
-        m.cycles.push_back(q);
-      });
-  return m;
-}
-
-/// Mean, median cost and (with a burst) the recovery of one method's cycles.
-inline void summarize(const EvaluateOptions& o, MethodResult& m) {
-  eval::QualityAverage average, on_labelled;
-  std::vector<double> costs;
-  for (const CycleQuality& q : m.cycles) {
-    average.add(q.quality);
-    if (q.on_labelled) on_labelled.add(*q.on_labelled);
-    if (q.cost_us > 0.0) costs.push_back(q.cost_us);
-  }
-  m.mean = average.mean();
-  if (!m.cycles.empty() && on_labelled.frames() == m.cycles.size()) m.mean_on_labelled = on_labelled.mean();
-  m.cost_median_us = percentile(costs, 0.5);
-  const SimulateOptions& s = o.scenario;
-  if (s.burst_length <= 0.0 || m.cycles.empty()) return;
-  const double event_start = s.burst_start;
-  const double event_end = s.burst_start + s.burst_length;
-  const double settle_from = event_end + 3.0 * o.policy.window_seconds;
-  std::vector<double> times, use, under, ari_error;
-  std::size_t settled = 0;
-  for (const CycleQuality& q : m.cycles) {
-    times.push_back(q.time);
-    use.push_back(q.quality.use);
-    under.push_back(q.quality.under_segmented);
-    ari_error.push_back(1.0 - q.quality.ari);
-    settled += q.time >= settle_from ? 1u : 0u;
-  }
-  if (settled < 3) return;  // too short to know the settled level
-  m.recovery = BurstRecovery{eval::recovery_after(times, use, event_start, event_end, settle_from),
-                             eval::recovery_after(times, under, event_start, event_end, settle_from),
-                             eval::recovery_after(times, ari_error, event_start, event_end, settle_from)};
-}
-
-/// Runs the whole evaluation of a scenario on its simulated records.
-inline Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<io::Record>& records) {
-  Evaluation e;
-  e.records = records.size();
-  try {
-    e.grid = choose_grid(o, records);
-    // With both methods, the baseline runs first and records the points it
-    // labels, so that C-ARC is also scored on that subset.
-    LabelledSets labelled;
-    const bool both = o.run_carc && o.run_baseline;
-    std::optional<MethodResult> baseline;
-    if (o.run_baseline) baseline = run_baseline_method(o, records, e.grid.grid, both ? &labelled : nullptr);
-    if (o.run_carc) {
-      const LabelledSets* sets = both ? &labelled : nullptr;
-      e.methods.push_back(with_connectivity(o.policy.connectivity, [&](auto connectivity) {
-        using C = typename decltype(connectivity)::type;
-        return o.policy.index == IndexKind::capped ? run_carc_method<CappedGrid, C>(o, records, e.grid.grid, sets)
-                                                   : run_carc_method<BucketGrid, C>(o, records, e.grid.grid, sets);
-      }));
-    }
-    if (baseline) e.methods.push_back(std::move(*baseline));
-  } catch (const std::invalid_argument& ex) {
-    throw UsageError(ex.what());
-  }
-  for (MethodResult& m : e.methods) summarize(o, m);
-  return e;
-}
-
-/// A finite number as JSON, else null.
-inline std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
+/// Runs the whole evaluation of a scenario on its simulated records
+/// (tools/cli/evaluate.cpp: the methods' compiled configurations).
+Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<io::Record>& records);
 
 /// The metric names of MeanQuality, in kMeanQualityFields order.
 inline const char* const* mean_quality_names() {
@@ -459,84 +279,87 @@ inline const char* const* mean_quality_names() {
   return kNames;
 }
 
-inline std::string json_quality(const eval::MeanQuality& q) {
-  std::string s = "{";
+inline Json json_quality(const eval::MeanQuality& q) {
+  Json j = Json::object();
   const char* const* names = mean_quality_names();
   std::size_t k = 0;
-  for (const auto field : eval::kMeanQualityFields) {
-    if (k) s.append(", ");
-    s.append("\"").append(names[k++]).append("\": ").append(json_number(q.*field));
-  }
-  return s.append("}");
+  for (const auto field : eval::kMeanQualityFields) j[names[k++]] = q.*field;
+  return j;
 }
 
-inline std::string json_recovery(const eval::Recovery& r) {
-  std::string s = "{\"before\": ";
-  s.append(json_number(r.before)).append(", \"peak\": ").append(json_number(r.peak));
-  s.append(", \"settled\": ").append(json_number(r.settled)).append(", \"threshold\": ").append(json_number(r.threshold));
-  s.append(", \"time\": ").append(r.time ? json_number(*r.time) : std::string("null")).append("}");
-  return s;
+inline Json json_recovery(const eval::Recovery& r) {
+  return {{"before", r.before},
+          {"peak", r.peak},
+          {"settled", r.settled},
+          {"threshold", r.threshold},
+          {"time", r.time ? Json(*r.time) : Json(nullptr)}};
 }
 
-inline void write_evaluation_json(std::ostream& out, const EvaluateOptions& o, const Evaluation& e) {
+/// The evaluation as a JSON document (docs/cli.md); one retrieval per line.
+inline Json evaluation_json(const EvaluateOptions& o, const Evaluation& e) {
   const SimulateOptions& s = o.scenario;
   const ClusterOptions& p = o.policy;
-  out << "{\n  \"scenario\": {\"sensor\": " << json_string(s.sensor) << ", \"scene\": " << json_string(s.scene)
-      << ", \"seconds\": " << json_number(s.seconds) << ", \"seed\": " << s.seed
-      << ", \"speed\": " << json_number(static_cast<double>(s.speed))
-      << ", \"yaw_rate\": " << json_number(static_cast<double>(s.yaw_rate))
-      << ", \"noise\": " << json_number(static_cast<double>(s.noise))
-      << ", \"dropout\": " << json_number(static_cast<double>(s.dropout))
-      << ", \"max_range\": " << json_number(static_cast<double>(s.max_range)) << ", \"burst\": ";
-  if (s.burst_length > 0.0) {
-    out << "{\"start\": " << json_number(s.burst_start) << ", \"length\": " << json_number(s.burst_length)
-        << ", \"speed\": " << json_number(static_cast<double>(s.burst_speed))
-        << ", \"yaw_rate\": " << json_number(static_cast<double>(s.burst_yaw_rate)) << "}";
-  } else {
-    out << "null";
-  }
-  out << "},\n  \"policy\": {\"linkage\": " << json_string(p.linkage == LinkageKind::angular ? "angular" : "euclidean")
-      << ", \"theta_deg\": " << json_number(static_cast<double>(p.theta_deg))
-      << ", \"min_ray_angle_deg\": " << json_number(static_cast<double>(p.min_ray_angle_deg))
-      << ", \"distance\": " << json_number(static_cast<double>(p.distance)) << ", \"mask\": " << p.mask
-      << ", \"window_time\": " << json_number(p.window_seconds) << ", \"rate\": " << json_number(p.rate_hz)
-      << ", \"index\": " << json_string(p.index == IndexKind::capped ? "capped" : "bucket") << ", \"cap\": " << p.cap
-      << ", \"connectivity\": "
-      << json_string(p.connectivity == ConnectivityKind::spanning_forest ? "forest" : "lazy-bfs")
-      << ", \"multiplicity\": " << json_number(static_cast<double>(p.max_multiplicity))
-      << ", \"frames\": " << json_string(o.frames == FrameSchedule::sliding ? "sliding" : "tumbling")
-      << ", \"min_points\": " << o.min_points
-      << ", \"structure\": " << json_string(o.drop_structure ? "drop" : "keep") << "},\n";
-  out << "  \"records\": " << e.records << ",\n  \"grid\": {\"rows\": " << e.grid.grid.rows
-      << ", \"cols\": " << e.grid.grid.cols << ", \"adaptive\": " << (e.grid.adaptive ? "true" : "false")
-      << ", \"mean_multiplicity\": " << json_number(static_cast<double>(e.grid.mean_multiplicity))
-      << ", \"iterations\": " << e.grid.trace.size() << "},\n  \"methods\": [\n";
-  for (std::size_t k = 0; k < e.methods.size(); ++k) {
-    const MethodResult& m = e.methods[k];
-    out << "    {\"name\": " << json_string(m.name) << ", \"cycles_evaluated\": " << m.cycles.size()
-        << ", \"cycle_cost_median_us\": " << json_number(m.cost_median_us) << ",\n     \"mean\": " << json_quality(m.mean)
-        << ",\n     \"mean_on_baseline_labelled\": "
-        << (m.mean_on_labelled ? json_quality(*m.mean_on_labelled) : std::string("null")) << ",\n     \"recovery\": ";
-    if (m.recovery) {
-      out << "{\"use\": " << json_recovery(m.recovery->use)
-          << ", \"under_segmented\": " << json_recovery(m.recovery->under)
-          << ", \"ari_error\": " << json_recovery(m.recovery->ari) << "}";
-    } else {
-      out << "null";
+  Json doc;
+  doc["scenario"] = {{"sensor", s.sensor},
+                     {"scene", s.scene},
+                     {"seconds", s.seconds},
+                     {"seed", s.seed},
+                     {"speed", s.speed},
+                     {"yaw_rate", s.yaw_rate},
+                     {"noise", s.noise},
+                     {"dropout", s.dropout},
+                     {"max_range", s.max_range},
+                     {"burst", s.burst_length > 0.0 ? Json{{"start", s.burst_start},
+                                                           {"length", s.burst_length},
+                                                           {"speed", s.burst_speed},
+                                                           {"yaw_rate", s.burst_yaw_rate}}
+                                                     : Json(nullptr)}};
+  doc["policy"] = {{"linkage", p.linkage == LinkageKind::angular ? "angular" : "euclidean"},
+                   {"theta_deg", p.theta_deg},
+                   {"min_ray_angle_deg", p.min_ray_angle_deg},
+                   {"distance", p.distance},
+                   {"mask", p.mask},
+                   {"window_time", p.window_seconds},
+                   {"rate", p.rate_hz},
+                   {"index", p.index == IndexKind::capped ? "capped" : "bucket"},
+                   {"cap", p.cap},
+                   {"connectivity", p.connectivity == ConnectivityKind::spanning_forest ? "forest" : "lazy-bfs"},
+                   {"multiplicity", p.max_multiplicity},
+                   {"frames", o.frames == FrameSchedule::sliding ? "sliding" : "tumbling"},
+                   {"min_points", o.min_points},
+                   {"structure", o.drop_structure ? "drop" : "keep"}};
+  doc["records"] = e.records;
+  doc["grid"] = {{"rows", e.grid.grid.rows},
+                 {"cols", e.grid.grid.cols},
+                 {"adaptive", e.grid.adaptive},
+                 {"mean_multiplicity", e.grid.mean_multiplicity},
+                 {"iterations", e.grid.trace.size()}};
+  Json methods = Json::array();
+  for (const MethodResult& m : e.methods) {
+    Json method;
+    method["name"] = m.name;
+    method["cycles_evaluated"] = m.cycles.size();
+    method["cycle_cost_median_us"] = m.cost_median_us;
+    method["mean"] = json_quality(m.mean);
+    method["mean_on_baseline_labelled"] = m.mean_on_labelled ? json_quality(*m.mean_on_labelled) : Json(nullptr);
+    method["recovery"] = m.recovery ? Json{{"use", json_recovery(m.recovery->use)},
+                                           {"under_segmented", json_recovery(m.recovery->under)},
+                                           {"ari_error", json_recovery(m.recovery->ari)}}
+                                    : Json(nullptr);
+    Json cycles = Json::array();
+    for (const CycleQuality& q : m.cycles) {
+      cycles.push_back({{"time", q.time},
+                        {"window", q.window},
+                        {"cost_us", q.cost_us},
+                        {"ari_labelled", q.on_labelled ? Json(q.on_labelled->ari) : Json(nullptr)},
+                        {"pq_labelled", q.on_labelled ? Json(q.on_labelled->pq) : Json(nullptr)},
+                        {"quality", json_quality(q.quality)}});
     }
-    out << ",\n     \"cycles\": [\n";
-    for (std::size_t i = 0; i < m.cycles.size(); ++i) {
-      const CycleQuality& q = m.cycles[i];
-      out << "      {\"time\": " << json_number(q.time) << ", \"window\": " << q.window
-          << ", \"cost_us\": " << json_number(q.cost_us)
-          << ", \"ari_labelled\": " << (q.on_labelled ? json_number(q.on_labelled->ari) : std::string("null"))
-          << ", \"pq_labelled\": " << (q.on_labelled ? json_number(q.on_labelled->pq) : std::string("null"))
-          << ", \"quality\": " << json_quality(q.quality) << "}"
-          << (i + 1 < m.cycles.size() ? "," : "") << "\n";
-    }
-    out << "     ]}" << (k + 1 < e.methods.size() ? "," : "") << "\n";
+    method["cycles"] = std::move(cycles);
+    methods.push_back(std::move(method));
   }
-  out << "  ]\n}\n";
+  doc["methods"] = std::move(methods);
+  return doc;
 }
 
 /// Per-retrieval metrics as CSV (one row per method and retrieval).
@@ -696,7 +519,7 @@ inline int run_evaluate(const EvaluateOptions& o, std::ostream& out) {
   }
   const Evaluation e = evaluate_records(o, records);
   if (!o.json_path.empty()) {
-    write_text_file("--json", o.json_path, [&](std::ostream& f) { write_evaluation_json(f, o, e); });
+    write_json_file("--json", o.json_path, evaluation_json(o, e));
   }
   if (!o.series_path.empty()) {
     write_text_file("--series", o.series_path, [&](std::ostream& f) { write_series_csv(f, e); });

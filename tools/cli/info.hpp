@@ -2,8 +2,9 @@
 #pragma once
 
 /// \file
-/// `streamclust info`: format, fields, point count, time span and bounds of
-/// an input, read in one streaming pass.
+/// `streamclust info`: format, fields, point count, bounds and time span of
+/// any readable input, read in one streaming pass; an input without a time
+/// field is described too (its records get times only from --point-rate).
 
 #include "cli/options.hpp"
 
@@ -18,7 +19,11 @@
 namespace streamclust::cli {
 
 inline int run_info(const InfoOptions& o, std::ostream& out) {
-  auto reader = io::open_reader(o.input, o.read);
+  // The readers need a point rate to open an input without a time field;
+  // without --point-rate, any rate does: no time is reported then.
+  io::ReadOptions read = o.read;
+  if (!read.point_rate) read.point_rate = 1.0;
+  auto reader = io::open_reader(o.input, read);
   const io::InputInfo& info = reader->info();
   std::uint64_t count = 0, finite = 0;
   double t0 = std::numeric_limits<double>::infinity(), t1 = -t0;
@@ -54,10 +59,14 @@ inline int run_info(const InfoOptions& o, std::ostream& out) {
   out << "\n";
   if (info.has_time) {
     out << "time:      field '" << info.time_field << "'";
+  } else if (o.read.point_rate) {
+    out << "time:      no time field; t = index / " << *o.read.point_rate << " Hz (--point-rate)";
   } else {
-    out << "time:      none in the file; assigned as index / point rate";
+    out << "time:      no time field (cluster needs --point-rate)";
   }
-  if (count > 0 && t1 >= t0) out << ", " << t0 << " s to " << t1 << " s (span " << t1 - t0 << " s)";
+  if ((info.has_time || o.read.point_rate) && count > 0 && t1 >= t0) {
+    out << ", " << t0 << " s to " << t1 << " s (span " << t1 - t0 << " s)";
+  }
   out << "\n";
   if (finite > 0) {
     out << "bounds:    x [" << lo[0] << ", " << hi[0] << "] y [" << lo[1] << ", " << hi[1] << "] z [" << lo[2] << ", "

@@ -48,7 +48,8 @@ clusters at a fixed rate of stream time and writes the results.
 input:
   --format auto|csv|pcd|ply|kitti   input format (default auto: extension and content)
   --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
-  --point-rate HZ                   inputs without time: t = index / HZ, in file order
+  --point-rate HZ                   the stream's point rate: records without a time field
+                                    get t = index / HZ (a time field is kept)
 policies (a preset first, then every option below overrides it):
   --preset carc|carc-mid360|carc-avia|baseline   (default carc)
         carc         spherical, bucket grid, angular theta 10, w 5, T_M 2, adaptive grid
@@ -61,8 +62,9 @@ policies (a preset first, then every option below overrides it):
   --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)
   --mask W                          odd mask width in cells (default 5)
   --index bucket|capped|overwrite   --cap K (capped grid, default 4)
-  --connectivity lazy-bfs|forest    the engine's components: the paper's (default) or the
-                                    spanning forest (same partition, faster; own stable ids)
+  --connectivity forest|lazy-bfs    the engine's components: the spanning forest (default,
+                                    the fastest exact strategy) or the paper's lazy BFS
+                                    (same partition; its own stable ids)
   --projection spherical|cylindrical
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
   --min-range M                     closer points are rejected (default 0.1)
@@ -73,6 +75,7 @@ outputs:
   --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)
   --cycles all|last|N,M,...         cycles written to --labels, --ply, --pcd (default last)
   --report FILE     JSON: grid and adaptive trace, per-cycle sizes and latencies, totals
+                    (cycle latency: wall time of the clusterer's work for the cycle)
   --ply FILE        last selected cycle, coloured by label, with a label property
   --pcd FILE        last selected cycle, with a label field
   --verify          compare every retrieval with the batch clusterer; exit 3 on mismatch
@@ -89,8 +92,14 @@ examples:
 inline const char* info_help() {
   return R"(usage: streamclust info INPUT [--format F] [--time-unit U] [--point-rate HZ]
 
-Prints the format, fields, point count, time span and bounds of INPUT,
-reading it once as a stream.
+Prints the format, fields, point count, bounds and time span of INPUT,
+reading it once as a stream. An input without a time field is described
+too ("no time field"); --point-rate then gives its times as for cluster.
+
+  --format auto|csv|pcd|ply|kitti   input format (default auto: extension and content)
+  --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
+  --point-rate HZ                   the stream's point rate: records without a time field
+                                    get t = index / HZ
 
 examples:
   streamclust info scan.pcd
@@ -111,7 +120,8 @@ Deterministic for a given seed.
 
   --sensor mid360|mid40|mid70|avia|spinning32   (default mid360; rates 200/100/100/240/576 kHz)
   --scene office|forest|street                  (default office)
-  --sensor synthetic --scene room               the older built-in stand-in (--point-rate HZ)
+  --sensor synthetic --scene room               the older built-in stand-in; --point-rate HZ
+                                                (default 200000) times it as t = index / HZ
   --seconds S | --duration S (default 1)  --seed N (default 1)
   --speed M/S  --yaw-rate RAD/S                 ego-motion along +x / about +z (default 0)
   --burst START:LENGTH                          from START for LENGTH seconds the sensor moves with
@@ -157,7 +167,7 @@ methods:
   --multiplicity T_M                adaptive-loop target (default 2; the paper's fine grid: 1.25)
   --grid auto|HxW                   a given grid instead of the adaptive loop's
   --index bucket|capped  --cap K    C-ARC's grid (default bucket)
-  --connectivity lazy-bfs|forest    C-ARC's components (default lazy-bfs; same scores)
+  --connectivity forest|lazy-bfs    C-ARC's components (default forest; same scores)
   --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX   (default: the sensor's FOV)
   --min-range M                     (default 0.1)
   --structure keep|drop             drop: remove the ground-truth structure points (ground, walls)

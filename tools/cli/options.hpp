@@ -31,8 +31,9 @@ enum class ProjectionKind { spherical, cylindrical };
 enum class IndexKind { bucket, capped, overwrite };
 enum class LinkageKind { angular, euclidean };
 enum class Mode { continuous, frame };
-/// How the engine keeps its components: the paper's lazy BFS, or the
-/// spanning forest (same partition, faster; see docs/policies.md).
+/// How the engine keeps its components: the spanning forest (the fastest
+/// exact strategy, the default) or the paper's lazy BFS (same partition;
+/// see docs/policies.md).
 enum class ConnectivityKind { lazy_bfs, spanning_forest };
 
 /// Everything `streamclust cluster` needs, after presets and overrides.
@@ -54,7 +55,8 @@ struct ClusterOptions {
   double rate_hz = 20.0;
   std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
   float max_multiplicity = 2.0f;
-  ConnectivityKind connectivity = ConnectivityKind::lazy_bfs;
+  ConnectivityKind connectivity = ConnectivityKind::spanning_forest;
+  bool connectivity_given = false;  ///< --connectivity was on the command line
   Mode mode = Mode::continuous;
   // field of view (spherical: degrees; cylindrical: azimuth degrees, z metres)
   float azimuth_min = -180.0f, azimuth_max = 180.0f;
@@ -182,6 +184,7 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   } else if (a == "--connectivity") {
     o.connectivity =
         c.choice({"lazy-bfs", "forest"}) == "forest" ? ConnectivityKind::spanning_forest : ConnectivityKind::lazy_bfs;
+    o.connectivity_given = true;
   } else if (a == "--cap") {
     o.cap = static_cast<std::uint32_t>(parse_count(a, c.value()));
   } else if (a == "--grid") {
@@ -226,6 +229,26 @@ inline void validate_policy_options(const ClusterOptions& o) {
   if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
 }
 
+/// Parses one input option shared by `cluster` and `info` (--format,
+/// --time-unit, --point-rate) into `read`. --point-rate HZ is the stream's
+/// point rate: the records of an input without a time field get
+/// t = index / HZ (an input with a time field keeps its times). Returns
+/// false when the option under the cursor is not one of them.
+inline bool parse_input_option(ArgCursor& c, io::ReadOptions& read) {
+  const std::string& a = c.option();
+  if (a == "--format") {
+    const std::string v = c.choice({"auto", "csv", "pcd", "ply", "kitti"});
+    read.format = v == "auto" ? std::nullopt : io::parse_format(v);
+  } else if (a == "--time-unit") {
+    read.time_unit = io::parse_time_unit(c.choice({"s", "ms", "us", "ns"}));
+  } else if (a == "--point-rate") {
+    read.point_rate = parse_positive(a, c.value());
+  } else {
+    return false;
+  }
+  return true;
+}
+
 /// Parses `streamclust cluster` arguments (argv after the subcommand).
 inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args) {
   ClusterOptions o;
@@ -238,15 +261,9 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
     const std::string& a = c.option();
     if (a == "--window-time") window_time_set = true;
     if (parse_policy_option(c, o)) continue;
+    if (parse_input_option(c, o.read)) continue;
     if (a == "--preset") {
       c.value();
-    } else if (a == "--format") {
-      const std::string v = c.choice({"auto", "csv", "pcd", "ply", "kitti"});
-      if (v != "auto") o.read.format = io::parse_format(v);
-    } else if (a == "--time-unit") {
-      o.read.time_unit = io::parse_time_unit(c.choice({"s", "ms", "us", "ns"}));
-    } else if (a == "--point-rate") {
-      o.read.point_rate = parse_positive(a, c.value());
     } else if (a == "--window-count") {
       o.window_count = parse_count(a, c.value());
       window_count_set = true;
@@ -299,35 +316,23 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   o.window_is_count = window_count_set;
   validate_policy_options(o);
   if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
-  if (o.connectivity != ConnectivityKind::lazy_bfs && o.mode == Mode::frame)
+  if (o.connectivity_given && o.mode == Mode::frame)
     throw UsageError("--connectivity chooses the continuous engine's strategy: use --mode continuous");
   return o;
 }
 
+/// Parses `streamclust info` arguments with the input options of `cluster`.
 inline InfoOptions parse_info_options(const std::vector<std::string>& args) {
   InfoOptions o;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--format" || a == "--time-unit" || a == "--point-rate") {
-      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
-      const std::string& v = args[++i];
-      if (a == "--format") {
-        if (v != "auto") {
-          o.read.format = io::parse_format(v);
-          if (!o.read.format) throw UsageError("--format: expected auto|csv|pcd|ply|kitti, got '" + v + "'");
-        }
-      } else if (a == "--time-unit") {
-        o.read.time_unit = io::parse_time_unit(v);
-        if (!o.read.time_unit) throw UsageError("--time-unit: expected s|ms|us|ns, got '" + v + "'");
-      } else {
-        o.read.point_rate = parse_positive(a, v);
-      }
-    } else if (!a.empty() && a[0] == '-') {
+  for (ArgCursor c(args); !c.done(); c.next()) {
+    const std::string& a = c.option();
+    if (parse_input_option(c, o.read)) continue;
+    if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' (see streamclust info --help)");
     } else if (o.input.empty()) {
       o.input = a;
     } else {
-      throw UsageError("more than one input file");
+      throw UsageError("more than one input file: '" + o.input + "' and '" + a + "'");
     }
   }
   if (o.input.empty()) throw UsageError("missing INPUT file (see streamclust info --help)");

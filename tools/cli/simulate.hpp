@@ -31,7 +31,8 @@ struct SimulateOptions {
   std::string sensor = "mid360";
   std::string scene = "office";
   double seconds = 1.0;
-  double point_rate = 200000.0;  ///< synthetic sensor only; the models have their own rates
+  double point_rate = 200000.0;  ///< synthetic sensor only (t = index / rate); the models have their own rates
+  bool point_rate_given = false;  ///< --point-rate was on the command line
   float speed = 0.0f;            ///< ego-motion along +x [m/s]
   float yaw_rate = 0.0f;         ///< [rad/s]
   float noise = 0.02f;           ///< range noise [m]
@@ -88,6 +89,7 @@ inline bool parse_simulation_option(ArgCursor& c, SimulateOptions& o) {
     if (o.seconds > 3600.0) throw UsageError(a + ": at most 3600");
   } else if (a == "--point-rate") {
     o.point_rate = parse_positive(a, c.value());
+    o.point_rate_given = true;
   } else if (a == "--seed") {
     o.seed = parse_count(a, c.value());
   } else {
@@ -100,6 +102,11 @@ inline bool parse_simulation_option(ArgCursor& c, SimulateOptions& o) {
 inline void validate_simulation_options(const SimulateOptions& o) {
   if ((o.sensor == "synthetic") != (o.scene == "room")) {
     throw UsageError("--sensor synthetic goes with --scene room, and only with it");
+  }
+  if (o.point_rate_given && o.sensor != "synthetic") {
+    throw UsageError("--point-rate: the " + o.sensor +
+                     " model fires at its own rate; --point-rate times a stream without its own timing"
+                     " (--sensor synthetic)");
   }
   if (o.sensor == "synthetic" && o.burst_length > 0.0) {
     throw UsageError("--burst needs a simulated sensor (not --sensor synthetic)");

@@ -2,19 +2,20 @@
 #pragma once
 
 /// \file
-/// Nearest-rank percentiles of a sample, and the latency summary the
-/// benchmark reports (P1, Q1, median, Q3, P95, P99, P999).
+/// The one percentile definition of the project (nearest rank), and the
+/// latency summary reported by the command-line tool and the benchmarks.
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
-namespace streamclust::bench {
+namespace streamclust {
 
-/// Nearest-rank percentile (p in [0, 100]) of an ascending-sorted sample:
-/// the smallest value with at least p % of the sample at or below it.
-/// 0 for an empty sample. O(1).
+/// Nearest-rank percentile of an ascending-sorted sample, `p` in [0, 100]:
+/// the smallest value with at least p % of the sample at or below it (p = 0
+/// gives the minimum, p = 100 the maximum). 0 for an empty sample. O(1).
+/// Thread-safe (pure).
 inline double percentile_sorted(const std::vector<double>& sorted, double p) {
   if (sorted.empty()) return 0.0;
   const double rank = std::ceil(p / 100.0 * static_cast<double>(sorted.size()));
@@ -22,13 +23,21 @@ inline double percentile_sorted(const std::vector<double>& sorted, double p) {
   return sorted[std::min(i, sorted.size() - 1)];
 }
 
-/// The percentiles reported per scenario (same unit as the sample).
+/// Nearest-rank percentile (`p` in [0, 100]) of an unsorted sample (copied
+/// and sorted). 0 for an empty sample. O(n log n).
+inline double percentile(std::vector<double> sample, double p) {
+  std::sort(sample.begin(), sample.end());
+  return percentile_sorted(sample, p);
+}
+
+/// The percentiles reported for a latency sample (same unit as the sample).
 struct LatencySummary {
   std::size_t count = 0;
   double p1 = 0.0, q1 = 0.0, median = 0.0, q3 = 0.0, p95 = 0.0, p99 = 0.0, p999 = 0.0, max = 0.0, mean = 0.0;
 };
 
-/// Summary of an unsorted sample. O(n log n).
+/// Nearest-rank summary of an unsorted sample (all zero when empty).
+/// O(n log n).
 inline LatencySummary summarize(std::vector<double> v) {
   LatencySummary s;
   s.count = v.size();
@@ -48,4 +57,4 @@ inline LatencySummary summarize(std::vector<double> v) {
   return s;
 }
 
-}  // namespace streamclust::bench
+}  // namespace streamclust

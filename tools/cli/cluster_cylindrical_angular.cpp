@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: MIT
+// `streamclust cluster` compiled for the cylindrical projection and the angular
+// linkage (every index, window and connectivity; one file per pair keeps
+// each translation unit small enough to build in parallel).
+
+#include "cli/cluster.hpp"
+#include "cli/cluster_driver.hpp"
+
+namespace streamclust::cli {
+
+int run_cluster_cylindrical_angular(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+  return run_cluster_for<CylindricalProjection, AngularLinkage>(o, out, err);
+}
+
+}  // namespace streamclust::cli

@@ -1,0 +1,346 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The driver of `streamclust cluster`, a template over the compiled
+/// configuration: reads the input in chunks, offers the records to the
+/// clusterer (StreamClusterer, or FrameClusterer in frame mode), retrieves
+/// on the RetrievalSchedule and writes the outputs. Included only by the
+/// translation units that instantiate it (tools/cli/cluster_*.cpp).
+
+#include "cli/cluster.hpp"
+#include "cli/engine_config.hpp"
+#include "cli/options.hpp"
+#include "cli/report.hpp"
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/frame_clusterer.hpp>
+#include <streamclust/io/reader.hpp>
+#include <streamclust/io/writers.hpp>
+#include <streamclust/partition_compare.hpp>
+#include <streamclust/retrieval_schedule.hpp>
+#include <streamclust/stream_clusterer.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <unistd.h>
+
+namespace streamclust::cli {
+
+/// Which cycles go to the labels file and the point clouds.
+class CycleSelection {
+ public:
+  explicit CycleSelection(const ClusterOptions& o) : all_(o.all_cycles), list_(o.cycle_list) {
+    std::sort(list_.begin(), list_.end());
+  }
+  bool last_only() const { return !all_ && list_.empty(); }
+  bool selected(std::uint64_t cycle) const {
+    return all_ || std::binary_search(list_.begin(), list_.end(), cycle);
+  }
+
+ private:
+  bool all_;
+  std::vector<std::uint64_t> list_;
+};
+
+/// One labelled window, kept for the outputs of the selected cycles.
+struct LabelledWindow {
+  std::uint64_t cycle = 0;
+  double time = 0.0;
+  std::vector<std::uint64_t> index;  ///< stream index per row, ascending
+  std::vector<std::int64_t> label;   ///< -1: in the window but unlabelled
+  std::vector<io::Record> points;    ///< clustered points (for --ply/--pcd)
+  std::vector<std::int64_t> point_labels;
+};
+
+inline bool stderr_is_terminal() { return ::isatty(2) == 1; }
+
+/// Accumulates wall time [us] over the clusterer's calls of one cycle.
+class CycleClock {
+ public:
+  template <class F>
+  void time(F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+  /// The time so far, and a new start at zero.
+  double take() {
+    const double us = us_;
+    us_ = 0.0;
+    return us;
+  }
+
+ private:
+  double us_ = 0.0;
+};
+
+/// Runs `streamclust cluster` on the compiled configuration `Config`,
+/// continuously (StreamClusterer) or, with `Frame`, re-clustering each
+/// window from scratch (FrameClusterer). Returns the exit code; throws
+/// io::InputError (exit 4) and UsageError (exit 2).
+template <class Config, bool Frame>
+int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+  using Engine = std::conditional_t<Frame, FrameClusterer<Config>, StreamClusterer<Config>>;
+  std::unique_ptr<Engine> engine;
+  std::unique_ptr<BatchClusterer<Config>> batch;  // --verify
+  try {
+    const ClustererParams<Config> params = make_params<Config>(o);
+    engine = std::make_unique<Engine>(params);
+    if (o.verify) batch = std::make_unique<BatchClusterer<Config>>(params, BatchMode::insertion_order);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+
+  auto reader = io::open_reader(o.input, o.read);
+  const CycleSelection selection(o);
+  std::ofstream labels_file;
+  if (!o.labels_path.empty()) {
+    labels_file.open(o.labels_path);
+    if (!labels_file) throw UsageError("--labels: cannot write '" + o.labels_path + "'");
+    labels_file << "cycle,time,index,label\n";
+    labels_file.precision(9);
+  }
+  Report report;
+  report.input = o.input;
+  report.format = io::to_string(reader->info().format);
+  report.mode = Frame ? "frame" : "continuous";
+  if constexpr (!Frame) {  // named from the engine's type: what ran, not what was asked
+    report.connectivity = std::is_same_v<typename Config::connectivity, LazyBfsConnectivity> ? "lazy-bfs" : "forest";
+  }
+
+  RejectionCounts rejected_by_reason{};
+  std::deque<std::uint64_t> rejected;  // stream indices of rejected records, ascending
+  LabelledWindow window_out;  // the current cycle
+  LabelledWindow kept;        // the last selected cycle, for --ply/--pcd (and --labels with --cycles last)
+  bool have_selected = false;
+  std::uint64_t records = 0;
+  std::uint64_t cycle = 0;
+  double first_time = 0.0, last_time = 0.0;
+  RetrievalSchedule schedule(o.rate_hz);
+  std::uint64_t inserted_since = 0;
+  CycleClock clock;
+  const bool progress = !o.quiet && stderr_is_terminal();
+  auto last_progress = std::chrono::steady_clock::now();
+  const auto declared = reader->info().declared_points;
+  std::vector<std::uint64_t> index;
+  std::vector<std::int64_t> label;
+  std::vector<Sample> samples;
+  // The window's rows (labels, point clouds, the comparison of --verify) are
+  // gathered only when an output needs them: copying a window per cycle
+  // would evict the clusterer's data from the caches and slow the next cycle.
+  const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() || o.verify;
+
+  // Retrieves at `cycle_time`, then writes/keeps the outputs of a selected cycle.
+  auto run_cycle = [&](double cycle_time) -> int {
+    CycleReport c;
+    c.cycle = cycle;
+    c.time = cycle_time;
+    window_out.cycle = cycle;
+    window_out.time = cycle_time;
+    window_out.index.clear();
+    window_out.label.clear();
+    window_out.points.clear();
+    window_out.point_labels.clear();
+    index.clear();
+    label.clear();
+    if constexpr (Frame) {
+      const BatchResult* result = nullptr;
+      double batch_us = 0.0;
+      clock.time([&] {
+        engine->advance_to(cycle_time);
+        const auto b0 = std::chrono::steady_clock::now();
+        result = &engine->retrieve();
+        batch_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - b0).count();
+      });
+      c.batch_us = batch_us;
+      c.components = result->components;
+      c.window = engine->size();
+      if (rows_wanted) {
+        label = result->labels;
+        engine->for_each_point([&](const Sample& s, std::uint64_t stream_index) {
+          index.push_back(stream_index);
+          window_out.points.push_back(
+              io::Record{s.position.x(), s.position.y(), s.position.z(), s.intensity, s.time, -1});
+        });
+      }
+    } else {
+      const Clustering* result = nullptr;
+      clock.time([&] {
+        engine->advance_to(cycle_time);
+        result = &engine->retrieve();
+      });
+      const RetrievalStats& s = engine->last_stats();
+      c.phase = s.phase_us;
+      c.evicted = s.evicted;
+      c.components = result->components.size();
+      c.window = result->points.size();
+      if (rows_wanted) {
+        for (const PointLabel& p : result->points) {
+          index.push_back(p.stream_index);
+          label.push_back(static_cast<std::int64_t>(p.label));
+        }
+        samples.clear();
+        engine->for_each_point([&](const Sample& s2, std::uint64_t) {
+          if (batch) samples.push_back(s2);
+          window_out.points.push_back(
+              io::Record{s2.position.x(), s2.position.y(), s2.position.z(), s2.intensity, s2.time, -1});
+        });
+        if (batch) {
+          batch->set_grid({engine->grid().rows, engine->grid().cols});
+          const auto& reference = batch->cluster(samples);
+          if (const auto m = first_partition_mismatch(label, reference.labels)) {
+            const std::size_t i = std::min(m->position, index.empty() ? 0 : index.size() - 1);
+            err << "streamclust: verify: cycle " << cycle << " (t = " << cycle_time << " s): point "
+                << (index.empty() ? 0 : index[i]) << " has continuous label " << (label.empty() ? -1 : label[i])
+                << " but the batch clusterer puts it with a different set of points (batch component "
+                << (m->position < reference.labels.size() ? reference.labels[m->position] : -1) << ")\n";
+            return kMismatch;
+          }
+        }
+      }
+    }
+    c.inserted = inserted_since;
+    inserted_since = 0;
+    c.total_us = clock.take();
+    if (!rows_wanted) {
+      report.cycles.push_back(c);
+      ++cycle;
+      return kOk;
+    }
+    window_out.point_labels = label;
+    // Rejected records inside the window's span of stream indices: -1.
+    const std::uint64_t oldest = index.empty() ? records : index.front();
+    while (!rejected.empty() && rejected.front() < oldest) rejected.pop_front();
+    std::size_t i = 0, j = 0;
+    while (i < index.size() || j < rejected.size()) {
+      if (j == rejected.size() || (i < index.size() && index[i] < rejected[j])) {
+        window_out.index.push_back(index[i]);
+        window_out.label.push_back(label[i]);
+        ++i;
+      } else {
+        window_out.index.push_back(rejected[j]);
+        window_out.label.push_back(-1);
+        ++j;
+      }
+    }
+    report.cycles.push_back(c);
+    if (selection.selected(cycle) || selection.last_only()) {
+      have_selected = true;
+      if (labels_file.is_open() && !selection.last_only()) write_label_rows(labels_file, window_out);
+      kept = window_out;
+    }
+    ++cycle;
+    return kOk;
+  };
+
+  std::vector<io::Record> chunk;
+  std::vector<RejectReason> reasons;  // of the records being offered
+  // Offers chunk[from, to) as one batch and books each record's outcome
+  // under its stream index.
+  auto offer_records = [&](std::size_t from, std::size_t to) {
+    if (from == to) return;
+    reasons.resize(to - from);
+    const auto first = chunk.begin() + static_cast<std::ptrdiff_t>(from);
+    const auto last = chunk.begin() + static_cast<std::ptrdiff_t>(to);
+    clock.time([&] { engine->insert_batch(first, last, reasons.begin()); });
+    for (std::size_t i = from; i < to; ++i) {
+      const RejectReason reason = reasons[i - from];
+      const std::uint64_t stream_index = records++;
+      ++rejected_by_reason[reason];
+      if (reason == RejectReason::accepted) {
+        ++inserted_since;
+        last_time = chunk[i].t;
+      } else if (rows_wanted) {
+        rejected.push_back(stream_index);
+      }
+    }
+  };
+  for (;;) {
+    chunk.clear();
+    if (reader->read(chunk, 65536) == 0) break;
+    std::size_t offered = 0;  // chunk[0, offered) went to the clusterer
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      const bool started = schedule.started();
+      const std::optional<double> due = schedule.on_record(chunk[i].t);
+      if (!started && schedule.started()) first_time = schedule.first_time();
+      if (!due) continue;
+      // The records before this one first, then the retrieval.
+      offer_records(offered, i);
+      offered = i;
+      // No cycle while the clusterer buffers its first window for the grid.
+      clock.time([&] { engine->advance_to(*due); });
+      if (engine->calibrating()) continue;
+      const int code = run_cycle(*due);
+      if (code != kOk) return code;
+    }
+    offer_records(offered, chunk.size());
+    if (progress && std::chrono::steady_clock::now() - last_progress > std::chrono::milliseconds(250)) {
+      last_progress = std::chrono::steady_clock::now();
+      if (declared && *declared > 0) {
+        const double f = std::min(1.0, static_cast<double>(records) / static_cast<double>(*declared));
+        const int bar = static_cast<int>(f * 30.0);
+        err << "\r[" << std::string(static_cast<std::size_t>(bar), '#')
+            << std::string(static_cast<std::size_t>(30 - bar), '.') << "] " << static_cast<int>(f * 100.0) << "%  "
+            << records << " points" << std::flush;
+      } else {
+        err << "\r" << records << " points, t = " << last_time - first_time << " s" << std::flush;
+      }
+    }
+  }
+  if (progress) err << "\r" << std::string(60, ' ') << "\r";
+  if (records == 0) throw io::InputError(o.input, "header", "no points: the input is empty");
+  // The final cycle covers the points after the last scheduled retrieval
+  // (and, for an input shorter than one window, ends the calibration).
+  clock.time([&] { engine->complete_calibration(); });
+  if (inserted_since > 0 || cycle == 0) {
+    const int code = run_cycle(schedule.started() ? std::max(last_time, first_time) : 0.0);
+    if (code != kOk) return code;
+  }
+
+  report.grid_rows = engine->grid().rows;
+  report.grid_cols = engine->grid().cols;
+  report.grid_wraps = engine->grid().wrap_columns;
+  report.adaptive = engine->resolution().adaptive();
+  report.trace = engine->resolution().trace();
+  report.stop = engine->resolution().stop_reason();
+  report.records = records;
+  report.rejections = rejected_by_reason;
+  if (labels_file.is_open() && selection.last_only()) write_label_rows(labels_file, kept);
+  if (labels_file.is_open()) {
+    labels_file.flush();
+    if (!labels_file) throw UsageError("--labels: writing '" + o.labels_path + "' failed");
+  }
+  if (!o.report_path.empty()) write_report_file(o.report_path, report);
+  if (have_selected && !o.ply_path.empty()) io::write_ply(o.ply_path, kept.points, kept.point_labels, true);
+  if (have_selected && !o.pcd_path.empty()) io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary");
+  if (!o.quiet) out << summary_line(report) << "\n";
+  return kOk;
+}
+
+/// Dispatches on index, window, mode and connectivity for one projection
+/// and linkage.
+template <class Projection, class Linkage>
+int run_cluster_for(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+  if (o.mode == Mode::frame) {
+    return with_engine_config<true, Projection, Linkage>(o, [&](auto config) {
+      return run_cluster_with<typename decltype(config)::type, true>(o, out, err);
+    });
+  }
+  return with_engine_config<false, Projection, Linkage>(o, [&](auto config) {
+    return run_cluster_with<typename decltype(config)::type, false>(o, out, err);
+  });
+}
+
+}  // namespace streamclust::cli

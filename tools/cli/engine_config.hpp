@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The compiled configurations the tool runs: one StreamClusterer (or
+/// FrameClusterer) configuration per combination of options it offers, so
+/// that every run gets its policies' fast paths (the linkage's payloads and
+/// link_many, the window's inlined test). `with_engine_config` maps the
+/// options to that configuration once, at start-up.
+
+#include "cli/options.hpp"
+
+#include <streamclust/config.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/connectivity/spanning_forest.hpp>
+#include <streamclust/index/bucket_grid.hpp>
+#include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
+#include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/projection/cylindrical.hpp>
+#include <streamclust/projection/spherical.hpp>
+#include <streamclust/resolution/runtime_resolution.hpp>
+#include <streamclust/window/count_window.hpp>
+#include <streamclust/window/time_window.hpp>
+
+#include <stdexcept>
+#include <type_traits>
+
+namespace streamclust::cli {
+
+/// A configuration of the tool. Every slot is compiled in except the
+/// resolution, which only runs once (the calibration of the first window)
+/// and so costs nothing per point as a run-time choice. Phases are timed
+/// for the report (a few clock reads per point).
+template <class Projection, class Index, class Linkage, class Window, class Connectivity = SpanningForestConnectivity>
+struct CliConfig {
+  using projection = Projection;
+  using spatial_index = Index;
+  using linkage = Linkage;
+  using window = Window;
+  using resolution = RuntimeResolution;
+  using connectivity = Connectivity;
+  static constexpr bool timed = true;
+};
+
+/// The parameters of `Config` from the options. Throws UsageError for a
+/// value a policy rejects.
+template <class Config>
+ClustererParams<Config> make_params(const ClusterOptions& o) {
+  ClustererParams<Config> p;
+  p.projection.azimuth_min_deg = o.azimuth_min;
+  p.projection.azimuth_max_deg = o.azimuth_max;
+  p.projection.min_range = o.min_range;
+  if constexpr (std::is_same_v<typename Config::projection, SphericalProjection>) {
+    p.projection.elevation_min_deg = o.elevation_min;
+    p.projection.elevation_max_deg = o.elevation_max;
+  } else {
+    p.projection.z_min = o.z_min;
+    p.projection.z_max = o.z_max;
+  }
+  if constexpr (std::is_same_v<typename Config::spatial_index, CappedGrid>) p.spatial_index.capacity = o.cap;
+  if constexpr (std::is_same_v<typename Config::linkage, AngularLinkage>) {
+    p.linkage.theta_deg = o.theta_deg;
+    p.linkage.min_ray_angle_deg = o.min_ray_angle_deg;
+  } else {
+    p.linkage.max_distance = o.distance;
+  }
+  if constexpr (std::is_same_v<typename Config::window, TimeWindow>) {
+    p.window.duration = o.window_seconds;
+  } else {
+    p.window.capacity = o.window_count;
+  }
+  p.resolution.adaptive = !o.grid.has_value();
+  if (o.grid) p.resolution.fixed = {o.grid->first, o.grid->second};
+  p.resolution.adaptive_loop.max_multiplicity = o.max_multiplicity;
+  p.mask_size = o.mask;
+  return p;
+}
+
+/// A policy type as a value, for generic lambdas.
+template <class T>
+struct TypeTag {
+  using type = T;
+};
+
+namespace detail {
+
+/// `Frame`: frame mode, which has no connectivity strategy (one
+/// configuration per index and window, the connectivity slot left at its
+/// default).
+template <bool Frame, class Projection, class Linkage, class Window, class F>
+decltype(auto) with_index_and_connectivity(const ClusterOptions& o, F&& f) {
+  const auto pick = [&](auto index) -> decltype(auto) {
+    using I = typename decltype(index)::type;
+    if constexpr (!Frame) {
+      if (o.connectivity == ConnectivityKind::lazy_bfs) {
+        return f(TypeTag<CliConfig<Projection, I, Linkage, Window, LazyBfsConnectivity>>{});
+      }
+    }
+    return f(TypeTag<CliConfig<Projection, I, Linkage, Window>>{});
+  };
+  switch (o.index) {
+    case IndexKind::capped: return pick(TypeTag<CappedGrid>{});
+    case IndexKind::overwrite: return pick(TypeTag<OverwriteGrid>{});
+    case IndexKind::bucket: break;
+  }
+  return pick(TypeTag<BucketGrid>{});
+}
+
+}  // namespace detail
+
+/// Calls `f(TypeTag<Config>{})` with the compiled configuration of the
+/// options (projection `Projection` and linkage `Linkage` as chosen by the
+/// caller; index, window and, unless `Frame`, connectivity from `o`) and
+/// returns its result.
+template <bool Frame, class Projection, class Linkage, class F>
+decltype(auto) with_engine_config(const ClusterOptions& o, F&& f) {
+  if (o.window_is_count) return detail::with_index_and_connectivity<Frame, Projection, Linkage, CountWindow>(o, f);
+  return detail::with_index_and_connectivity<Frame, Projection, Linkage, TimeWindow>(o, f);
+}
+
+}  // namespace streamclust::cli
