@@ -9,12 +9,13 @@
 /// (the default mode) this is the classic range-image baseline (Bogoslavskyi
 /// & Stachniss) on the same windows as the continuous engine.
 
+#include <streamclust/acceptance.hpp>
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/config.hpp>
+#include <streamclust/grid_choice.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -87,14 +88,12 @@ class FrameClusterer {
   RejectReason insert(const P& p, double time) {
     static_assert(is_point_v<P>, "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
     const std::uint64_t stream_index = first_stream_index_ + offered_++;
-    if (!std::isfinite(time)) return reject(RejectReason::non_finite);
     const Eigen::Vector3f pos = position(p);
     const Projected pr = projection_.project(pos);
-    if (!pr.accepted()) return reject(pr.reason);
-    if (has_time_ && time < last_time_) return reject(RejectReason::time_backwards);
-    has_time_ = true;
-    last_time_ = time;
-    ++rejections_[RejectReason::accepted];
+    const RejectReason verdict = time_order_.judge(pr, time);  // the engine's rule (acceptance.hpp)
+    ++rejections_[verdict];
+    if (verdict != RejectReason::accepted) return verdict;
+    time_order_.accept(time);
     if (calibrating_) {
       // As the engine: the point that completes the first window is not part
       // of the calibration; nothing expires before it.
@@ -130,9 +129,8 @@ class FrameClusterer {
   /// a time that completes the first window ends the calibration. An
   /// earlier time than the newest point's is ignored (as the engine).
   void advance_to(double time) {
-    if (!std::isfinite(time) || (has_time_ && time < last_time_)) return;
-    has_time_ = true;
-    last_time_ = time;
+    if (!time_order_.may_advance_to(time)) return;
+    time_order_.accept(time);
     if (calibrating_) {
       if (!points_.empty() && window_.complete(points_.front().sample.time, time, points_.size())) {
         finish_calibration();
@@ -201,11 +199,6 @@ class FrameClusterer {
     std::uint64_t stream_index;
   };
 
-  RejectReason reject(RejectReason r) {
-    ++rejections_[r];
-    return r;
-  }
-
   void evict_expired(double newest_time, std::size_t count) {
     while (!points_.empty() && window_.expired(points_.front().sample.time, newest_time, count)) {
       points_.pop_front();
@@ -217,7 +210,8 @@ class FrameClusterer {
     std::vector<Projected> coords;
     coords.reserve(points_.size());
     for (const Entry& e : points_) coords.push_back(projection_.project(e.sample.position));
-    set_grid(resolution_.calibrate(coords, projection_.fov_aspect()));
+    const GridShape chosen = choose_grid(resolution_, projection_, coords);  // the engine's choice (grid_choice.hpp)
+    set_grid(GridSize{chosen.rows, chosen.cols});
   }
 
   projection_type projection_;
@@ -231,8 +225,7 @@ class FrameClusterer {
   bool last_is_batch_ = false;  // the last retrieval ran the batch clusterer
   GridSize grid_{};
   bool calibrating_ = true;
-  bool has_time_ = false;
-  double last_time_ = 0.0;
+  StreamTimeOrder time_order_;
   std::uint64_t offered_ = 0;
   RejectionCounts rejections_{};
 };

@@ -15,10 +15,12 @@
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
 
+#include <streamclust/acceptance.hpp>
 #include <streamclust/eval/average.hpp>
 #include <streamclust/eval/labelled_subset.hpp>
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>
+#include <streamclust/grid_choice.hpp>
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/resolution/runtime_resolution.hpp>
 
@@ -182,11 +184,11 @@ struct Evaluation {
 };
 
 /// The grid for both methods: --grid if given, else the adaptive loop's
-/// choice on the first window: the accepted points within T_B of the first
-/// one (the points the engine buffers for its own calibration). Computed
-/// here rather than by a calibrating engine, whose calibration only ends on
-/// a point exactly T_B after the first one still in its buffer (a stream with
-/// irregular times, e.g. with the structure dropped, may never give one).
+/// choice on the first window, exactly as a calibrating engine makes it
+/// (acceptance.hpp's rule, then grid_choice.hpp's FirstWindow: the accepted
+/// points before the first one at or after T_B from the first). Computed
+/// here rather than by an engine so that both methods share it and the
+/// adaptive loop's trace can be reported.
 inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Record>& records) {
   GridChoice g;
   if (o.policy.grid) {
@@ -199,25 +201,21 @@ inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Re
   c.grid.reset();
   const ClustererParams<Config> params = make_params<Config>(c);
   const SphericalProjection projection(params.projection);
-  std::vector<Projected> coords;
-  std::optional<double> first;
-  bool complete = false;
+  const TimeWindow window(params.window);
+  FirstWindow<TimeWindow> first_window(window);
+  StreamTimeOrder order;
   for (const io::Record& r : records) {
-    if (!std::isfinite(r.t)) continue;
     const Projected pr = projection.project(Eigen::Vector3f(r.x, r.y, r.z));
-    if (!pr.accepted()) continue;
-    if (!first) first = r.t;
-    if (r.t - *first > o.policy.window_seconds) {
-      complete = true;
-      break;
-    }
-    coords.push_back(pr);
+    if (order.judge(pr, r.t) != RejectReason::accepted) continue;
+    order.accept(r.t);
+    if (first_window.offer(pr, r.t)) break;
   }
-  if (!complete || coords.empty()) {
+  if (!first_window.complete()) {
     throw UsageError("the simulated stream does not fill one window (--window-time, --duration)");
   }
   RuntimeResolution resolution(params.resolution);
-  g.grid = resolution.calibrate(coords, projection.fov_aspect());
+  const GridShape grid = ::streamclust::choose_grid(resolution, projection, first_window.points());
+  g.grid = GridSize{grid.rows, grid.cols};
   g.trace = resolution.trace();
   for (const AdaptiveStep& s : g.trace) {
     if (s.grid == g.grid) g.mean_multiplicity = s.mean_multiplicity;
