@@ -336,19 +336,23 @@ void BM_Calibrate(benchmark::State& state) {
 /// Registers one benchmark per policy of each list (support/policy_lists.hpp).
 bool register_policy_benchmarks() {
   namespace st = sc::test;
+  // "BM_<family><Policy>", e.g. BM_Linkage<AngularLinkage>
   const auto name = [](const char* family, auto tag) {
     return std::string(family) + "<" + st::type_name<typename decltype(tag)::type>() + ">";
   };
-  st::for_each_type<st::Projections>(
-      [&](auto tag) { benchmark::RegisterBenchmark(name("BM_Project", tag).c_str(), BM_Project<typename decltype(tag)::type>); });
+  st::for_each_type<st::Projections>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Project", tag).c_str(), BM_Project<typename decltype(tag)::type>);
+  });
   st::for_each_type<st::SpatialIndexes>([&](auto tag) {
     benchmark::RegisterBenchmark(name("BM_Index", tag).c_str(), BM_Index<typename decltype(tag)::type>)
         ->Apply(index_cases);
   });
-  st::for_each_type<st::Linkages>(
-      [&](auto tag) { benchmark::RegisterBenchmark(name("BM_Linkage", tag).c_str(), BM_Linkage<typename decltype(tag)::type>); });
-  st::for_each_type<st::Windows>(
-      [&](auto tag) { benchmark::RegisterBenchmark(name("BM_Window", tag).c_str(), BM_Window<typename decltype(tag)::type>); });
+  st::for_each_type<st::Linkages>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Linkage", tag).c_str(), BM_Linkage<typename decltype(tag)::type>);
+  });
+  st::for_each_type<st::Windows>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Window", tag).c_str(), BM_Window<typename decltype(tag)::type>);
+  });
   st::for_each_type<st::Resolutions>([&](auto tag) {
     using R = typename decltype(tag)::type;
     benchmark::RegisterBenchmark((name("BM_Calibrate", tag) + "/Mid360").c_str(), BM_Calibrate<R, Mid360FirstWindow>)
