@@ -4,14 +4,11 @@
 // Engine-level benchmarks (insertion per preset, retrieval) live in
 // bench/engine.cpp; the end-to-end latency is bench/latency/.
 //
-// Adding a policy of your own is ONE line at the bottom of this file, in its
-// family's block, with the policy's default Params:
-//
-//   BENCHMARK_TEMPLATE(BM_Project, MyProjection);
-//   BENCHMARK_TEMPLATE(BM_Index, MyGrid)->Apply(index_cases);
-//   BENCHMARK_TEMPLATE(BM_Linkage, MyLinkage);
-//   BENCHMARK_TEMPLATE(BM_Window, MyWindow);
-//   BENCHMARK_TEMPLATE(BM_Calibrate, MyResolution, Mid360FirstWindow);
+// The policies measured are the lists of tests/support/policy_lists.hpp
+// (Projections, SpatialIndexes, Linkages, Windows, Resolutions), each with its
+// default Params: adding a policy to its list there adds its benchmark here
+// (and its tests), with no line in this file. Benchmark names are
+// BM_<family><PolicyType>, e.g. BM_Linkage<AngularLinkage>.
 //
 // Inputs are sensor ray patterns (no ray casting, so the set-up stays cheap
 // for CTest's --benchmark_min_time=0.01 smoke run), built once and shared:
@@ -50,10 +47,15 @@
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
 
+#include "../tests/support/policy_lists.hpp"
+#include "../tests/support/type_name.hpp"
+#include "../tests/support/type_product.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace sc = streamclust;
@@ -332,29 +334,38 @@ void BM_Calibrate(benchmark::State& state) {
   state.counters["cols"] = grid.cols;
 }
 
-using AllOfAngularEuclidean = sc::AllOf<sc::AngularLinkage, sc::EuclideanLinkage>;
-using AnyOfAngularEuclidean = sc::AnyOf<sc::AngularLinkage, sc::EuclideanLinkage>;
+/// Registers one benchmark per policy of each list (support/policy_lists.hpp).
+bool register_policy_benchmarks() {
+  namespace st = sc::test;
+  // "BM_<family><Policy>", e.g. BM_Linkage<AngularLinkage>
+  const auto name = [](const char* family, auto tag) {
+    return std::string(family) + "<" + st::type_name<typename decltype(tag)::type>() + ">";
+  };
+  st::for_each_type<st::Projections>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Project", tag).c_str(), BM_Project<typename decltype(tag)::type>);
+  });
+  st::for_each_type<st::SpatialIndexes>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Index", tag).c_str(), BM_Index<typename decltype(tag)::type>)
+        ->Apply(index_cases);
+  });
+  st::for_each_type<st::Linkages>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Linkage", tag).c_str(), BM_Linkage<typename decltype(tag)::type>);
+  });
+  st::for_each_type<st::Windows>([&](auto tag) {
+    benchmark::RegisterBenchmark(name("BM_Window", tag).c_str(), BM_Window<typename decltype(tag)::type>);
+  });
+  st::for_each_type<st::Resolutions>([&](auto tag) {
+    using R = typename decltype(tag)::type;
+    benchmark::RegisterBenchmark((name("BM_Calibrate", tag) + "/Mid360").c_str(), BM_Calibrate<R, Mid360FirstWindow>)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((name("BM_Calibrate", tag) + "/Avia").c_str(), BM_Calibrate<R, AviaFirstWindow>)
+        ->Unit(benchmark::kMillisecond);
+  });
+  return true;
+}
+
+[[maybe_unused]] const bool registered = register_policy_benchmarks();
 
 }  // namespace
-
-// One line per policy (see the file comment).
-BENCHMARK_TEMPLATE(BM_Project, sc::SphericalProjection);
-BENCHMARK_TEMPLATE(BM_Project, sc::CylindricalProjection);
-
-BENCHMARK_TEMPLATE(BM_Index, sc::BucketGrid)->Apply(index_cases);
-BENCHMARK_TEMPLATE(BM_Index, sc::CappedGrid)->Apply(index_cases);
-BENCHMARK_TEMPLATE(BM_Index, sc::OverwriteGrid)->Apply(index_cases);
-
-BENCHMARK_TEMPLATE(BM_Linkage, sc::EuclideanLinkage);
-BENCHMARK_TEMPLATE(BM_Linkage, sc::AngularLinkage);
-BENCHMARK_TEMPLATE(BM_Linkage, AllOfAngularEuclidean);
-BENCHMARK_TEMPLATE(BM_Linkage, AnyOfAngularEuclidean);
-BENCHMARK_TEMPLATE(BM_Linkage, sc::RuntimeLinkage);
-
-BENCHMARK_TEMPLATE(BM_Window, sc::TimeWindow);
-BENCHMARK_TEMPLATE(BM_Window, sc::CountWindow);
-
-BENCHMARK_TEMPLATE(BM_Calibrate, sc::AdaptiveResolution, Mid360FirstWindow)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Calibrate, sc::AdaptiveResolution, AviaFirstWindow)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

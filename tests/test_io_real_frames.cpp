@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The real Livox frames of ../shared/data/livox/frames load with the point
-// counts their README and headers state. Skipped when the folder is absent
-// (a fresh clone does not have it). STREAMCLUST_LIVOX_DATA overrides the location.
+// counts their README and headers state. Each case is skipped when its data
+// is absent (a fresh clone does not have it); support/shared_data.hpp says
+// where the data is looked up (STREAMCLUST_SHARED_DIR, STREAMCLUST_LIVOX_DATA).
 
 #include <doctest/doctest.h>
+
+#include "support/shared_data.hpp"
 
 #include <streamclust/io/reader.hpp>
 #include <streamclust/sensors.hpp>
@@ -20,18 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// <repo>/tests/this_file.cpp -> <repo>/../shared/data/livox, or $STREAMCLUST_LIVOX_DATA.
-fs::path livox_data_dir() {
-  if (const char* env = std::getenv("STREAMCLUST_LIVOX_DATA")) return fs::path(env);
-  return fs::path(__FILE__).parent_path() / ".." / ".." / "shared" / "data" / "livox";
-}
-
-bool have_frames() {
-  std::error_code ec;
-  const bool ok = fs::is_directory(livox_data_dir() / "frames", ec);
-  if (!ok) MESSAGE("skipped: no real Livox frames at " << (livox_data_dir() / "frames").string());
-  return ok;
-}
+using streamclust::test::livox_data_dir;
+using streamclust::test::needs_livox_data;
 
 std::vector<io::Record> load(const fs::path& p, const io::ReadOptions& o = {}) {
   auto r = io::open_reader(p.string(), o);
@@ -50,8 +43,8 @@ io::ReadOptions rate(double hz) {
 
 }  // namespace
 
-TEST_CASE("real frames: horizon_highway CSV has 20,900 slots, 6,832 of them the no-return point") {
-  if (!have_frames()) return;
+TEST_CASE("real frames: horizon_highway CSV has 20,900 slots, 6,832 of them the no-return point" *
+          needs_livox_data("frames/horizon_highway")) {
   const fs::path p = livox_data_dir() / "frames" / "horizon_highway" / "test_data.csv";
   auto r = io::open_reader(p.string(), rate(streamclust::livox_horizon.point_rate_hz));
   CHECK(r->info().format == io::Format::csv);
@@ -67,8 +60,8 @@ TEST_CASE("real frames: horizon_highway CSV has 20,900 slots, 6,832 of them the 
   CHECK(v.back().t == doctest::Approx(20899.0 / streamclust::livox_horizon.point_rate_hz));
 }
 
-TEST_CASE("real frames: lane_detection ascii PCDs (VERSION .7), about 24,000 slots each") {
-  if (!have_frames()) return;
+TEST_CASE("real frames: lane_detection ascii PCDs (VERSION .7), about 24,000 slots each" *
+          needs_livox_data("frames/lane_detection")) {
   const std::uint64_t expected[] = {23986, 23953, 23955, 23960, 23995, 24037};  // the files' POINTS
   for (int id = 1; id <= 6; ++id) {
     const fs::path p = livox_data_dir() / "frames" / "lane_detection" / "lidar" / std::to_string(id) / "1589168946_0.pcd";
@@ -80,8 +73,8 @@ TEST_CASE("real frames: lane_detection ascii PCDs (VERSION .7), about 24,000 slo
   }
 }
 
-TEST_CASE("real frames: mid100_campus binary PCDs with WIDTH 0 HEIGHT 0 load POINTS records") {
-  if (!have_frames()) return;
+TEST_CASE("real frames: mid100_campus binary PCDs with WIDTH 0 HEIGHT 0 load POINTS records" *
+          needs_livox_data("frames/mid100_campus")) {
   const std::pair<const char*, std::size_t> files[] = {{"1/10.pcd", 240887}, {"2/12.pcd", 246427}, {"2/13.pcd", 253311}};
   for (const auto& [name, count] : files) {
     const fs::path p = livox_data_dir() / "frames" / "mid100_campus" / name;
@@ -97,8 +90,8 @@ TEST_CASE("real frames: mid100_campus binary PCDs with WIDTH 0 HEIGHT 0 load POI
   }
 }
 
-TEST_CASE("real frames: horizon_submaps binary PCDs, about 40k points") {
-  if (!have_frames()) return;
+TEST_CASE("real frames: horizon_submaps binary PCDs, about 40k points" *
+          needs_livox_data("frames/horizon_submaps")) {
   const std::pair<const char*, std::size_t> files[] = {{"source.pcd", 41657}, {"target.pcd", 39783}};
   for (const auto& [name, count] : files) {
     const fs::path p = livox_data_dir() / "frames" / "horizon_submaps" / name;

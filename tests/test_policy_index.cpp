@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: MIT
-// Unit tests of the spatial-index policies against a brute-force model.
+// Unit tests of the spatial-index policies: every index of the
+// SpatialIndexes list (support/policy_lists.hpp) against a brute-force model
+// and with its optional prefetch hint, then each index's own behaviour.
 
 #include <doctest/doctest.h>
 
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>
+
+#include "support/policy_hooks.hpp"
+#include "support/policy_lists.hpp"
+#include "support/type_name.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -27,24 +33,9 @@ using streamclust::PointHandle;
 
 namespace {
 
-/// How each index is built in the tests and the per-cell capacity its model uses.
-template <class I>
-struct IndexUnderTest;
-template <>
-struct IndexUnderTest<BucketGrid> {
-  static BucketGrid make() { return BucketGrid{{2}}; }
-  static constexpr std::size_t capacity = std::numeric_limits<std::size_t>::max();
-};
-template <>
-struct IndexUnderTest<CappedGrid> {
-  static CappedGrid make() { return CappedGrid{{3}}; }
-  static constexpr std::size_t capacity = 3;
-};
-template <>
-struct IndexUnderTest<OverwriteGrid> {
-  static OverwriteGrid make() { return OverwriteGrid{{}}; }
-  static constexpr std::size_t capacity = 1;
-};
+/// How each index is built in the tests and the per-cell capacity its model
+/// uses: support/policy_hooks.hpp.
+using streamclust::test::IndexModel;
 
 /// Brute-force model: one std::vector per cell in insertion order; a full cell
 /// drops its oldest handle (capacity = max for an unbounded bucket).
@@ -119,11 +110,12 @@ void check_equal(const I& index, const Model& model) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("spatial index matches the brute-force model on random operation sequences", I, BucketGrid,
-                   CappedGrid, OverwriteGrid) {
-  I index = IndexUnderTest<I>::make();
+TEST_CASE_TEMPLATE_DEFINE("spatial index matches the brute-force model on random operation sequences", I,
+                          index_model_id) {
+  INFO("index " << streamclust::test::type_name<I>());
+  I index = IndexModel<I>::make();
   Model model;
-  model.capacity = IndexUnderTest<I>::capacity;
+  model.capacity = IndexModel<I>::capacity;
   std::mt19937 rng(12345);
   for (const GridShape shape : {GridShape{4, 5, true}, GridShape{2, 3, false}, GridShape{8, 16, true}}) {
     index.reset(shape);
@@ -391,14 +383,26 @@ TEST_CASE("the capped and bucket grids offer gather; stale slots are never hande
   CHECK(gathered(buckets, 0) == all);
 }
 
-TEST_CASE_TEMPLATE("the standard indexes offer the prefetch hint, which changes nothing", I, BucketGrid, CappedGrid,
-                   OverwriteGrid) {
-  static_assert(streamclust::has_spatial_index_prefetch_v<I>);
-  I index = IndexUnderTest<I>::make();
+static_assert(streamclust::has_spatial_index_prefetch_v<BucketGrid> &&
+              streamclust::has_spatial_index_prefetch_v<CappedGrid> &&
+              streamclust::has_spatial_index_prefetch_v<OverwriteGrid>);
+
+TEST_CASE_TEMPLATE_DEFINE("an index's optional prefetch hint changes nothing", I, index_prefetch_id) {
+  INFO("index " << streamclust::test::type_name<I>());
+  if constexpr (!streamclust::has_spatial_index_prefetch_v<I>) {
+    MESSAGE("no prefetch hint");
+    return;
+  }
+  I index = IndexModel<I>::make();
   index.reset(GridShape{3, 4, true});
   for (PointHandle h = 0; h < 40; ++h) index.insert(h % 12, h);
   std::vector<std::vector<PointHandle>> before;
   for (CellIndex c = 0; c < 12; ++c) before.push_back(contents(index, c));
-  for (CellIndex c = 0; c < 12; ++c) index.prefetch(c);
+  if constexpr (streamclust::has_spatial_index_prefetch_v<I>) {
+    for (CellIndex c = 0; c < 12; ++c) index.prefetch(c);
+  }
   for (CellIndex c = 0; c < 12; ++c) CHECK(contents(index, c) == before[c]);
 }
+
+TEST_CASE_TEMPLATE_APPLY(index_model_id, streamclust::test::SpatialIndexes);
+TEST_CASE_TEMPLATE_APPLY(index_prefetch_id, streamclust::test::SpatialIndexes);

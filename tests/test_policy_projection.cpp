@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: MIT
-// Unit tests of the projection policies: round trips, inclusive FOV edges,
-// the azimuth seam, every rejection reason and parameter validation.
+// Unit tests of the projection policies: the contract of every projection of
+// the Projections list (support/policy_lists.hpp), then each projection's
+// round trips, inclusive FOV edges, the azimuth seam, every rejection reason
+// and parameter validation.
 
 #include <doctest/doctest.h>
 
 #include "support/invalid_argument.hpp"
+#include "support/policy_hooks.hpp"
+#include "support/policy_lists.hpp"
+#include "support/type_name.hpp"
 
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
@@ -38,6 +43,59 @@ Eigen::Vector3f direction_deg(double az, double el) {
 }
 
 }  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("projection contract: coordinates in [0, 1], the range, the rejections", P,
+                          projection_contract_id) {
+  INFO("projection " << streamclust::test::type_name<P>());
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<float> coord(-30.0f, 30.0f);
+  std::size_t accepted = 0;
+  std::size_t rejected = 0;
+  for (int draw = 0; draw < 6; ++draw) {
+    typename P::Params params{};
+    if (draw > 0) streamclust::test::RandomParams<P>::draw(params, rng);
+    const P proj{params};
+    CHECK(std::isfinite(proj.fov_aspect()));
+    CHECK(proj.fov_aspect() > 0.0f);
+    // NaN or inf in any coordinate, also where the point would be too close;
+    // the origin has no direction: too close whatever the minimum range
+    for (int c = 0; c < 3; ++c) {
+      for (const float bad : {kNaN, kInf, -kInf}) {
+        Eigen::Vector3f x(1.0f, 2.0f, 0.5f);
+        x[c] = bad;
+        CHECK(proj.project(x).reason == RejectReason::non_finite);
+        x = Eigen::Vector3f::Zero();
+        x[c] = bad;
+        CHECK(proj.project(x).reason == RejectReason::non_finite);
+      }
+    }
+    CHECK(proj.project(Eigen::Vector3f(0.0f, 0.0f, 0.0f)).reason == RejectReason::too_close);
+    CHECK(proj.project(Eigen::Vector3f(-0.0f, 0.0f, -0.0f)).reason == RejectReason::too_close);
+    for (int k = 0; k < 20000; ++k) {
+      const Eigen::Vector3f x(coord(rng), coord(rng), 0.2f * coord(rng));
+      const Projected p = proj.project(x);
+      const Projected again = proj.project(x);
+      REQUIRE(p.reason == again.reason);  // deterministic
+      if (!p.accepted()) {
+        REQUIRE(p.reason != RejectReason::non_finite);  // the input was finite
+        ++rejected;
+        continue;
+      }
+      ++accepted;
+      REQUIRE(p.u == again.u);
+      REQUIRE(p.v == again.v);
+      REQUIRE(p.u >= 0.0f);
+      REQUIRE(p.u <= 1.0f);
+      REQUIRE(p.v >= 0.0f);
+      REQUIRE(p.v <= 1.0f);
+      REQUIRE(p.range == doctest::Approx(x.norm()).epsilon(1e-5));
+    }
+  }
+  CHECK(accepted > 1000);
+  CHECK(rejected > 0);  // the drawn FOVs reject something
+}
+
+TEST_CASE_TEMPLATE_APPLY(projection_contract_id, streamclust::test::Projections);
 
 TEST_CASE("SphericalProjection: project(unproject(u, v, r)) returns (u, v, r)") {
   const SphericalProjection full{{}};
@@ -237,9 +295,7 @@ TEST_CASE("CylindricalProjection: round trip, bounds, rejections, aspect") {
   CHECK(proj.project(5.0f * direction_deg(60.0, 0.0)).accepted());
   CHECK(proj.project(5.0f * direction_deg(-60.0, 0.0)).accepted());
   CHECK(proj.project(5.0f * direction_deg(60.02, 0.0)).reason == RejectReason::outside_fov);
-  CHECK(proj.project(Eigen::Vector3f(kNaN, 0.0f, 0.0f)).reason == RejectReason::non_finite);
-  CHECK(proj.project(Eigen::Vector3f(1.0f, 0.0f, -kInf)).reason == RejectReason::non_finite);
-  CHECK(proj.project(Eigen::Vector3f(0.0f, 0.0f, 0.0f)).reason == RejectReason::too_close);
+  // NaN, inf and the origin: the projection contract above
   // 3D range, not horizontal distance: (0.3, 0, 0.3) has range 0.42 < 0.5
   CHECK(proj.project(Eigen::Vector3f(0.3f, 0.0f, 0.3f)).reason == RejectReason::too_close);
   CHECK(proj.project(Eigen::Vector3f(0.3f, 0.0f, 0.45f)).accepted());
