@@ -89,6 +89,9 @@ class ComponentResult {
     std::uint32_t* const place_of = place_of_.data();
     const bool scattered = components >= kPrefetchMinComponents;
     const PointHandle oldest = ring.oldest();
+    const PointHandle origin = ring.origin();  // hoisted: the stores below could alias the ring's members
+    const std::uint32_t capacity = ring.capacity();
+    const auto* const samples = ring.samples();
     for (std::uint32_t i = 0; i < n; ++i) {
       if (scattered && i + kPrefetchDistance < n) {
         // The summary's lines (72 bytes may straddle two): scattered over the
@@ -100,7 +103,8 @@ class ComponentResult {
       const PointHandle h = oldest + i;
       const std::uint32_t k = component_at(i);
       std::uint32_t at = place_of[k];
-      const auto& stored = ring.stored(h);  // position and time only
+      const std::uint32_t slot = Ring::slot(h, origin, capacity);
+      const auto& stored = samples[slot];  // position and time only
       const Eigen::Vector3f& p = stored.position;
       ComponentSummary& sm = summaries[at & ~kUnopened];
       if (at & kUnopened) {
@@ -125,7 +129,7 @@ class ComponentResult {
         sums_[sum_of_[k]] += p.template cast<double>();
         ++sm.size;
       }
-      labels[i] = PointLabel{ring.stream_index(h), ids[at]};
+      labels[i] = PointLabel{ring.stream_index(h, slot), ids[at]};
     }
     // The centroids of the components of two or more points.
     for (std::uint32_t s = 0; s < summed; ++s) {

@@ -74,6 +74,18 @@ class EdgeRing {
     return e;
   }
 
+  /// Calls `f(older, newer)` for every edge still in the ring, oldest first
+  /// (grouped by newer endpoint; the older one may have left the window).
+  /// O(edges), a sequential read of both arrays.
+  template <class F>
+  void for_each(F&& f) const {
+    const PointHandle* const older = older_.data();  // hoisted: f's stores could alias the members
+    const Record* const records = records_.data();
+    const std::uint32_t mask = mask_;
+    const EdgeHandle end = next_;
+    for (EdgeHandle e = oldest_; e != end; ++e) f(older[e & mask], records[e & mask].newer);
+  }
+
   /// Drops the edges before `first` (those of points that left). O(1).
   void release_before(EdgeHandle first) { oldest_ = first; }
 

@@ -8,6 +8,7 @@
 /// connectivity strategy's own per-point state).
 
 #include <streamclust/concepts/linkage.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
@@ -91,8 +92,11 @@ class PointRing {
   const StoredSample& stored(PointHandle h) const { return samples_[slot(h)]; }
   const Eigen::Vector3f& position(PointHandle h) const { return samples_[slot(h)].position; }
   double time(PointHandle h) const { return samples_[slot(h)].time; }
-  /// The rings by slot, for the neighbour search's hot loops.
+  /// The rings by slot, for hot loops that hoist the slot computation
+  /// (`slot(h, origin(), capacity())`).
   const StoredSample* samples() const { return samples_.data(); }
+  Record* records() { return records_.data(); }
+  const Record* records() const { return records_.data(); }
   const payload_type* payloads() const { return payloads_.data(); }
   const payload_type& payload(PointHandle h) const { return payloads_[slot(h)]; }
 
@@ -116,8 +120,10 @@ class PointRing {
 
   /// Stream index of a live point. O(1) (O(epochs) when the window spans
   /// more than one 2^32 block of offered points).
-  std::uint64_t stream_index(PointHandle h) const {
-    return (std::uint64_t{epoch_high(h)} << 32) | record(h).stream_index_low;
+  std::uint64_t stream_index(PointHandle h) const { return stream_index(h, slot(h)); }
+  /// The same, for `h` in slot `at`.
+  std::uint64_t stream_index(PointHandle h, std::uint32_t at) const {
+    return (std::uint64_t{epoch_high(h)} << 32) | records_[at].stream_index_low;
   }
   /// Distinct high 32-bit words among the window's stream indexes (plus the
   /// last one seen when the window is empty). O(1).
@@ -127,7 +133,7 @@ class PointRing {
   /// Appends a point: its sample (and payload) and a fresh record (cell 0,
   /// default PointState). Grows the rings when full. Returns its handle.
   /// Amortised O(1).
-  PointHandle append(const Sample& s, std::uint64_t stream_index) {
+  STREAMCLUST_ALWAYS_INLINE PointHandle append(const Sample& s, std::uint64_t stream_index) {
     if (size() + 1 > capacity_) grow(std::max<std::size_t>(size() + 1 + (size() + 1) / 8, kMinCapacity));
     const PointHandle h = next_++;
     const std::uint32_t at = slot(h);

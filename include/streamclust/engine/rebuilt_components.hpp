@@ -99,12 +99,15 @@ class RebuiltComponents {
     // Prefetch only when the per-cluster records outgrow the L1/L2 caches.
     const bool scattered_old = old_clusters >= kPrefetchMinClusters;
     const PointHandle oldest = ring.oldest();
+    const PointHandle origin = ring.origin();  // hoisted: the stores below could alias the ring's members
+    const std::uint32_t capacity = ring.capacity();
+    auto* const records = ring.records();
     for (std::uint32_t i = 0; i < n; ++i) {
       if (scattered_old && i + kPrefetchDistance < n) {
-        const ClusterId ahead = ring.record(oldest + i + kPrefetchDistance).state.cluster;
+        const ClusterId ahead = records[Ring::slot(oldest + i + kPrefetchDistance, origin, capacity)].state.cluster;
         if (ahead < old_clusters) votes_.prefetch(ahead);
       }
-      ClusterId& cluster = ring.record(oldest + i).state.cluster;
+      ClusterId& cluster = records[Ring::slot(oldest + i, origin, capacity)].state.cluster;
       const ClusterId old = cluster;
       const std::uint32_t k = component_at(i);
       cluster = k;

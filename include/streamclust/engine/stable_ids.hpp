@@ -59,7 +59,7 @@ class StableIdVotes {
 
   /// One point of group `g` votes for component `k` with weight 1 (a sole
   /// point or one of many). O(votes of g), in practice O(1).
-  void vote_one(std::uint32_t g, std::uint32_t k) {
+  STREAMCLUST_ALWAYS_INLINE void vote_one(std::uint32_t g, std::uint32_t k) {
     std::uint32_t& head = head_[g];
     if (head == kSoleMark) {
       head = kSoleVote + k;
@@ -70,7 +70,7 @@ class StableIdVotes {
 
   /// Group `g` (not a sole one) votes for component `k` with `weight`.
   /// O(votes of g), in practice O(1): the list is kept most recent first.
-  void vote(std::uint32_t g, std::uint32_t k, std::uint32_t weight) {
+  STREAMCLUST_ALWAYS_INLINE void vote(std::uint32_t g, std::uint32_t k, std::uint32_t weight) {
     std::uint32_t before = kNone;
     std::uint32_t v = head_[g];
     while (v != kNone && votes_[v].component != k) {

@@ -90,24 +90,23 @@ struct UnionFindRebuildConnectivity {
     /// and every root is its set's oldest point. O(N + E).
     void unite_edges(const Ring& ring, std::uint32_t n) {
       sets_.reset(n, ring.capacity());
-      const EdgeRing& edges = edges_.ring();
       const PointHandle oldest = ring.oldest();
       std::uint32_t current = n;
       std::uint32_t root = n;
-      for (EdgeHandle e = edges.oldest(); e != edges.next(); ++e) {
-        const auto j = static_cast<std::uint32_t>(edges.older(e) - oldest);
-        if (j >= n) continue;  // the older endpoint has left the window
-        const auto i = static_cast<std::uint32_t>(edges.newer(e) - oldest);
+      edges_.ring().for_each([&](PointHandle older, PointHandle newer) {
+        const auto j = static_cast<std::uint32_t>(older - oldest);
+        if (j >= n) return;  // the older endpoint has left the window
+        const auto i = static_cast<std::uint32_t>(newer - oldest);
         if (i != current) current = root = i;
         const std::uint32_t rj = sets_.find(j);
-        if (rj == root) continue;
+        if (rj == root) return;
         if (rj < root) {
           sets_.attach(root, rj);
           root = rj;
         } else {
           sets_.attach(rj, root);
         }
-      }
+      });
     }
 
     PointEdges edges_;
