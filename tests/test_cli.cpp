@@ -103,7 +103,7 @@ TEST_CASE("cluster --verify on a synthesized stream; the labels file matches the
   const std::string report = slurp(dir / "report.json");
   const auto [grid_rows, grid_cols] = report_grid(report);
   CHECK(report.find("\"cycles\": [") != std::string::npos);
-  CHECK(report.find("\"validation\"") != std::string::npos);
+  CHECK(report.find("\"retrieval\"") != std::string::npos);
   CHECK(report.find("\"non_finite\": ") != std::string::npos);
 
   // Group the rows by cycle and re-cluster each window with the library's batch clusterer.

@@ -165,6 +165,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
         batch_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - b0).count();
       });
       c.batch_us = batch_us;
+      c.retrieve_us = batch_us;
       c.components = result->components;
       c.window = engine->size();
       if (rows_wanted) {
@@ -179,10 +180,11 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
       const Clustering* result = nullptr;
       clock.time([&] {
         engine->advance_to(cycle_time);
+        const auto r0 = std::chrono::steady_clock::now();
         result = &engine->retrieve();
+        c.retrieve_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - r0).count();
       });
       const RetrievalStats& s = engine->last_stats();
-      c.phase = s.phase_us;
       c.evicted = s.evicted;
       c.components = result->components.size();
       c.window = result->points.size();

@@ -28,7 +28,7 @@ struct CycleReport {
   std::uint64_t inserted = 0; ///< points accepted since the previous cycle
   std::uint64_t evicted = 0;  ///< points evicted since the previous cycle (continuous mode)
   std::size_t components = 0;
-  PhaseTimes phase{};         ///< continuous mode: the engine's phase split [us]
+  double retrieve_us = 0.0;   ///< the retrieval (continuous: components and labels; frame: advance and batch) [us]
   double batch_us = 0.0;      ///< frame mode: the batch clustering of the window [us]
   /// The cycle's latency [us]: wall time of everything the clusterer did
   /// for it since the previous cycle (the inserts of the records in between,
@@ -95,11 +95,8 @@ inline Json report_json(const Report& r) {
                       {"evicted", c.evicted},
                       {"components", c.components},
                       {"latency_us",
-                       {{"insertion", c.phase.insertion},
-                        {"eviction", c.phase.eviction},
-                        {"validation", c.phase.validation},
-                        {"component_update", c.phase.component_update},
-                        {"labelling", c.phase.labelling},
+                       {{"insertion", c.total_us - c.retrieve_us},
+                        {"retrieval", c.retrieve_us},
                         {"batch", c.batch_us},
                         {"total", c.total_us}}}});
   }
