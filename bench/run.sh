@@ -152,10 +152,7 @@ plot() {  # sensor config title file
   fi
 }
 plot mid360 carc "Livox Mid-360, C-ARC (bucket grid, theta = 30 deg): 20 Hz cycle latency" latency_cdf_mid360_carc.png
-plot avia carc "Livox Avia, C-ARC (bucket grid, theta = 80 deg): 20 Hz cycle latency" latency_cdf_avia_carc.png
-plot avia capped "Livox Avia, capped grid (K = 4, theta = 80 deg): 20 Hz cycle latency" latency_cdf_avia_capped.png
 plot mid360 fast "Livox Mid-360, CArcFastConfig (bucket grid, spanning forest): 20 Hz cycle latency" latency_cdf_mid360_fast.png
-plot avia fast "Livox Avia, CArcFastConfig (bucket grid, spanning forest): 20 Hz cycle latency" latency_cdf_avia_fast.png
 plot avia capfast "Livox Avia, CArcCappedFastConfig (capped grid K = 4, spanning forest): 20 Hz cycle latency" latency_cdf_avia_capfast.png
 
 echo
