@@ -57,7 +57,7 @@ TEST_CASE("RetrievalSchedule never schedules the same time twice when floor() ro
 }
 
 TEST_CASE("RetrievalSchedule rejects a rate that is not finite and positive") {
-  CHECK_THROWS_AS(RetrievalSchedule(0.0), std::invalid_argument);
-  CHECK_THROWS_AS(RetrievalSchedule(-5.0), std::invalid_argument);
-  CHECK_THROWS_AS(RetrievalSchedule(std::numeric_limits<double>::infinity()), std::invalid_argument);
+  CHECK_THROWS_AS(RetrievalSchedule{0.0}, std::invalid_argument);
+  CHECK_THROWS_AS(RetrievalSchedule{-5.0}, std::invalid_argument);
+  CHECK_THROWS_AS(RetrievalSchedule{std::numeric_limits<double>::infinity()}, std::invalid_argument);
 }
