@@ -13,7 +13,8 @@
 /// `component(i)` is the component of window position i.
 /// Path halving everywhere. Not thread-safe.
 
-#include <algorithm>
+#include <streamclust/detail/growth.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
@@ -51,15 +52,6 @@ class UnionFind {
   std::vector<std::uint32_t> parent_;
   std::vector<std::uint32_t> size_;
 };
-
-/// Room for `n` elements in a per-window-point vector: when it cannot hold
-/// them, `room` (>= n, the point rings' capacity), so such vectors allocate
-/// only after the rings grew, never when a window merely reaches a new
-/// maximum within them. O(1) when `n` fits, else O(size).
-template <class T, class A>
-void reserve_window(std::vector<T, A>& v, std::size_t n, std::size_t room) {
-  if (n > v.capacity()) v.reserve(std::max(n, room));
-}
 
 /// Over window positions 0..n-1 where every parent is older (smaller) than
 /// its child: the root of a set is its oldest point. The caller unites by

@@ -6,14 +6,14 @@
 /// every window point and the ids each component keeps.
 
 #include <streamclust/clustering.hpp>
+#include <streamclust/detail/growth.hpp>
 #include <streamclust/detail/hints.hpp>
-#include <streamclust/detail/union_find.hpp>
+#include <streamclust/engine/stable_ids.hpp>
 #include <streamclust/types.hpp>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 namespace streamclust {
@@ -36,8 +36,8 @@ namespace streamclust {
 /// Thread safety: none.
 class ComponentResult {
  public:
-  /// No place.
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  /// No place (StableIdVotes' mark of a component without a kept id).
+  static constexpr std::uint32_t kNone = StableIdVotes::kNone;
 
   const Clustering& result() const { return result_; }
   /// Place in the last result of component `k` of the last write.
@@ -74,13 +74,13 @@ class ComponentResult {
     ++result_.cycle;
     detail::reserve_window(result_.points, n, room);
     result_.points.resize(n);
-    grow(result_.components, components);
+    detail::reserve_geometric(result_.components, components);
     result_.components.resize(components);
-    grow(sums_, multiple);
+    detail::reserve_geometric(sums_, multiple);
     sums_.resize(multiple);
-    grow(sum_place_, multiple);
+    detail::reserve_geometric(sum_place_, multiple);
     sum_place_.resize(multiple);
-    grow(sum_of_, components);
+    detail::reserve_geometric(sum_of_, components);
     sum_of_.resize(components);  // written when a component of 2+ points opens
     std::uint32_t summed = 0;
     ComponentSummary* const summaries = result_.components.data();
@@ -157,11 +157,6 @@ class ComponentResult {
   /// Components from which it prefetches: 4096 summaries are 288 KB.
   static constexpr std::uint32_t kPrefetchMinComponents = 4096;
 
-  /// Geometric growth (at least by half): a few reallocations in all.
-  template <class T, class A>
-  static void grow(std::vector<T, A>& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 2));
-  }
 
   /// The ids by place: kept ids in their previous order, then fresh ones in
   /// component order; leaves place_of_[k] = component k's place with the
@@ -169,14 +164,14 @@ class ComponentResult {
   /// O(components + previous).
   void order_ids(std::uint32_t components, const std::vector<std::uint32_t>& kept_place, ComponentId& next_id) {
     const auto previous = static_cast<std::uint32_t>(ids_.size());
-    grow(by_place_, previous);
+    detail::reserve_geometric(by_place_, previous);
     by_place_.assign(previous, kNone);
     for (std::uint32_t k = 0; k < components; ++k) {
       if (kept_place[k] != kNone) by_place_[kept_place[k]] = k;
     }
-    grow(place_of_, components);
+    detail::reserve_geometric(place_of_, components);
     place_of_.resize(components);
-    grow(ids_, std::max(components, previous));
+    detail::reserve_geometric(ids_, std::max(components, previous));
     ids_.resize(std::max(components, previous));
     ComponentId* const ids = ids_.data();
     std::uint32_t placed = 0;

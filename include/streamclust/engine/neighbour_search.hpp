@@ -58,14 +58,10 @@ class NeighbourSearch {
   static constexpr bool uses_payload = Ring::uses_payload;
   static constexpr bool tests_many = has_linkage_link_many_v<Linkage>;
   using payload_type = typename Ring::payload_type;
-  /// No cell.
-  static constexpr CellIndex kNoCell = std::numeric_limits<CellIndex>::max();
 
   /// `half`: the mask's half width [cells]; `witnesses`: the filter's
   /// witnesses per point (0: keep every edge).
   NeighbourSearch(int half, std::uint32_t witnesses) : half_(half), witnesses_(witnesses) {}
-
-  int half_width() const { return half_; }
 
   /// The grid is chosen: for an index with bounded cells the scratch gets its
   /// final size now, so no denser mask later makes it grow in steady state.

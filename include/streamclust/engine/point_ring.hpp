@@ -89,7 +89,6 @@ class PointRing {
 
   Record& record(PointHandle h) { return records_[slot(h)]; }
   const Record& record(PointHandle h) const { return records_[slot(h)]; }
-  const StoredSample& stored(PointHandle h) const { return samples_[slot(h)]; }
   const Eigen::Vector3f& position(PointHandle h) const { return samples_[slot(h)].position; }
   double time(PointHandle h) const { return samples_[slot(h)].time; }
   /// The rings by slot, for hot loops that hoist the slot computation

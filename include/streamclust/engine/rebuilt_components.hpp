@@ -10,6 +10,7 @@
 #include <streamclust/clustering.hpp>
 #include <streamclust/concepts/connectivity.hpp>
 #include <streamclust/concepts/visitor.hpp>
+#include <streamclust/detail/growth.hpp>
 #include <streamclust/detail/hints.hpp>
 #include <streamclust/engine/component_result.hpp>
 #include <streamclust/engine/retrieval_stats.hpp>
@@ -93,7 +94,7 @@ class RebuiltComponents {
     const auto old_clusters = static_cast<std::uint32_t>(sizes_.size());
     votes_.begin(old_clusters, [&](std::uint32_t c) { return sizes_[c] == 1; });
     if (!votes_.reserved()) reserve_first_votes(old_clusters);
-    grow(sizes_, components);
+    detail::reserve_geometric(sizes_, components);
     sizes_.assign(components, 0);
     std::uint32_t multiple = 0;  // components of two or more points
     // Prefetch only when the per-cluster records outgrow the L1/L2 caches.
@@ -133,10 +134,6 @@ class RebuiltComponents {
   /// Old clusters from which it prefetches: 4096 vote heads are 16 KB.
   static constexpr std::uint32_t kPrefetchMinClusters = 4096;
 
-  template <class T, class A>
-  static void grow(std::vector<T, A>& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 2));
-  }
 
   /// The first room for votes: one per (listed old cluster, component) pair
   /// met, a listed cluster being one of two or more points left; 1.05-1.75

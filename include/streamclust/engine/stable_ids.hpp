@@ -5,6 +5,7 @@
 /// StableIdVotes: which of the previous retrieval's component ids each new
 /// component keeps.
 
+#include <streamclust/detail/growth.hpp>
 #include <streamclust/detail/hints.hpp>
 
 #include <cstddef>
@@ -44,7 +45,7 @@ class StableIdVotes {
   /// and never through `vote`. O(groups).
   template <class Sole>
   void begin(std::uint32_t groups, Sole&& sole) {
-    grow(head_, groups);
+    detail::reserve_geometric(head_, groups);
     head_.resize(groups);
     for (std::uint32_t g = 0; g < groups; ++g) head_[g] = sole(g) ? kSoleMark : kNone;
     votes_.clear();
@@ -97,13 +98,12 @@ class StableIdVotes {
 
   /// Resolves the round for `components` new components. `place(g)` is group
   /// g's place in the previous result. Returns, per component, the place of
-  /// the id it keeps, or kNone (a fresh id); the weight it won with is in
-  /// `won_weight()`. O(groups + votes + components).
+  /// the id it keeps, or kNone (a fresh id). O(groups + votes + components).
   template <class Place>
   const std::vector<std::uint32_t>& resolve(std::uint32_t components, Place&& place) {
-    grow(won_weight_, components);
+    detail::reserve_geometric(won_weight_, components);
     won_weight_.resize(components);  // read only where an id was won
-    grow(won_place_, components);
+    detail::reserve_geometric(won_place_, components);
     won_place_.assign(components, kNone);
     const auto groups = static_cast<std::uint32_t>(head_.size());
     for (std::uint32_t g = 0; g < groups; ++g) {
@@ -132,11 +132,6 @@ class StableIdVotes {
     return won_place_;
   }
 
-  /// Per component, scratch of `resolve` (the weight of the id it won);
-  /// free for the caller's use once the places were read.
-  std::vector<std::uint32_t>& won_weight() { return won_weight_; }
-  std::vector<std::uint32_t>& won_place() { return won_place_; }
-
   std::size_t heap_bytes() const {
     return (head_.capacity() + won_weight_.capacity() + won_place_.capacity()) * sizeof(std::uint32_t) +
            votes_.capacity() * sizeof(Vote);
@@ -155,11 +150,6 @@ class StableIdVotes {
   /// (components stay below 2^31: fewer than 2^31 window points).
   static constexpr std::uint32_t kSoleVote = std::uint32_t{1} << 31;
 
-  /// Geometric growth (at least by half) so that sizes rising by a few per
-  /// cycle reallocate a few times in all, not at every new maximum.
-  static void grow(std::vector<std::uint32_t>& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(n > v.capacity() + v.capacity() / 2 ? n : v.capacity() + v.capacity() / 2);
-  }
 
   std::vector<std::uint32_t> head_;  ///< per group: its most recent vote, kNone, or a sole mark/vote
   std::vector<Vote> votes_;

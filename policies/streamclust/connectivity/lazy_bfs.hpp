@@ -6,6 +6,7 @@
 /// clusters, bridges, lazy deletion validated by BFS).
 
 #include <streamclust/concepts/connectivity.hpp>
+#include <streamclust/detail/growth.hpp>
 #include <streamclust/engine/point_edges.hpp>
 #include <streamclust/engine/stable_ids.hpp>
 #include <streamclust/memory_usage.hpp>
@@ -358,7 +359,7 @@ struct LazyBfsConnectivity {
     /// O(clusters + bridges).
     std::uint32_t number_components() {
       const std::size_t slots = clusters_.size();
-      grow(component_of_, slots);
+      detail::reserve_geometric(component_of_, slots);
       component_of_.assign(slots, kNoCluster);
       component_size_.clear();
       std::uint32_t components = 0;
@@ -383,10 +384,6 @@ struct LazyBfsConnectivity {
       return components;
     }
 
-    template <class T, class A>
-    static void grow(std::vector<T, A>& v, std::size_t n) {
-      if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 2));
-    }
 
     PointEdges edges_;
     std::vector<Cluster> clusters_;

@@ -8,6 +8,7 @@
 #include <streamclust/concepts/connectivity.hpp>
 #include <streamclust/detail/age_bands.hpp>
 #include <streamclust/detail/forest_merge.hpp>
+#include <streamclust/detail/growth.hpp>
 #include <streamclust/detail/ring_queue.hpp>
 #include <streamclust/detail/union_find.hpp>
 #include <streamclust/engine/rebuilt_components.hpp>
