@@ -72,8 +72,9 @@ enum class RejectReason : std::uint8_t {
   too_close,       ///< range below the projection's minimum range (includes zero range)
   outside_fov,     ///< direction outside the projection's field of view
   time_backwards,  ///< timestamp earlier than the previous accepted point's
+  no_pose,         ///< time outside the span of the sensor poses given (motion compensation)
 };
-inline constexpr std::size_t kRejectReasonCount = 5;
+inline constexpr std::size_t kRejectReasonCount = 6;
 
 inline const char* to_string(RejectReason r) {
   switch (r) {
@@ -82,6 +83,7 @@ inline const char* to_string(RejectReason r) {
     case RejectReason::too_close: return "too_close";
     case RejectReason::outside_fov: return "outside_fov";
     case RejectReason::time_backwards: return "time_backwards";
+    case RejectReason::no_pose: return "no_pose";
   }
   return "unknown";
 }
