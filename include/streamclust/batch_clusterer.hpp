@@ -46,6 +46,10 @@ struct BatchResult {
 };
 
 /// Clusters whole point sets. O(n w^2 k) per run plus near-linear union-find.
+/// With a motion policy, points are placed as the engine places them (give
+/// the input points in the sensor frame, in time order). The ground policy
+/// is not applied: the oracle of an engine with one clusters the engine's
+/// object points (the engine's decisions, replayed).
 /// Not thread-safe; one instance per thread.
 ///
 /// \code
@@ -59,6 +63,7 @@ class BatchClusterer {
   using traits = config_traits<Config>;
   STREAMCLUST_CHECK_CONFIG(Config);
   using Params = ClustererParams<Config>;
+  using motion_type = typename traits::motion;
   /// True when the linkage tests one payload against many (link_many):
   /// each point's candidates then go through one call, as in the engine.
   static constexpr bool tests_many = has_linkage_link_many_v<typename traits::linkage>;
@@ -86,13 +91,33 @@ class BatchClusterer {
     samples_.clear();
     coords_.clear();
     result_ = BatchResult{};
+    motion_type motion(params_.motion);  // a fresh cursor per run
     for (const auto& p : points) {
       const Eigen::Vector3f pos = position(p);
-      Projected pr = projection_.project(pos);
-      pr.reason = judge_point(pr, stamp(p));  // the engine's rule, without the time order (a batch is a window)
+      const double time = stamp(p);
+      Projected pr;
+      PlacedPoint placed{pos, pos};
+      if constexpr (motion_type::identity) {
+        pr = projection_.project(pos);
+      } else {
+        // The engine's placement (StreamClusterer::prepare): world and ray.
+        const RejectReason placement = std::isfinite(time) ? motion.place(pos, time, placed) : RejectReason::non_finite;
+        if (placement == RejectReason::accepted) {
+          pr = projection_.project(placed.ray);
+        } else {
+          pr.reason = placement;
+        }
+      }
+      pr.reason = judge_point(pr, time);  // the engine's rule, without the time order (a batch is a window)
       ++result_.rejections[pr.reason];
       coords_.push_back(pr);
-      samples_.push_back(pr.accepted() ? make_sample(pos, pr.range, intensity(p), stamp(p)) : Sample{});
+      if (!pr.accepted()) {
+        samples_.push_back(Sample{});
+      } else if constexpr (motion_type::identity) {
+        samples_.push_back(make_sample(pos, pr.range, intensity(p), time));
+      } else {
+        samples_.push_back(make_sample(placed.world, placed.ray, pr.range, intensity(p), time));
+      }
     }
     if (fixed_grid_) {
       result_.grid = grid_shape_for(*fixed_grid_, projection_);

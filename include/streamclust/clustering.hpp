@@ -5,6 +5,7 @@
 /// The result of one retrieval: a label per point in the window and a summary
 /// per connected component, with range-v3 views instead of copies.
 
+#include <streamclust/surface_class.hpp>
 #include <streamclust/types.hpp>
 
 #include <range/v3/view/filter.hpp>
@@ -22,6 +23,12 @@ struct PointLabel {
   ComponentId label = kNoComponent;  ///< stable id of the point's component
 };
 
+/// A window point the ground policy classed as structure (ground or ceiling).
+struct StructurePoint {
+  std::uint64_t stream_index = 0;              ///< position of the point in the input stream
+  SurfaceClass surface = SurfaceClass::ground;  ///< ground or ceiling
+};
+
 /// Summary of one connected component.
 struct ComponentSummary {
   ComponentId id = kNoComponent;  ///< stable id (see StreamClusterer for the merge/split rule)
@@ -33,12 +40,17 @@ struct ComponentSummary {
   double time_end = 0.0;    ///< newest point [s]
 };
 
-/// A labelled window. `points` is in window order (oldest first);
-/// `components` is sorted by id. Filled by `StreamClusterer::retrieve()`;
-/// the engine reuses the storage on the next retrieval.
+/// A labelled window. Every window point is in exactly one of `points` (an
+/// object point, labelled with its component) and `structure` (classed
+/// ground or ceiling by the engine's ground policy; empty without one);
+/// rejected points are in neither (the engine's RejectionCounts). Both are
+/// in window order (oldest first); `components` is sorted by id. Filled by
+/// `StreamClusterer::retrieve()`; the engine reuses the storage on the next
+/// retrieval.
 struct Clustering {
   std::vector<PointLabel> points;
   std::vector<ComponentSummary> components;
+  std::vector<StructurePoint> structure;
   double time = 0.0;        ///< stream time of the newest point [s]
   std::uint64_t cycle = 0;  ///< retrievals so far, this one included
 

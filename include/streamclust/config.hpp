@@ -16,6 +16,8 @@
 ///   using resolution = FixedResolution;
 ///   using visitor = NullVisitor;  // optional
 ///   using connectivity = LazyBfsConnectivity;  // optional (the paper's, the default)
+///   using motion = NoMotion;      // optional: sensor poses / mount (PosedMotion)
+///   using ground = NoGround;      // optional: structure removal (HeightMapGround)
 ///   static constexpr bool timed = false;  // optional: measure phase latencies
 /// };
 /// \endcode
@@ -23,7 +25,11 @@
 
 #include <streamclust/concepts.hpp>
 #include <streamclust/concepts/connectivity.hpp>
+#include <streamclust/concepts/ground.hpp>
+#include <streamclust/concepts/motion.hpp>
 #include <streamclust/connectivity/lazy_bfs.hpp>
+#include <streamclust/ground/no_ground.hpp>
+#include <streamclust/motion/no_motion.hpp>
 
 #include <cstdint>
 #include <stdexcept>
@@ -72,6 +78,24 @@ struct slot_connectivity<C, std::void_t<typename C::connectivity>> {
 };
 
 template <class C, class = void>
+struct slot_motion {
+  using type = NoMotion;
+};
+template <class C>
+struct slot_motion<C, std::void_t<typename C::motion>> {
+  using type = typename C::motion;
+};
+
+template <class C, class = void>
+struct slot_ground {
+  using type = NoGround;
+};
+template <class C>
+struct slot_ground<C, std::void_t<typename C::ground>> {
+  using type = typename C::ground;
+};
+
+template <class C, class = void>
 struct config_timed : std::false_type {};
 template <class C>
 struct config_timed<C, std::void_t<decltype(C::timed)>> : std::bool_constant<C::timed> {};
@@ -100,6 +124,10 @@ struct config_traits {
   using visitor = typename detail::slot_visitor<Config>::type;
   /// Optional slot; absent => the paper's strategy (LazyBfsConnectivity).
   using connectivity = typename detail::slot_connectivity<Config>::type;
+  /// Optional slot; absent => NoMotion (the world is the sensor frame).
+  using motion = typename detail::slot_motion<Config>::type;
+  /// Optional slot; absent => NoGround (every accepted point is clustered).
+  using ground = typename detail::slot_ground<Config>::type;
   /// `static constexpr bool timed = true;` in a config makes the engine
   /// measure its phases (RetrievalStats::phase_us); off by default, free when off.
   static constexpr bool timed = detail::config_timed<Config>::value;
@@ -118,6 +146,8 @@ struct ClustererParams {
   /// Width w of the w x w neighbourhood mask in cells; odd, 1 to 255.
   int mask_size = 5;
   typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
+  typename detail::params_of<typename config_traits<Config>::motion>::type motion{};
+  typename detail::params_of<typename config_traits<Config>::ground>::type ground{};
   /// Stream index of the first offered point (StreamClusterer only; the
   /// batch clusterer numbers its input from 0): a clusterer that resumes a
   /// stream continues its numbering.
@@ -144,4 +174,6 @@ inline int checked_mask_half_width(int mask_size) {
   STREAMCLUST_CHECK_WINDOW_POLICY(typename ::streamclust::config_traits<Config>::window);               \
   STREAMCLUST_CHECK_RESOLUTION_POLICY(typename ::streamclust::config_traits<Config>::resolution);       \
   STREAMCLUST_CHECK_VISITOR_POLICY(typename ::streamclust::config_traits<Config>::visitor);             \
-  STREAMCLUST_CHECK_CONNECTIVITY_POLICY(typename ::streamclust::config_traits<Config>::connectivity)
+  STREAMCLUST_CHECK_CONNECTIVITY_POLICY(typename ::streamclust::config_traits<Config>::connectivity);   \
+  STREAMCLUST_CHECK_MOTION_POLICY(typename ::streamclust::config_traits<Config>::motion);               \
+  STREAMCLUST_CHECK_GROUND_POLICY(typename ::streamclust::config_traits<Config>::ground)

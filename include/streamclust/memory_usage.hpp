@@ -26,12 +26,13 @@ struct MemoryUsage {
   std::size_t clusters = 0;       ///< [bytes] cluster table, free/pending lists and bridge lists
   std::size_t scratch = 0;        ///< [bytes] buffers reused across insertions and retrievals
   std::size_t result = 0;         ///< [bytes] the last Clustering (labels + component summaries)
+  std::size_t structure = 0;      ///< [bytes] the ground policy's model and the structure points' ring
   /// False when the spatial index does not report its heap (no `heap_bytes()`
   /// member, see is_spatial_index_heap_reporting_v): `spatial_index` is then 0.
   bool spatial_index_known = true;
 
   /// Sum of the parts [bytes]. O(1).
-  std::size_t total() const { return point_ring + edge_storage + spatial_index + clusters + scratch + result; }
+  std::size_t total() const { return point_ring + edge_storage + spatial_index + clusters + scratch + result + structure; }
 };
 
 /// Heap bytes reserved by a vector: capacity x element size (excluding the

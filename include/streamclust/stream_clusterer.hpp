@@ -13,12 +13,14 @@
 #include <streamclust/engine/neighbour_search.hpp>
 #include <streamclust/engine/point_ring.hpp>
 #include <streamclust/engine/retrieval_stats.hpp>
+#include <streamclust/engine/structure_ring.hpp>
 #include <streamclust/grid_choice.hpp>
 #include <streamclust/memory_usage.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -60,6 +62,21 @@ namespace streamclust {
 /// same result; each point is projected and its mask cells prefetched a few
 /// points ahead). Time: monotone stream time in seconds; a point earlier
 /// than the previous accepted one is rejected (`time_backwards`).
+///
+/// Motion (the optional `motion` slot, concepts/motion.hpp): before
+/// anything else a point is placed in the world at its capture time
+/// (PosedMotion: sensor poses or a fixed mount); the linkage, the ground
+/// model and the summaries see the world position, the projection sees the
+/// ray from the sensor in world orientation (docs/design-decisions.md).
+/// NoMotion (the default) leaves points in the sensor frame at no cost.
+///
+/// Structure (the optional `ground` slot, concepts/ground.hpp): each
+/// accepted point is classed at insertion, from the window before it, as an
+/// object point (clustered as above) or structure (ground or ceiling: kept
+/// in the window, in the result's `structure`, never linked). Points leave
+/// the ground model with the window. The decisions are causal, so the
+/// batch oracle replays them: it clusters the window's object points.
+/// NoGround (the default) skips the stage.
 ///
 /// Memory (`memory_usage()` by part): the point ring (PointRing: 40 bytes of
 /// Sample, or 24 with a payload carrying the ray, 16 of payload with a
@@ -105,6 +122,10 @@ class StreamClusterer {
   using resolution_type = typename traits::resolution;
   using visitor_type = typename traits::visitor;
   using connectivity_type = typename traits::connectivity;
+  using motion_type = typename traits::motion;
+  using ground_type = typename traits::ground;
+  /// True when the ground policy takes structure out of clustering.
+  static constexpr bool removes_structure = ground_type::enabled;
   using Params = ClustererParams<Config>;
   /// The window's points, with the strategy's per-point state.
   using ring_type = PointRing<linkage_type, typename connectivity_type::PointState>;
@@ -136,6 +157,8 @@ class StreamClusterer {
         resolution_(params.resolution),
         visitor_(std::move(visitor)),
         connectivity_(params.connectivity),
+        motion_(params.motion),
+        ground_(params.ground),
         search_(detail::checked_mask_half_width(params.mask_size), connectivity_prune_witnesses(connectivity_)),
         state_(connectivity_) {
     if (!resolution_.needs_calibration()) set_grid(choose_grid(resolution_, projection_, {}));
@@ -155,8 +178,7 @@ class StreamClusterer {
   template <class P>
   RejectReason insert(const P& p, double time) {
     static_assert(is_point_v<P>, "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
-    const Eigen::Vector3f pos = position(p);
-    return insert_projected(pos, intensity(p), time, projection_.project(pos), kNoCell);
+    return insert_prepared(prepare(position(p), intensity(p), time));
   }
 
   /// Offers the points of [first, last) in order: the same stream indexes,
@@ -207,6 +229,7 @@ class StreamClusterer {
   void advance_to(double time) {
     if (!time_order_.may_advance_to(time)) return;
     time_order_.accept(time);
+    if constexpr (removes_structure) evict_structure(time);
     if (calibrating_) {
       if (size() > 0 && window_.complete(ring_.time(ring_.oldest()), time, size())) finish_calibration();
       if (calibrating_) return;  // the first window is still filling: nothing expires
@@ -229,6 +252,7 @@ class StreamClusterer {
       Context ctx = context();
       state_.retrieve(ctx);
     }
+    if constexpr (removes_structure) structure_.write(result_.structure());
     last_stats_ = stats_;
     stats_ = RetrievalStats{};
     return result_.result();
@@ -267,6 +291,10 @@ class StreamClusterer {
   visitor_type& visitor() { return visitor_; }
   const visitor_type& visitor() const { return visitor_; }
   const connectivity_type& connectivity() const { return connectivity_; }
+  const motion_type& motion() const { return motion_; }
+  const ground_type& ground() const { return ground_; }
+  /// Structure points (ground, ceiling) in the window.
+  std::size_t structure_size() const { return structure_.size(); }
 
   /// Heap footprint by part [bytes], as capacities (MemoryUsage). The index
   /// is counted when it has `heap_bytes()`. Allocates nothing.
@@ -280,15 +308,23 @@ class StreamClusterer {
     }
     m.scratch = search_.heap_bytes() + result_.scratch_bytes();
     m.result = result_.heap_bytes();
+    m.structure = ground_.heap_bytes() + structure_.heap_bytes();
     state_.add_memory(m);
     return m;
   }
 
-  /// Calls `f(const Sample&, std::uint64_t stream_index)` for every point in
-  /// the window, oldest first. O(N).
+  /// Calls `f(const Sample&, std::uint64_t stream_index)` for every object
+  /// point in the window, oldest first. O(N).
   template <class F>
   void for_each_point(F&& f) const {
     for (PointHandle h = ring_.oldest(); h != ring_.next(); ++h) f(ring_.sample(h), ring_.stream_index(h));
+  }
+
+  /// Calls `f(const StructureEntry&)` for every structure point in the
+  /// window, oldest first. O(structure points).
+  template <class F>
+  void for_each_structure_point(F&& f) const {
+    structure_.for_each(f);
   }
 
   // ------------------------------------------- low-level graph access
@@ -384,28 +420,73 @@ class StreamClusterer {
     calibrating_ = false;
   }
 
-  /// Algorithm 1 for one point, after its projection `pr`; `known_cell` is
-  /// its grid cell when found ahead (the grid is fixed once chosen), else
-  /// kNoCell.
-  RejectReason insert_projected(const Eigen::Vector3f& pos, float point_intensity, double time, const Projected& pr,
-                                CellIndex known_cell) {
+  /// A point placed and projected, ahead of its turn or not: its world
+  /// position, the ray the projection saw, the projection and, once the grid
+  /// is known and the point accepted, its cell (else kNoCell).
+  struct Prepared {
+    Eigen::Vector3f world = Eigen::Vector3f::Zero();
+    Eigen::Vector3f ray = Eigen::Vector3f::Zero();
+    float intensity = 0.0f;
+    double time = 0.0;
+    Projected projected;
+    CellIndex cell = kNoCell;
+  };
+
+  /// Places the point (motion policy) and projects its ray. O(1) amortised.
+  Prepared prepare(const Eigen::Vector3f& pos, float point_intensity, double time) {
+    Prepared a;
+    a.intensity = point_intensity;
+    a.time = time;
+    if constexpr (motion_type::identity) {
+      a.world = pos;
+      a.ray = pos;
+      a.projected = projection_.project(pos);
+    } else {
+      const auto t0 = Clock::now();
+      PlacedPoint placed;
+      const RejectReason placement =
+          std::isfinite(time) ? motion_.place(pos, time, placed) : RejectReason::non_finite;
+      if (placement == RejectReason::accepted) {
+        a.world = placed.world;
+        a.ray = placed.ray;
+        a.projected = projection_.project(placed.ray);
+      } else {
+        a.world = pos;
+        a.ray = pos;
+        a.projected.reason = placement;
+      }
+      Clock::add_since(stats_.phase_us.placement, t0);
+    }
+    return a;
+  }
+
+  /// Algorithm 1 for one prepared point; `a.cell` is its grid cell when
+  /// found ahead (the grid is fixed once chosen), else kNoCell.
+  RejectReason insert_prepared(const Prepared& a) {
     const std::uint64_t stream_index = params_.first_stream_index + offered_++;
+    const double time = a.time;
+    const Projected& pr = a.projected;
     const RejectReason verdict = time_order_.judge(pr, time);
     ++rejections_[verdict];
     if (verdict != RejectReason::accepted) return verdict;
     time_order_.accept(time);
-    const Sample sample = make_sample(pos, pr.range, point_intensity, time);
+    if constexpr (removes_structure) {
+      if (classify_structure(a, stream_index)) return RejectReason::accepted;
+    }
+    const Sample sample = motion_type::identity ? make_sample(a.world, pr.range, a.intensity, time)
+                                                : make_sample(a.world, a.ray, pr.range, a.intensity, time);
     if (calibrating_) {
       // Buffering the first window: nothing expires before it is complete.
       if (size() == 0 || !window_.complete(ring_.time(ring_.oldest()), time, size() + 1)) {
         ring_.append(sample, stream_index);
+        calibration_coords_.push_back(pr);
         return RejectReason::accepted;
       }
       finish_calibration();  // on the complete first window; the new point follows
     }
     // The mask is listed (and its index cells prefetched) before the
     // eviction, so those cache misses overlap the eviction's work.
-    const CellIndex cell = known_cell != kNoCell ? known_cell : grid_.cell_of(pr.u, pr.v);
+    const CellIndex cell = a.cell != kNoCell ? a.cell : grid_.cell_of(pr.u, pr.v);
     search_.list_mask(index_, cell);
     const auto t0 = Clock::now();
     evict_expired(time, size() + 1);
@@ -428,6 +509,32 @@ class StreamClusterer {
     index_.insert(ring_.record(h).cell, h);
   }
 
+  /// The ground policy's decision for accepted point `a`: true when it is
+  /// structure (then kept in the structure ring). The model first drops the
+  /// points that left the window at `a.time` (object points counted without
+  /// `a`: a count window evicts for `a` only once it is an object point).
+  bool classify_structure(const Prepared& a, std::uint64_t stream_index) {
+    const auto t0 = Clock::now();
+    evict_structure(a.time);
+    if (!calibrating_) evict_expired(a.time, size());
+    const SurfaceClass surface = ground_.classify(a.world, a.ray);
+    Clock::add_since(stats_.phase_us.ground, t0);
+    if (surface == SurfaceClass::object) return false;
+    structure_.push(StructureEntry{stream_index, a.time, a.world, surface});
+    ++(surface == SurfaceClass::ceiling ? stats_.ceiling : stats_.ground);
+    return true;
+  }
+
+  /// Evicts the structure points that have left the window at `newest_time`
+  /// (the window rule on the structure ring's own times and count).
+  void evict_structure(double newest_time) {
+    while (!structure_.empty() && window_.expired(structure_.oldest().time, newest_time, structure_.size())) {
+      ground_.forget(structure_.oldest().world);
+      structure_.pop();
+      ++stats_.evicted;
+    }
+  }
+
   /// Evicts the points that have left a window whose newest point is at
   /// `newest_time` and which holds `count` points.
   void evict_expired(double newest_time, std::size_t count) {
@@ -448,6 +555,7 @@ class StreamClusterer {
     index_.remove(ring_.record(h).cell, h);
     Context ctx = context();
     state_.on_evict(ctx, h);
+    if constexpr (removes_structure) ground_.forget(ring_.position(h));
     ring_.pop_oldest();
   }
 
@@ -455,8 +563,7 @@ class StreamClusterer {
   /// buffered points in their original order.
   void finish_calibration() {
     std::vector<Projected> coords;
-    coords.reserve(size());
-    for (PointHandle h = ring_.oldest(); h != ring_.next(); ++h) coords.push_back(projection_.project(ring_.position(h)));
+    coords.swap(calibration_coords_);  // released after the replay: needed once
     set_grid(choose_grid(resolution_, projection_, coords));
     Context ctx = context();
     state_.begin_replay(ctx);
@@ -469,23 +576,12 @@ class StreamClusterer {
     state_.end_replay(ctx);
   }
 
-  /// A point of `insert_batch` taken ahead of its turn: read, projected and,
-  /// once the grid is known, its cell found and its mask prefetched.
-  struct AheadPoint {
-    Eigen::Vector3f position = Eigen::Vector3f::Zero();
-    float intensity = 0.0f;
-    double time = 0.0;
-    Projected projected;
-    CellIndex cell = kNoCell;  ///< kNoCell: not found yet (calibrating, or rejected)
-  };
-
+  /// A point of `insert_batch` taken ahead of its turn: read, placed,
+  /// projected and, once the grid is known, its cell found and its mask
+  /// prefetched.
   template <class P>
-  AheadPoint look_ahead(const P& p) {
-    AheadPoint a;
-    a.position = position(p);
-    a.intensity = intensity(p);
-    a.time = stamp(p);
-    a.projected = projection_.project(a.position);
+  Prepared look_ahead(const P& p) {
+    Prepared a = prepare(position(p), intensity(p), stamp(p));
     if (a.projected.accepted() && !calibrating_) {
       a.cell = grid_.cell_of(a.projected.u, a.projected.v);
       search_.prefetch_mask(index_, a.cell);
@@ -499,18 +595,18 @@ class StreamClusterer {
   void insert_each(It first, It last, OnReason&& on_reason) {
     static_assert(is_point_v<typename std::iterator_traits<It>::value_type>,
                   "STREAMCLUST_POINT_TYPE_INVALID: specialise streamclust::point_traits for this type");
-    std::array<AheadPoint, kInsertLookahead> ahead;
+    std::array<Prepared, kInsertLookahead> ahead;
     std::size_t queued = 0;
     It lead = first;
     for (; queued < kInsertLookahead && lead != last; ++queued, ++lead) ahead[queued] = look_ahead(*lead);
     for (std::size_t i = 0; first != last; ++first, ++i) {
       const std::size_t at = i % kInsertLookahead;
-      const AheadPoint p = ahead[at];
+      const Prepared p = ahead[at];
       if (lead != last) {
         ahead[at] = look_ahead(*lead);
         ++lead;
       }
-      on_reason(insert_projected(p.position, p.intensity, p.time, p.projected, p.cell));
+      on_reason(insert_prepared(p));
     }
   }
 
@@ -522,12 +618,16 @@ class StreamClusterer {
   resolution_type resolution_;
   visitor_type visitor_;
   connectivity_type connectivity_;
+  motion_type motion_;
+  ground_type ground_;
   GridShape grid_{};
   bool calibrating_ = true;
   ring_type ring_;                                                    ///< the window
   NeighbourSearch<spatial_index_type, linkage_type, ring_type> search_;  ///< mask search and its scratch
   state_type state_;                                                  ///< the connectivity strategy
   ComponentResult result_;                                            ///< the one result writer
+  StructureRing structure_;                                           ///< the window's structure points
+  std::vector<Projected> calibration_coords_;                         ///< projections of the buffered first window
   ComponentId next_component_id_ = 0;
   std::uint64_t offered_ = 0;
   StreamTimeOrder time_order_;

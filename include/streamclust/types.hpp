@@ -116,12 +116,26 @@ struct Projected {
 /// 40 bytes. `direction` is the unit ray (position / range), precomputed so
 /// angular criteria need no square roots or trigonometry per pair.
 struct Sample {
-  Eigen::Vector3f position = Eigen::Vector3f::Zero();   ///< sensor frame [m]
-  Eigen::Vector3f direction = Eigen::Vector3f::Zero();  ///< unit vector
-  float range = 0.0f;                                   ///< |position| [m]
+  Eigen::Vector3f position = Eigen::Vector3f::Zero();   ///< world frame [m] (the sensor frame without a motion policy)
+  Eigen::Vector3f direction = Eigen::Vector3f::Zero();  ///< unit ray from the sensor at capture time, world orientation
+  float range = 0.0f;                                   ///< distance from the sensor at capture time [m] (|position| at rest)
   float intensity = 0.0f;                               ///< sensor units, 0 when absent
   double time = 0.0;                                    ///< stream time [s]
 };
+
+/// Build a Sample of a placed point: `position` in the world, `ray` the
+/// vector from the sensor to it that passed projection with range `range`
+/// (|ray|); direction = ray / range.
+inline Sample make_sample(const Eigen::Vector3f& position, const Eigen::Vector3f& ray, float range, float intensity,
+                          double time) {
+  Sample s;
+  s.position = position;
+  s.range = range;
+  s.direction = range > 0.0f ? Eigen::Vector3f(ray / range) : Eigen::Vector3f::Zero();
+  s.intensity = intensity;
+  s.time = time;
+  return s;
+}
 
 /// Build a Sample from a position that has already passed projection.
 inline Sample make_sample(const Eigen::Vector3f& position, float range, float intensity, double time) {

@@ -36,6 +36,11 @@ class RingQueue {
     head_ = 0;
     count_ = 0;
   }
+  /// Calls `f(const T&)` for every queued value, oldest first. O(size).
+  template <class F>
+  void for_each(F&& f) const {
+    for (std::size_t k = 0; k < count_; ++k) f(ring_[(head_ + k) & (ring_.size() - 1)]);
+  }
   /// Heap bytes held (capacity). O(1).
   std::size_t heap_bytes() const { return ring_.capacity() * sizeof(T); }
 

@@ -40,6 +40,9 @@ class ComponentResult {
   static constexpr std::uint32_t kNone = StableIdVotes::kNone;
 
   const Clustering& result() const { return result_; }
+  /// The structure points of the result, written by the engine after the
+  /// strategy wrote the rest.
+  std::vector<StructurePoint>& structure() { return result_.structure; }
   /// Place in the last result of component `k` of the last write.
   std::uint32_t place_of(std::uint32_t k) const { return place_of_[k]; }
   /// Id at place `r` of the last result.
@@ -141,7 +144,8 @@ class ComponentResult {
 
   std::size_t heap_bytes() const {
     return result_.points.capacity() * sizeof(PointLabel) +
-           result_.components.capacity() * sizeof(ComponentSummary);
+           result_.components.capacity() * sizeof(ComponentSummary) +
+           result_.structure.capacity() * sizeof(StructurePoint);
   }
   std::size_t scratch_bytes() const {
     return ids_.capacity() * sizeof(ComponentId) +

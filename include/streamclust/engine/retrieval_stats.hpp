@@ -13,6 +13,8 @@ namespace streamclust {
 /// Wall time spent per phase [microseconds]; measured only for configs with
 /// `static constexpr bool timed = true`, zero otherwise.
 struct PhaseTimes {
+  double placement = 0.0;         ///< motion compensation and projection (motion policy)
+  double ground = 0.0;            ///< structure removal: the ground model's update and decision
   double insertion = 0.0;         ///< neighbour search, edges, isolation/expansion/bridging
   double eviction = 0.0;          ///< removing points that left the window
   double validation = 0.0;        ///< BFS over pending clusters, splits
@@ -24,6 +26,8 @@ struct PhaseTimes {
 struct RetrievalStats {
   std::uint64_t inserted = 0;           ///< points inserted into the graph
   std::uint64_t evicted = 0;            ///< points that left the window
+  std::uint64_t ground = 0;             ///< accepted points classed ground (ground policy)
+  std::uint64_t ceiling = 0;            ///< accepted points classed ceiling (ground policy)
   std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
   std::uint64_t points_validated = 0;   ///< points of the clusters checked (validation work)
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// HeightColumn: the heights of the window's points in one ground cell, as a
+/// histogram that supports removal, with the lowest and highest supported
+/// layers found in O(1) typical time.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+namespace streamclust {
+
+/// A histogram of absolute height bins (bin b covers [b h, (b + 1) h) for the
+/// owner's bin height h) over a span of kBins bins. The span is placed when
+/// the first point arrives (kBins / 2 bins on each side of it) and moves
+/// down when a lower point arrives; points above the span count in its top
+/// bin (and leave from there), so removal always finds the count an add
+/// made. Exact: counts, no sums. 528 bytes. O(1) add and remove, layer
+/// queries O(kBins / 64 + bins scanned). Thread safety: none.
+class HeightColumn {
+ public:
+  static constexpr std::int32_t kBins = 128;
+
+  /// Counts a point in absolute bin `bin`.
+  void add(std::int32_t bin) {
+    if (points_ == 0) base_ = bin - kBins / 2;
+    if (bin < base_) lower_base_to(bin - kBins / 4);
+    const std::int32_t at = offset(bin);
+    if (counts_[static_cast<std::size_t>(at)]++ == 0) set_bit(at);
+    ++points_;
+  }
+
+  /// Uncounts a point counted by `add(bin)` and not removed since.
+  void remove(std::int32_t bin) {
+    const std::int32_t at = offset(bin);
+    if (--counts_[static_cast<std::size_t>(at)] == 0) clear_bit(at);
+    --points_;
+  }
+
+  std::uint32_t points() const { return points_; }
+
+  /// The lowest absolute bin b holding, with b + 1, at least `support`
+  /// points; nullopt when none does.
+  std::optional<std::int32_t> lowest_supported(std::uint32_t support) const {
+    for (std::int32_t at = next_set(0); at < kBins; at = next_set(at + 1)) {
+      const std::uint32_t above = at + 1 < kBins ? counts_[static_cast<std::size_t>(at + 1)] : 0u;
+      if (counts_[static_cast<std::size_t>(at)] + above >= support) return base_ + at;
+    }
+    return std::nullopt;
+  }
+
+  /// The highest absolute bin b holding, with b - 1, at least `support`
+  /// points; nullopt when none does. The top bin also holds the points above
+  /// the span.
+  std::optional<std::int32_t> highest_supported(std::uint32_t support) const {
+    for (std::int32_t at = previous_set(kBins - 1); at >= 0; at = previous_set(at - 1)) {
+      const std::uint32_t below = at > 0 ? counts_[static_cast<std::size_t>(at - 1)] : 0u;
+      if (counts_[static_cast<std::size_t>(at)] + below >= support) return base_ + at;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::int32_t offset(std::int32_t bin) const { return bin - base_ >= kBins ? kBins - 1 : bin - base_; }
+
+  /// Moves the span down so that it starts at `new_base`; counts that fall
+  /// off the top join the top bin.
+  void lower_base_to(std::int32_t new_base) {
+    const std::int32_t shift = base_ - new_base;
+    std::array<std::uint32_t, kBins> moved{};
+    for (std::int32_t at = 0; at < kBins; ++at) {
+      const std::int32_t to = at + shift < kBins ? at + shift : kBins - 1;
+      moved[static_cast<std::size_t>(to)] += counts_[static_cast<std::size_t>(at)];
+    }
+    counts_ = moved;
+    occupied_ = {};
+    for (std::int32_t at = 0; at < kBins; ++at) {
+      if (counts_[static_cast<std::size_t>(at)] != 0) set_bit(at);
+    }
+    base_ = new_base;
+  }
+
+  void set_bit(std::int32_t at) { occupied_[static_cast<std::size_t>(at >> 6)] |= std::uint64_t{1} << (at & 63); }
+  void clear_bit(std::int32_t at) { occupied_[static_cast<std::size_t>(at >> 6)] &= ~(std::uint64_t{1} << (at & 63)); }
+
+  /// The first occupied offset >= at, or kBins.
+  std::int32_t next_set(std::int32_t at) const {
+    for (; at < kBins; at = (at | 63) + 1) {
+      const std::uint64_t word = occupied_[static_cast<std::size_t>(at >> 6)] >> (at & 63);
+      if (word != 0) return at + __builtin_ctzll(word);
+    }
+    return kBins;
+  }
+  /// The last occupied offset <= at, or -1.
+  std::int32_t previous_set(std::int32_t at) const {
+    for (; at >= 0; at = (at & ~63) - 1) {
+      const int shift = 63 - (at & 63);
+      const std::uint64_t word = occupied_[static_cast<std::size_t>(at >> 6)] << shift;
+      if (word != 0) return at - __builtin_clzll(word);
+    }
+    return -1;
+  }
+
+  std::int32_t base_ = 0;
+  std::uint32_t points_ = 0;
+  std::array<std::uint64_t, kBins / 64> occupied_{};
+  std::array<std::uint32_t, kBins> counts_{};
+};
+
+}  // namespace streamclust
