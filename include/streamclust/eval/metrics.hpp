@@ -7,8 +7,10 @@
 /// matching at IoU > 0.5, coverage, object outcome rates, and evaluate()
 /// bundling them into a QualityReport, QualityAverage over frames and
 /// recovery_after for a metric's time series, evaluate_on_labelled for
-/// scores on the points a reference method labelled. Definitions:
-/// docs/evaluation-metrics.md.
+/// scores on the points a reference method labelled; object_metrics for a
+/// pipeline that removes ground and ceiling (strict object rates, object-point
+/// coverage, ground / ceiling precision and recall) and ObjectMetricsAverage.
+/// Definitions: docs/evaluation-metrics.md.
 ///
 /// Inputs: per-point ground-truth instance ids (0 = structure, > 0 = object,
 /// < 0 = ignored) and predicted cluster ids (< 0 = unlabelled), same length.
@@ -18,6 +20,8 @@
 #include <streamclust/eval/contingency.hpp>
 #include <streamclust/eval/coverage.hpp>
 #include <streamclust/eval/labelled_subset.hpp>
+#include <streamclust/eval/object_average.hpp>
+#include <streamclust/eval/object_metrics.hpp>
 #include <streamclust/eval/object_rates.hpp>
 #include <streamclust/eval/options.hpp>
 #include <streamclust/eval/panoptic.hpp>
@@ -25,3 +29,5 @@
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>
 #include <streamclust/eval/segmentation_entropy.hpp>
+#include <streamclust/eval/strict_object_rates.hpp>
+#include <streamclust/eval/surface_scores.hpp>

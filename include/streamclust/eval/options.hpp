@@ -13,7 +13,8 @@
 /// - `predicted[i]`: predicted cluster id of point i; any negative value
 ///   (conventionally -1, `kUnlabelled`) means the point received no label
 ///   (dropped, lost by an overwrite grid, evicted...). All negative values are
-///   the same "unlabelled" label.
+///   the same "unlabelled" label, except in object_metrics(), which tells
+///   `kClassedGround` (-2) and `kClassedCeiling` (-3) apart from the rest.
 /// - Both vectors have the same length, else std::invalid_argument naming both
 ///   sizes. Label values are arbitrary (not dense): every metric is invariant
 ///   to a relabelling of either side (see the tie rule of ObjectRates).
@@ -31,6 +32,15 @@ namespace eval {
 /// Predicted id of a point that received no cluster label. Any negative
 /// predicted id is treated the same way.
 inline constexpr std::int64_t kUnlabelled = -1;
+
+/// Predicted id of a point a ground-removal stage classed as ground and took
+/// out of clustering. object_metrics() scores it as a ground prediction;
+/// every other metric treats it as unlabelled.
+inline constexpr std::int64_t kClassedGround = -2;
+
+/// Predicted id of a point classed as ceiling (taken out of clustering); as
+/// kClassedGround, for the ceiling.
+inline constexpr std::int64_t kClassedCeiling = -3;
 
 /// Options of the metrics; a plain aggregate, construct with braces:
 /// `MetricOptions o; o.min_points = 30;`. Checked by `validate()` (called by
@@ -58,17 +68,33 @@ struct MetricOptions {
   /// default 0.1.
   double under_segmentation_fraction = 0.1;
 
+  /// Strict object rates: an object is correct only when one cluster holds at
+  /// least this fraction of the object's points (completeness). In (0.5, 1],
+  /// so that at most one cluster can qualify; default 0.8.
+  double strict_object_fraction = 0.8;
+
+  /// Strict object rates: ... and at least this fraction of that cluster's
+  /// points are the object's (purity; structure and other objects are
+  /// foreign). In (0.5, 1], so that a cluster can be correct for at most one
+  /// object; default 0.8.
+  double strict_purity_fraction = 0.8;
+
   /// Throws std::invalid_argument naming the field, its value and the range.
   void validate() const {
-    check_fraction("over_segmentation_fraction", over_segmentation_fraction);
-    check_fraction("under_segmentation_fraction", under_segmentation_fraction);
+    check_fraction("over_segmentation_fraction", over_segmentation_fraction, false);
+    check_fraction("under_segmentation_fraction", under_segmentation_fraction, false);
+    check_fraction("strict_object_fraction", strict_object_fraction, true);
+    check_fraction("strict_purity_fraction", strict_purity_fraction, true);
   }
 
  private:
-  static void check_fraction(const char* name, double value) {
-    if (!(value > 0.0 && value <= 1.0)) {  // also rejects NaN
+  /// value in (0, 1], or in (0.5, 1] when `above_half`.
+  static void check_fraction(const char* name, double value, bool above_half) {
+    const double lower = above_half ? 0.5 : 0.0;
+    if (!(value > lower && value <= 1.0)) {  // also rejects NaN
       std::string msg = "MetricOptions::";
-      msg.append(name).append(" = ").append(std::to_string(value)).append(" is invalid: expected a value in (0, 1]");
+      msg.append(name).append(" = ").append(std::to_string(value)).append(" is invalid: expected a value in ");
+      msg.append(above_half ? "(0.5, 1]" : "(0, 1]");
       throw std::invalid_argument(msg);
     }
   }
