@@ -6,6 +6,7 @@
 /// histogram that supports removal, with the lowest and highest supported
 /// layers found in O(1) typical time.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -14,11 +15,14 @@ namespace streamclust {
 
 /// A histogram of absolute height bins (bin b covers [b h, (b + 1) h) for the
 /// owner's bin height h) over a span of kBins bins. The span is placed when
-/// the first point arrives (kBins / 2 bins on each side of it) and moves
-/// down when a lower point arrives; points above the span count in its top
-/// bin (and leave from there), so removal always finds the count an add
-/// made. Exact: counts, no sums. 528 bytes. O(1) add and remove, layer
-/// queries O(kBins / 64 + bins scanned). Thread safety: none.
+/// the first point arrives (kBins / 2 bins on each side of it) and follows
+/// the points: it moves down for a lower point and up for a higher one, as
+/// far as the points it holds allow. While the column's points span fewer
+/// than kBins bins it is exact; beyond, points above the span count in its
+/// top bin (and leave from there, so removal always finds the count an add
+/// made), and the span only moves up again once they have left. Counts, no
+/// sums. 532 bytes. O(1) add and remove (O(kBins) when the span moves),
+/// layer queries O(kBins / 64 + bins scanned). Thread safety: none.
 class HeightColumn {
  public:
   static constexpr std::int32_t kBins = 128;
@@ -26,9 +30,18 @@ class HeightColumn {
   /// Counts a point in absolute bin `bin`.
   void add(std::int32_t bin) {
     if (points_ == 0) base_ = bin - kBins / 2;
-    if (bin < base_) lower_base_to(bin - kBins / 4);
+    if (bin < base_) {
+      // As far down as a margin, but not past what keeps the highest point in.
+      const std::int32_t keeps_top = base_ + next_set_below(kBins) - (kBins - 1);
+      move_base_to(std::min(bin, std::max(bin - kBins / 4, keeps_top)));
+    } else if (bin - base_ >= kBins && above_ == 0) {
+      // Up by the need plus a margin, but not past the lowest point.
+      const std::int32_t need = bin - base_ - (kBins - 1);
+      move_base_to(base_ + std::min(need + kBins / 4, next_set(0)));
+    }
     const std::int32_t at = offset(bin);
     if (counts_[static_cast<std::size_t>(at)]++ == 0) set_bit(at);
+    if (bin - base_ >= kBins) ++above_;
     ++points_;
   }
 
@@ -36,6 +49,7 @@ class HeightColumn {
   void remove(std::int32_t bin) {
     const std::int32_t at = offset(bin);
     if (--counts_[static_cast<std::size_t>(at)] == 0) clear_bit(at);
+    if (bin - base_ >= kBins) --above_;
     --points_;
   }
 
@@ -65,14 +79,18 @@ class HeightColumn {
  private:
   std::int32_t offset(std::int32_t bin) const { return bin - base_ >= kBins ? kBins - 1 : bin - base_; }
 
-  /// Moves the span down so that it starts at `new_base`; counts that fall
-  /// off the top join the top bin.
-  void lower_base_to(std::int32_t new_base) {
-    const std::int32_t shift = base_ - new_base;
+  /// Moves the span to start at `new_base`: down (counts that fall off the
+  /// top join the top bin) or up (never past the lowest count).
+  void move_base_to(std::int32_t new_base) {
+    const std::int32_t shift = base_ - new_base;  // > 0: down; < 0 (up) only with no point above the span
+    const std::uint32_t top_in_span = counts_[kBins - 1] - above_;
     std::array<std::uint32_t, kBins> moved{};
     for (std::int32_t at = 0; at < kBins; ++at) {
+      const std::uint32_t n = counts_[static_cast<std::size_t>(at)];
+      if (n == 0) continue;
       const std::int32_t to = at + shift < kBins ? at + shift : kBins - 1;
-      moved[static_cast<std::size_t>(to)] += counts_[static_cast<std::size_t>(at)];
+      moved[static_cast<std::size_t>(to)] += n;
+      if (at + shift >= kBins) above_ += at < kBins - 1 ? n : top_in_span;  // now above the span too
     }
     counts_ = moved;
     occupied_ = {};
@@ -93,6 +111,8 @@ class HeightColumn {
     }
     return kBins;
   }
+  /// The last occupied offset < at, or -1.
+  std::int32_t next_set_below(std::int32_t at) const { return previous_set(at - 1); }
   /// The last occupied offset <= at, or -1.
   std::int32_t previous_set(std::int32_t at) const {
     for (; at >= 0; at = (at & ~63) - 1) {
@@ -105,6 +125,7 @@ class HeightColumn {
 
   std::int32_t base_ = 0;
   std::uint32_t points_ = 0;
+  std::uint32_t above_ = 0;  ///< points counted in the top bin that lie above the span
   std::array<std::uint64_t, kBins / 64> occupied_{};
   std::array<std::uint32_t, kBins> counts_{};
 };

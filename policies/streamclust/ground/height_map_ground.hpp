@@ -37,19 +37,25 @@ namespace streamclust {
 /// the object's underside: the ground next to it bounds it). When neither c
 /// nor a neighbour has a layer, the nearest ring of cells out to
 /// `search_radius` that has one gives G = min of layer(j) + tan(max_slope)
-/// ring distance. A point is ground iff z <= G + ground_tolerance; with no
-/// layer within reach it is an object (a cold start costs coverage of the
-/// ground, never objects). The tolerance absorbs the rise of a slope within
-/// a cell (tan(15 deg) x 0.5 m = 0.13 m), the bin and the range noise;
-/// kerbs and steps lower than the tolerance plus one cell's slope allowance
-/// join the ground.
+/// ring distance. With `sensor_height` known, G is also at most the ground
+/// under the sensor plus tan(max_slope) times the horizontal distance from
+/// it (a cone): near a sensor that cannot see the ground (a level Mid-360
+/// sees the floor from 8 m on), the lowest layer of a cell is an object's
+/// bottom, which the cone keeps an object. A point is ground iff
+/// z <= G + ground_tolerance; with no layer within reach it is an object (a
+/// cold start costs coverage of the ground, never objects). The tolerance
+/// absorbs the rise of a slope within a cell (tan(15 deg) x 0.5 m =
+/// 0.13 m), the bin and the range noise; kerbs and steps lower than the
+/// tolerance plus one cell's slope allowance join the ground.
 ///
-/// Ceiling (`detect_ceiling`). A point at least `ceiling_clearance` above the
-/// sensor, within `ceiling_tolerance` of its cell's highest supported layer,
-/// is ceiling when the layer is flat and wide: at least
-/// `ceiling_min_agreement` of the cells within two rings have a highest
-/// layer within `ceiling_tolerance` of it (a tree's crown is curved and
-/// fails this; a ceiling passes).
+/// Ceiling (`detect_ceiling`, decided before the ground: near a sensor that
+/// sees the ceiling but not the floor, the ceiling is a cell's only layer).
+/// A point at least `ceiling_clearance` above the sensor, within
+/// `ceiling_tolerance` of its cell's highest supported layer, is ceiling
+/// when that layer is level and wide: at least `ceiling_min_agreement` of
+/// the cells within two rings have a highest layer within
+/// `ceiling_flatness` of it (a tree's crown is curved and a slope rises:
+/// both fail this; a ceiling passes).
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
 /// ceiling candidate), a ring search only in cold cells. Memory: 528 bytes
@@ -71,9 +77,11 @@ class HeightMapGround {
     float max_slope_deg = 15.0f;       ///< [deg] steepest ground between neighbouring cells, [0, 60]
     float search_radius = 2.0f;        ///< [m] how far a cold cell looks for ground, [0, 50]
     std::uint32_t support = 2;         ///< points that make a layer, [1, 1000]
-    bool detect_ceiling = true;        ///< class flat layers overhead as ceiling
+    float sensor_height = 0.0f;        ///< [m] sensor above the ground under it, [0, 100]; 0: unknown (no cone)
+    bool detect_ceiling = true;        ///< class level layers overhead as ceiling
     float ceiling_clearance = 0.5f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
     float ceiling_tolerance = 0.2f;    ///< [m] below the cell's highest layer still ceiling, [0, 2]
+    float ceiling_flatness = 0.1f;     ///< [m] a neighbour's highest layer this close agrees, [0, 2]
     float ceiling_min_agreement = 0.6f;  ///< fraction of the cells within two rings that agree, (0, 1]
   };
 
@@ -95,11 +103,16 @@ class HeightMapGround {
           params.ceiling_clearance, "[0, 100] m");
     check(params.ceiling_tolerance >= 0.0f && params.ceiling_tolerance <= 2.0f, "ceiling_tolerance",
           params.ceiling_tolerance, "[0, 2] m");
+    check(params.ceiling_flatness >= 0.0f && params.ceiling_flatness <= 2.0f, "ceiling_flatness",
+          params.ceiling_flatness, "[0, 2] m");
+    check(params.sensor_height >= 0.0f && params.sensor_height <= 100.0f, "sensor_height", params.sensor_height,
+          "[0, 100] m (0: unknown)");
     check(params.ceiling_min_agreement > 0.0f && params.ceiling_min_agreement <= 1.0f, "ceiling_min_agreement",
           params.ceiling_min_agreement, "(0, 1]");
     inverse_cell_ = 1.0f / params.cell_size;
     inverse_bin_ = 1.0f / params.bin_height;
-    rise_per_cell_ = std::tan(params.max_slope_deg * 0.01745329252f) * params.cell_size;
+    slope_ = std::tan(params.max_slope_deg * 0.01745329252f);
+    rise_per_cell_ = slope_ * params.cell_size;
     search_rings_ = static_cast<std::int32_t>(std::ceil(params.search_radius * inverse_cell_));
   }
 
@@ -108,12 +121,18 @@ class HeightMapGround {
     const Key k = key_of(world);
     const std::int32_t bin = bin_of(world.z());
     cells_[cells_.find_or_create(k.ix, k.iy)].add(bin);
-    const std::optional<float> bound = ground_bound(k);
-    if (bound && world.z() <= *bound + params_.ground_tolerance) return SurfaceClass::ground;
     if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
       return SurfaceClass::ceiling;
     }
-    return SurfaceClass::object;
+    std::optional<float> bound = ground_bound(k);
+    if (!bound) return SurfaceClass::object;
+    if (params_.sensor_height > 0.0f) {
+      // The cone from the ground under the sensor (at world - ray).
+      const float under_sensor = world.z() - ray.z() - params_.sensor_height;
+      const float cone = under_sensor + slope_ * std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
+      if (cone < *bound) bound = cone;
+    }
+    return world.z() <= *bound + params_.ground_tolerance ? SurfaceClass::ground : SurfaceClass::object;
   }
 
   /// Uncounts a point `classify` counted. O(1) expected.
@@ -190,7 +209,7 @@ class HeightMapGround {
         if (dx == 0 && dy == 0) continue;
         ++cells;
         const std::optional<float> other = highest_layer(k.ix + dx, k.iy + dy);
-        if (other && std::fabs(*other - *top) <= params_.ceiling_tolerance) ++agreeing;
+        if (other && std::fabs(*other - *top) <= params_.ceiling_flatness) ++agreeing;
       }
     }
     return static_cast<float>(agreeing) >= params_.ceiling_min_agreement * static_cast<float>(cells);
@@ -200,6 +219,7 @@ class HeightMapGround {
   CellTable<HeightColumn> cells_;
   float inverse_cell_ = 2.0f;
   float inverse_bin_ = 20.0f;
+  float slope_ = 0.27f;
   float rise_per_cell_ = 0.13f;
   std::int32_t search_rings_ = 4;
 };

@@ -1,0 +1,420 @@
+// SPDX-License-Identifier: MIT
+// The ground policy's parts against brute force, and its decisions on
+// shapes whose answer is known: a floor with boxes, a 15 degree slope, a
+// kerb, a flat ceiling and a tree crown.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/ground/cell_table.hpp>
+#include <streamclust/ground/height_column.hpp>
+#include <streamclust/ground/height_map_ground.hpp>
+#include <streamclust/ground/no_ground.hpp>
+
+#include "support/invalid_argument.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace sc = streamclust;
+
+namespace {
+
+/// Lowest/highest bin of a multiset of bins with `support` points in it and
+/// its upper/lower neighbour: the layer rules of HeightColumn by brute force.
+std::optional<std::int32_t> lowest_brute(const std::map<std::int32_t, std::uint32_t>& bins, std::uint32_t support) {
+  for (const auto& [bin, count] : bins) {
+    const auto above = bins.find(bin + 1);
+    if (count + (above == bins.end() ? 0u : above->second) >= support) return bin;
+  }
+  return std::nullopt;
+}
+std::optional<std::int32_t> highest_brute(const std::map<std::int32_t, std::uint32_t>& bins, std::uint32_t support) {
+  for (auto it = bins.rbegin(); it != bins.rend(); ++it) {
+    const auto below = bins.find(it->first - 1);
+    if (it->second + (below == bins.end() ? 0u : below->second) >= support) return it->first;
+  }
+  return std::nullopt;
+}
+
+/// The classification rule of HeightMapGround computed from the list of
+/// live points, without its data structures.
+class BruteGround {
+ public:
+  explicit BruteGround(const sc::HeightMapGround::Params& p) : p_(p) {}
+  sc::SurfaceClass classify(const Eigen::Vector3f& world, const Eigen::Vector3f& ray) {
+    live_.push_back(world);
+    const auto [ix, iy] = key(world);
+    if (p_.detect_ceiling && ray.z() >= p_.ceiling_clearance) {
+      const std::optional<float> top = highest(ix, iy);
+      if (top && world.z() >= *top - p_.ceiling_tolerance) {
+        int agreeing = 0;
+        for (int dy = -2; dy <= 2; ++dy) {
+          for (int dx = -2; dx <= 2; ++dx) {
+            if (dx == 0 && dy == 0) continue;
+            const std::optional<float> other = highest(ix + dx, iy + dy);
+            if (other && std::fabs(*other - *top) <= p_.ceiling_flatness) ++agreeing;
+          }
+        }
+        if (static_cast<float>(agreeing) >= p_.ceiling_min_agreement * 24.0f) return sc::SurfaceClass::ceiling;
+      }
+    }
+    std::optional<float> bound = lowest(ix, iy);
+    const float rise = std::tan(p_.max_slope_deg * 0.01745329252f) * p_.cell_size;
+    const int rings = static_cast<int>(std::ceil(p_.search_radius / p_.cell_size));
+    for (int ring = 1; ring <= std::max(1, rings); ++ring) {
+      if (ring > 1 && bound) break;
+      for (int dy = -ring; dy <= ring; ++dy) {
+        for (int dx = -ring; dx <= ring; ++dx) {
+          if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
+          const std::optional<float> layer = lowest(ix + dx, iy + dy);
+          if (layer && (!bound || *layer + rise * static_cast<float>(ring) < *bound)) {
+            bound = *layer + rise * static_cast<float>(ring);
+          }
+        }
+      }
+    }
+    if (!bound) return sc::SurfaceClass::object;
+    if (p_.sensor_height > 0.0f) {
+      const float cone = world.z() - ray.z() - p_.sensor_height +
+                         std::tan(p_.max_slope_deg * 0.01745329252f) * std::hypot(ray.x(), ray.y());
+      bound = std::min(*bound, cone);
+    }
+    return world.z() <= *bound + p_.ground_tolerance ? sc::SurfaceClass::ground : sc::SurfaceClass::object;
+  }
+  void forget_oldest() { live_.pop_front(); }
+
+ private:
+  std::pair<int, int> key(const Eigen::Vector3f& w) const {
+    return {static_cast<int>(std::floor(w.x() * (1.0f / p_.cell_size))),
+            static_cast<int>(std::floor(w.y() * (1.0f / p_.cell_size)))};
+  }
+  std::map<std::int32_t, std::uint32_t> bins(int ix, int iy) const {
+    std::map<std::int32_t, std::uint32_t> b;
+    for (const Eigen::Vector3f& w : live_) {
+      if (key(w) == std::make_pair(ix, iy)) ++b[static_cast<std::int32_t>(std::floor(w.z() * (1.0f / p_.bin_height)))];
+    }
+    return b;
+  }
+  std::optional<float> lowest(int ix, int iy) const {
+    const auto b = lowest_brute(bins(ix, iy), p_.support);
+    if (!b) return std::nullopt;
+    return static_cast<float>(*b) * p_.bin_height;
+  }
+  std::optional<float> highest(int ix, int iy) const {
+    const auto b = highest_brute(bins(ix, iy), p_.support);
+    if (!b) return std::nullopt;
+    return static_cast<float>(*b + 1) * p_.bin_height;
+  }
+
+  sc::HeightMapGround::Params p_;
+  std::deque<Eigen::Vector3f> live_;
+};
+
+}  // namespace
+
+TEST_CASE("HeightColumn's layers equal brute force under adds, removals and a moving span") {
+  std::mt19937_64 rng(11);
+  for (int round = 0; round < 50; ++round) {
+    sc::HeightColumn column;
+    std::map<std::int32_t, std::uint32_t> bins;
+    std::deque<std::int32_t> fifo;
+    const std::uint32_t support = 1 + static_cast<std::uint32_t>(rng() % 3);
+    const std::int32_t spread = 20 + static_cast<std::int32_t>(rng() % 100);  // bins; < 128 after the first lowering
+    for (int step = 0; step < 400; ++step) {
+      if (!fifo.empty() && rng() % 3 == 0) {
+        column.remove(fifo.front());
+        if (--bins[fifo.front()] == 0) bins.erase(fifo.front());
+        fifo.pop_front();
+      } else {
+        const std::int32_t bin = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(spread)) - spread / 2;
+        column.add(bin);
+        ++bins[bin];
+        fifo.push_back(bin);
+      }
+      INFO("round " << round << ", step " << step);
+      REQUIRE(column.points() == fifo.size());
+      REQUIRE(column.lowest_supported(support) == lowest_brute(bins, support));
+      REQUIRE(column.highest_supported(support) == highest_brute(bins, support));
+    }
+  }
+}
+
+TEST_CASE("HeightColumn: with points spread wider than its span no count is lost and no layer is too high") {
+  // Points above the span count in its top bin: a layer may then read lower
+  // than the truth (the conservative side: a lower ground bound), never higher.
+  std::mt19937_64 rng(12);
+  for (int round = 0; round < 50; ++round) {
+    sc::HeightColumn column;
+    std::map<std::int32_t, std::uint32_t> bins;
+    std::deque<std::int32_t> fifo;
+    const std::uint32_t support = 1;
+    const std::int32_t spread = 100 + static_cast<std::int32_t>(rng() % 400);
+    for (int step = 0; step < 600; ++step) {
+      if (!fifo.empty() && rng() % 3 == 0) {
+        column.remove(fifo.front());
+        if (--bins[fifo.front()] == 0) bins.erase(fifo.front());
+        fifo.pop_front();
+      } else {
+        const std::int32_t bin = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(spread)) - spread / 2;
+        column.add(bin);
+        ++bins[bin];
+        fifo.push_back(bin);
+      }
+      INFO("round " << round << ", step " << step);
+      REQUIRE(column.points() == fifo.size());
+      const auto low = column.lowest_supported(support);
+      const auto top = column.highest_supported(support);
+      REQUIRE(low.has_value() == !fifo.empty());
+      REQUIRE(top.has_value() == !fifo.empty());
+      if (low) REQUIRE(*low <= bins.begin()->first);
+      if (top) REQUIRE(*top <= bins.rbegin()->first);
+    }
+    while (!fifo.empty()) {
+      column.remove(fifo.front());
+      fifo.pop_front();
+    }
+    REQUIRE(column.points() == 0);
+    REQUIRE_FALSE(column.highest_supported(1).has_value());  // no count left behind
+  }
+}
+
+TEST_CASE("HeightColumn: points beyond its span count in the top bin and leave from there") {
+  sc::HeightColumn column;
+  column.add(0);    // span [-64, 64)
+  column.add(500);  // the span moves up as far as bin 0 allows, [0, 128): 500 counts in the top bin
+  CHECK(column.lowest_supported(1) == std::optional<std::int32_t>(0));
+  CHECK(column.highest_supported(1) == std::optional<std::int32_t>(127));
+  column.add(-100);  // the span moves down to [-100, 28): 500 stays in the top bin
+  CHECK(column.lowest_supported(1) == std::optional<std::int32_t>(-100));
+  CHECK(column.highest_supported(1) == std::optional<std::int32_t>(27));
+  column.remove(500);
+  CHECK(column.highest_supported(1) == std::optional<std::int32_t>(0));
+  column.remove(0);
+  CHECK(column.highest_supported(1) == std::optional<std::int32_t>(-100));
+  column.remove(-100);
+  CHECK(column.points() == 0);
+  CHECK_FALSE(column.lowest_supported(1).has_value());
+  column.add(1000);  // an empty column starts afresh around its first point
+  CHECK(column.highest_supported(1) == std::optional<std::int32_t>(1000));
+}
+
+TEST_CASE("CellTable finds, creates and releases like a map, through growth and backward shifts") {
+  std::mt19937_64 rng(5);
+  sc::CellTable<int> table;
+  std::map<std::pair<int, int>, int> reference;
+  for (int step = 0; step < 20000; ++step) {
+    const int ix = static_cast<int>(rng() % 40) - 20;
+    const int iy = static_cast<int>(rng() % 40) - 20;
+    const auto it = reference.find({ix, iy});
+    if (it != reference.end() && rng() % 2 == 0) {
+      table.release(ix, iy);
+      reference.erase(it);
+    } else {
+      const std::uint32_t c = table.find_or_create(ix, iy);
+      if (it == reference.end()) {
+        REQUIRE(table[c] == 0);  // a new column is value-initialised, even a recycled one
+        table[c] = step + 1;
+        reference[{ix, iy}] = step + 1;
+      } else {
+        REQUIRE(table[c] == it->second);
+      }
+    }
+    if (step % 97 == 0) {
+      for (int x = -20; x < 20; ++x) {
+        for (int y = -20; y < 20; ++y) {
+          const std::uint32_t c = table.find(x, y);
+          const auto r = reference.find({x, y});
+          REQUIRE((c == sc::CellTable<int>::kNone) == (r == reference.end()));
+          if (r != reference.end()) REQUIRE(table[c] == r->second);
+        }
+      }
+    }
+  }
+  CHECK(table.size() == reference.size());
+}
+
+TEST_CASE("HeightMapGround decides as its rule computed from the live points (a sliding window)") {
+  std::mt19937_64 rng(21);
+  for (int round = 0; round < 12; ++round) {
+    sc::HeightMapGround::Params p;
+    p.cell_size = round % 3 == 0 ? 0.3f : 0.6f;
+    p.support = 1 + static_cast<std::uint32_t>(round % 3);
+    p.search_radius = static_cast<float>(round % 4);
+    p.ceiling_min_agreement = 0.3f;
+    p.sensor_height = round % 2 == 0 ? 0.0f : 1.0f;
+    sc::HeightMapGround model(p);
+    BruteGround brute(p);
+    std::deque<Eigen::Vector3f> window;
+    std::uniform_real_distribution<float> xy(-2.0f, 2.0f);
+    int classes[3] = {0, 0, 0};
+    for (int step = 0; step < 1500; ++step) {
+      // A floor near -1 m, boxes up to 1 m, a ceiling at 1.5 m: within one span.
+      const float x = xy(rng), y = xy(rng);
+      const int kind = static_cast<int>(rng() % 4);
+      const float z = kind == 0 ? 1.5f : kind == 1 ? -1.0f + 2.0f * std::uniform_real_distribution<float>(0, 1)(rng)
+                                                   : -1.0f + 0.02f * std::uniform_real_distribution<float>(-1, 1)(rng);
+      const Eigen::Vector3f w(x, y, z);
+      const Eigen::Vector3f sensor(0.5f, -0.25f, 0.0f);
+      const sc::SurfaceClass expected = brute.classify(w, w - sensor);
+      const sc::SurfaceClass got = model.classify(w, w - sensor);
+      INFO("round " << round << ", step " << step);
+      REQUIRE(got == expected);
+      ++classes[static_cast<int>(got) == 3 ? 2 : static_cast<int>(got)];
+      window.push_back(w);
+      if (window.size() > 300) {
+        model.forget(window.front());
+        brute.forget_oldest();
+        window.pop_front();
+      }
+    }
+    CHECK(classes[0] > 0);
+    CHECK(classes[1] > 0);
+  }
+}
+
+namespace {
+
+/// Feeds `points` (world, sensor at the origin) and returns their classes.
+std::vector<sc::SurfaceClass> classify_all(sc::HeightMapGround& model, const std::vector<Eigen::Vector3f>& points) {
+  std::vector<sc::SurfaceClass> out;
+  for (const Eigen::Vector3f& p : points) out.push_back(model.classify(p, p));
+  return out;
+}
+
+/// Points on a surface z = f(x, y) over [x0, x1] x [y0, y1], interleaved
+/// with points of boxes standing on it (returned with their truth).
+struct Scene {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<bool> is_ground;
+};
+
+template <class Height>
+Scene surface_with_posts(Height height, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Scene s;
+  for (int i = 0; i < 20000; ++i) {
+    if (i % 5 == 4) {
+      // A post 0.4 x 0.4 m, 1.5 m tall, at one of four places.
+      const float px = -4.0f + 2.5f * static_cast<float>(i % 4);
+      const float py = 3.0f;
+      const float x = px + 0.4f * u(rng), y = py + 0.4f * u(rng);
+      const float z = height(px, py) + 1.5f * u(rng);
+      s.points.emplace_back(x, y, z);
+      s.is_ground.push_back(false);
+    } else {
+      const float x = -6.0f + 12.0f * u(rng), y = -6.0f + 12.0f * u(rng);
+      s.points.emplace_back(x, y, height(x, y) + 0.01f * (u(rng) - 0.5f));
+      s.is_ground.push_back(true);
+    }
+  }
+  return s;
+}
+
+/// Fraction of ground points classed ground, and of post points above
+/// `above` m over the ground classed object, after the first `warm` points.
+std::pair<double, double> rates(const Scene& s, const std::vector<sc::SurfaceClass>& classes, std::size_t warm) {
+  std::size_t g = 0, g_ok = 0, o = 0, o_ok = 0;
+  for (std::size_t i = warm; i < s.points.size(); ++i) {
+    if (s.is_ground[i]) {
+      ++g;
+      g_ok += classes[i] == sc::SurfaceClass::ground;
+    } else {
+      ++o;
+      o_ok += classes[i] == sc::SurfaceClass::object;
+    }
+  }
+  return {static_cast<double>(g_ok) / static_cast<double>(g), static_cast<double>(o_ok) / static_cast<double>(o)};
+}
+
+}  // namespace
+
+TEST_CASE("HeightMapGround on a flat floor, a 15 degree slope and a kerb: ground stays ground, posts stay objects") {
+  const float slope = std::tan(15.0f * 0.01745329252f);
+  struct Case {
+    const char* name;
+    float (*height)(float, float);
+  };
+  auto run = [](auto height, const char* name) {
+    sc::HeightMapGround model;
+    const Scene s = surface_with_posts(height, 3);
+    const auto classes = classify_all(model, s.points);
+    const auto [ground_rate, object_rate] = rates(s, classes, 2000);
+    INFO(name << ": ground " << ground_rate << ", posts " << object_rate);
+    CHECK(ground_rate > 0.98);
+    // A post loses at most its bottom (tolerance + slope allowance) of 1.5 m.
+    CHECK(object_rate > 0.75);
+  };
+  run([](float, float) { return -1.0f; }, "flat");
+  run([slope](float x, float) { return -1.0f + slope * x; }, "slope 15 degrees");
+  run([](float x, float) { return x > 0.3f ? -0.85f : -1.0f; }, "kerb 0.15 m");
+}
+
+TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not") {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  sc::HeightMapGround ceiling_model;
+  std::vector<Eigen::Vector3f> ceiling;
+  for (int i = 0; i < 20000; ++i) ceiling.emplace_back(5.0f * u(rng), 5.0f * u(rng), 1.8f + 0.01f * u(rng));
+  // Also where the sensor sees no floor: the ceiling is then its cells' only layer, and still ceiling.
+  const auto c = classify_all(ceiling_model, ceiling);
+  std::size_t inner = 0, as_ceiling = 0;  // away from the edges, where fewer cells can agree
+  for (std::size_t i = 2000; i < c.size(); ++i) {
+    if (std::fabs(ceiling[i].x()) > 4.0f || std::fabs(ceiling[i].y()) > 4.0f) continue;
+    ++inner;
+    as_ceiling += c[i] == sc::SurfaceClass::ceiling;
+  }
+  CHECK(static_cast<double>(as_ceiling) / static_cast<double>(inner) > 0.95);
+
+  // The underside of a crown: a sphere of radius 2 m centred 4 m up.
+  sc::HeightMapGround crown_model;
+  std::vector<Eigen::Vector3f> crown;
+  for (int i = 0; i < 20000; ++i) {
+    Eigen::Vector3f d(u(rng), u(rng), -std::fabs(u(rng)) - 0.05f);
+    d.normalize();
+    crown.push_back(Eigen::Vector3f(3.0f, 0.0f, 4.0f) + 2.0f * d);
+  }
+  const auto k = classify_all(crown_model, crown);
+  std::size_t crown_ceiling = 0;
+  for (const auto cls : k) crown_ceiling += cls == sc::SurfaceClass::ceiling;
+  CHECK(static_cast<double>(crown_ceiling) / 20000.0 < 0.1);
+}
+
+TEST_CASE("HeightMapGround forgets every point: after the window passes no cell is live") {
+  sc::HeightMapGround model;
+  std::vector<Eigen::Vector3f> points;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<float> u(-10.0f, 10.0f);
+  for (int i = 0; i < 5000; ++i) points.emplace_back(u(rng), u(rng), 0.1f * u(rng));
+  classify_all(model, points);
+  CHECK(model.live_cells() > 100);
+  CHECK(model.heap_bytes() > 0);
+  for (const Eigen::Vector3f& p : points) model.forget(p);
+  CHECK(model.live_cells() == 0);
+}
+
+TEST_CASE("HeightMapGround rejects parameters outside their ranges, naming them") {
+  auto bad = [](auto change) {
+    sc::HeightMapGround::Params p;
+    change(p);
+    return p;
+  };
+  auto message = [](const sc::HeightMapGround::Params& p) {
+    return streamclust::test::invalid_argument_message([&p] { sc::HeightMapGround model{p}; });
+  };
+  CHECK(message(bad([](auto& p) { p.cell_size = 0.0f; })).find("cell_size = 0") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.ground_tolerance = -0.1f; })).find("ground_tolerance") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.max_slope_deg = 80.0f; })).find("max_slope_deg = 80") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.support = 0; })).find("support") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.ceiling_min_agreement = 0.0f; })).find("ceiling_min_agreement") !=
+        std::string::npos);
+  CHECK(message(sc::HeightMapGround::Params{}).empty());
+  CHECK(sc::NoGround{}.classify(Eigen::Vector3f(0, 0, -5), Eigen::Vector3f(0, 0, -5)) == sc::SurfaceClass::object);
+}
