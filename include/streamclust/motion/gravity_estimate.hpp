@@ -23,8 +23,10 @@
 ///   mount), or the floor is out of view or small while the ceiling is
 ///   large (a level Mid-360 indoors sees mostly ceiling): the ceiling is
 ///   taken for the ground and the estimate is upside down;
-/// - the sensor is tilted more than `max_tilt_deg` (raising it lets a near
-///   wall pass as ground);
+/// - the sensor is tilted more than `max_tilt_deg`: the ground is no
+///   candidate, and a wall then within max_tilt_deg of the z axis is taken
+///   for it (raising max_tilt_deg admits walls, and a wall nearer than the
+///   ground wins);
 /// - a large horizontal surface nearer than the ground (a platform, a big
 ///   table top) is taken for the ground (its tilt is usually the ground's);
 /// - sloped ground is made horizontal: the mount then holds the slope;
