@@ -127,7 +127,8 @@ TEST_CASE("write_tum then read_tum: epoch-scale times come back exactly, other v
   }
   // Small times keep their nanoseconds.
   std::ostringstream out;
-  io::write_tum(out, {io::TumRecord{0.000000001, 0, 0, 0, 0, 0, 0, 1}, io::TumRecord{12.345678912, 0, 0, 0, 0, 0, 0, 1}});
+  io::write_tum(out, {io::TumRecord{0.000000001, 0, 0, 0, 0, 0, 0, 1},
+                      io::TumRecord{12.345678912, 0, 0, 0, 0, 0, 0, 1}});
   std::istringstream in(out.str());
   const std::vector<io::TumRecord> small = io::read_tum(in, "small.tum");
   REQUIRE(small.size() == 2);

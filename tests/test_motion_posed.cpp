@@ -36,7 +36,8 @@ sc::PlacedPoint place(sc::PosedMotion& motion, const Eigen::Vector3f& p, double 
   return placed;
 }
 
-sc::PosedMotion fixed(double roll, double pitch, double yaw, const Eigen::Vector3d& translation = Eigen::Vector3d::Zero()) {
+sc::PosedMotion fixed(double roll, double pitch, double yaw,
+                      const Eigen::Vector3d& translation = Eigen::Vector3d::Zero()) {
   sc::PosedMotion::Params params;
   params.mount = sc::mount_from_roll_pitch_yaw_deg(roll, pitch, yaw);
   params.mount.translation = translation;
@@ -55,7 +56,8 @@ std::vector<sc::StampedPose> drive(double t0, double seconds, double period, dou
                                                       20.0 + yaw_rate * t / kDeg);
     pose.translation = position;
     poses.push_back(sc::StampedPose{t0 + t, pose});
-    position += period * speed * Eigen::Vector3d(std::cos(20.0 * kDeg + yaw_rate * t), std::sin(20.0 * kDeg + yaw_rate * t), 0.01);
+    const double heading = 20.0 * kDeg + yaw_rate * t;
+    position += period * speed * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0.01);
   }
   return poses;
 }
@@ -153,6 +155,18 @@ TEST_CASE("PosedMotion: outside the poses' span a point has no pose and is left 
   CHECK(motion.place(p, 52.0, placed) == sc::RejectReason::no_pose);
   CHECK(motion.place(p, 50.0, placed) == sc::RejectReason::accepted);
   CHECK((placed.world.cast<double>() - trajectory->poses()[0].pose * p.cast<double>()).norm() < 1e-5);
+}
+
+TEST_CASE("PosedMotion: a single pose places the points of its instant only") {
+  sc::Pose pose = sc::mount_from_roll_pitch_yaw_deg(0.0, 0.0, 90.0);
+  pose.translation = Eigen::Vector3d(1.0, 2.0, 3.0);
+  const auto trajectory = std::make_shared<const sc::PoseTrajectory>(std::vector<sc::StampedPose>{{7.0, pose}});
+  sc::PosedMotion motion(sc::PosedMotion::Params{sc::Pose{}, trajectory});
+  sc::PlacedPoint placed;
+  CHECK(motion.place(Eigen::Vector3f(1.0f, 0.0f, 0.0f), 7.0 + 1e-9, placed) == sc::RejectReason::no_pose);
+  REQUIRE(motion.place(Eigen::Vector3f(1.0f, 0.0f, 0.0f), 7.0, placed) == sc::RejectReason::accepted);
+  CHECK((placed.world - Eigen::Vector3f(1.0f, 3.0f, 3.0f)).norm() < 1e-6f);
+  CHECK((placed.ray - Eigen::Vector3f(0.0f, 1.0f, 0.0f)).norm() < 1e-6f);
 }
 
 TEST_CASE("PosedMotion: a moving, yawing sensor sees one world point at one world position") {

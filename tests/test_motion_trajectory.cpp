@@ -49,7 +49,8 @@ TEST_CASE("PoseTrajectory: exact at the knots, linear position and Eigen's slerp
     const double t = 10.5 + 0.5 * f;
     const std::optional<sc::Pose> p = trajectory.at(t, cursor);
     REQUIRE(p.has_value());
-    const Eigen::Vector3d expected = poses[1].pose.translation + f * (poses[2].pose.translation - poses[1].pose.translation);
+    const Eigen::Vector3d& a = poses[1].pose.translation;
+    const Eigen::Vector3d expected = a + f * (poses[2].pose.translation - a);
     CHECK((p->translation - expected).norm() < 1e-12);
     const Eigen::Quaterniond slerp = poses[1].pose.rotation.slerp(f, poses[2].pose.rotation);
     CHECK(angle_between(p->rotation, slerp) < 1e-9);

@@ -257,7 +257,8 @@ inline bool parse_input_option(ArgCursor& c, io::ReadOptions& read) {
 /// Parses the value of `--mount`: three comma-separated angles in degrees
 /// (roll, pitch, yaw; each finite, -360 to 360).
 inline std::array<double, 3> parse_mount(const std::string& value) {
-  const std::string expected = "--mount: expected ROLL,PITCH,YAW in degrees (e.g. 0,15,0 or 180,0,0), got '" + value + "'";
+  const std::string expected =
+      "--mount: expected ROLL,PITCH,YAW in degrees (e.g. 0,15,0 or 180,0,0), got '" + value + "'";
   std::array<double, 3> angles{};
   std::size_t start = 0;
   for (std::size_t k = 0; k < 3; ++k) {

@@ -13,6 +13,7 @@
 #include <streamclust/motion/trajectory.hpp>
 #include <streamclust/motion/tum_poses.hpp>
 
+#include <array>
 #include <memory>
 
 namespace streamclust::cli {
@@ -27,7 +28,10 @@ inline bool has_motion_options(const ClusterOptions& o) { return !o.poses_path.e
 /// the line (the tool's exit code 4). O(poses).
 inline PosedMotion::Params load_motion_params(const ClusterOptions& o) {
   PosedMotion::Params params;
-  if (o.mount_deg) params.mount = mount_from_roll_pitch_yaw_deg((*o.mount_deg)[0], (*o.mount_deg)[1], (*o.mount_deg)[2]);
+  if (o.mount_deg) {
+    const std::array<double, 3>& deg = *o.mount_deg;
+    params.mount = mount_from_roll_pitch_yaw_deg(deg[0], deg[1], deg[2]);
+  }
   // read_tum checks all PoseTrajectory checks (finite, strictly increasing times, quaternion norm >= 1e-6).
   if (!o.poses_path.empty()) {
     params.trajectory = std::make_shared<const PoseTrajectory>(to_stamped_poses(io::read_tum(o.poses_path)));

@@ -9,7 +9,7 @@
 /// (motion/tum_poses.hpp makes poses of them).
 ///
 /// \code
-/// const std::vector<streamclust::io::TumRecord> records = streamclust::io::read_tum("odom.tum");  // throws io::InputError
+/// const auto records = streamclust::io::read_tum("odom.tum");  // std::vector<TumRecord>; throws io::InputError
 /// \endcode
 ///
 /// Thread safety: free functions without shared state.

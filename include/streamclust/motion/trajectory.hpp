@@ -93,11 +93,12 @@ class PoseTrajectory {
   /// `at(t, cursor)` with the trajectory's own cursor. Not thread-safe.
   std::optional<Pose> at(double t) { return at(t, cursor_); }
 
-  /// The segment [i, i + 1] holding `t` (time_begin() <= t <= time_end(),
-  /// at least two poses): `hint` if it holds t, else the next one if it
-  /// does, else by binary search. A t on a knot between two segments gives
-  /// the earlier one. O(1) when t is in `hint` or the next, else O(log n).
+  /// The segment [i, i + 1] holding `t` (time_begin() <= t <= time_end()):
+  /// `hint` if it holds t, else the next one if it does, else by binary
+  /// search. A t on a knot between two segments gives the earlier one; a
+  /// single pose gives 0. O(1) when t is in `hint` or the next, else O(log n).
   std::size_t find_segment(double t, std::size_t hint) const {
+    if (poses_.size() < 2) return 0;
     const std::size_t last = poses_.size() - 2;  // the last segment
     if (hint <= last && poses_[hint].time <= t && t <= poses_[hint + 1].time) return hint;
     if (hint + 1 <= last && poses_[hint + 1].time <= t && t <= poses_[hint + 2].time) return hint + 1;

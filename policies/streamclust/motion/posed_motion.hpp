@@ -47,12 +47,14 @@ namespace streamclust {
 /// point costs a few polynomial terms (theta <= 0.5 rad; std::sin/cos for a
 /// larger turn between two poses) and three matrix products, no
 /// trigonometry, no allocation. Moving to the next segment is O(1); a jump
-/// in time O(log n).
+/// in time O(log n). Measured (bench_policies BM_PosedMotion, 200 kHz
+/// points on 100 Hz poses, g++ -O3): about 11 ns a point, with or without a
+/// trajectory; a slerp per point through PoseTrajectory::at costs 66 ns.
 ///
 /// \code
 /// streamclust::PosedMotion::Params params;
 /// params.trajectory = std::make_shared<const streamclust::PoseTrajectory>(poses);
-/// params.mount = streamclust::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);  // sensor pitched 15 deg down on the vehicle
+/// params.mount = streamclust::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);  // pitched 15 deg down
 /// streamclust::PosedMotion motion(params);
 /// streamclust::PlacedPoint placed;
 /// if (motion.place(p, t, placed) == streamclust::RejectReason::accepted) use(placed.world, placed.ray);
@@ -79,7 +81,8 @@ class PosedMotion {
     }
     if (q.norm() < kMinQuaternionNorm) fail("mount.rotation norm", q.norm(), ">= 1e-6");
     for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(params_.mount.translation[k])) fail("mount.translation", params_.mount.translation[k], "finite");
+      const double v = params_.mount.translation[k];
+      if (!std::isfinite(v)) fail("mount.translation", v, "finite");
     }
     params_.mount.rotation.normalize();
     if (params_.trajectory) {
