@@ -8,7 +8,8 @@
 // (Projections, SpatialIndexes, Linkages, Windows, Resolutions), each with its
 // default Params: adding a policy to its list there adds its benchmark here
 // (and its tests), with no line in this file. Benchmark names are
-// BM_<family><PolicyType>, e.g. BM_Linkage<AngularLinkage>.
+// BM_<family><PolicyType>, e.g. BM_Linkage<AngularLinkage>. The motion policy
+// PosedMotion is measured on its own (BM_PosedMotion, ns per point).
 //
 // Inputs are sensor ray patterns (no ray casting, so the set-up stays cheap
 // for CTest's --benchmark_min_time=0.01 smoke run), built once and shared:
@@ -35,6 +36,8 @@
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
+#include <streamclust/motion/posed_motion.hpp>
+#include <streamclust/motion/trajectory.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
@@ -55,6 +58,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -333,6 +337,56 @@ void BM_Calibrate(benchmark::State& state) {
   state.counters["rows"] = grid.rows;
   state.counters["cols"] = grid.cols;
 }
+
+// ------------------------------------------------------------------ motion
+
+/// PosedMotion::place over one second of a 200 kHz stream (the positions of
+/// the 0.1 s office stream, repeated, at times every 5 us) on a 100 Hz
+/// trajectory driving at 10 m/s and yawing at 1 rad/s, the sensor pitched
+/// 15 degrees on the vehicle. Argument: 0 a fixed mount (no trajectory),
+/// 1 the trajectory, 2 the same pose per point from PoseTrajectory::at (a
+/// slerp per point, double; what the per-segment cache saves).
+void BM_PosedMotion(benchmark::State& state) {
+  const auto& points = office_points();
+  std::vector<sc::StampedPose> poses;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = 0.01 * i;
+    sc::Pose pose = sc::mount_from_roll_pitch_yaw_deg(0.0, 0.0, t * 57.29577951308232);
+    pose.translation = Eigen::Vector3d(10.0 * t, 0.5 * t * t, 0.0);
+    poses.push_back(sc::StampedPose{1700000000.0 + t, pose});
+  }
+  sc::PosedMotion::Params params;
+  params.mount = sc::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);
+  if (state.range(0) != 0) params.trajectory = std::make_shared<const sc::PoseTrajectory>(poses);
+  constexpr std::size_t kPoints = 200000;
+  std::vector<Eigen::Vector3f> positions(kPoints);
+  std::vector<double> times(kPoints);
+  for (std::size_t i = 0; i < kPoints; ++i) {
+    const auto& p = points[i % points.size()];
+    positions[i] = Eigen::Vector3f(p.x, p.y, p.z);
+    times[i] = 1700000000.0 + static_cast<double>(i) * 5e-6;
+  }
+  float sum = 0.0f;
+  for (auto _ : state) {
+    sc::PosedMotion motion(params);  // a fresh cursor: the stream starts at the trajectory's start
+    if (state.range(0) == 2) {
+      sc::PoseTrajectory::Cursor cursor;
+      for (std::size_t i = 0; i < kPoints; ++i) {
+        const sc::Pose pose = *params.trajectory->at(times[i], cursor) * params.mount;
+        sum += static_cast<float>((pose * positions[i].cast<double>()).x());
+      }
+    } else {
+      sc::PlacedPoint placed;
+      for (std::size_t i = 0; i < kPoints; ++i) {
+        benchmark::DoNotOptimize(motion.place(positions[i], times[i], placed));
+        sum += placed.world.x() + placed.ray.y();
+      }
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kPoints));
+}
+BENCHMARK(BM_PosedMotion)->ArgName("trajectory")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 /// Registers one benchmark per policy of each list (support/policy_lists.hpp).
 bool register_policy_benchmarks() {

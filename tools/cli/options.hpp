@@ -8,6 +8,8 @@
 #include <streamclust/io/record.hpp>
 #include <streamclust/sensors.hpp>
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
@@ -63,6 +65,9 @@ struct ClusterOptions {
   float elevation_min = -90.0f, elevation_max = 90.0f;
   float z_min = -3.0f, z_max = 3.0f;
   float min_range = 0.1f;
+  // sensor poses (motion compensation) and mount: tools/cli/poses.hpp loads them
+  std::string poses_path;                         ///< --poses FILE: TUM trajectory; empty: none
+  std::optional<std::array<double, 3>> mount_deg;  ///< --mount ROLL,PITCH,YAW [deg]; empty: none given
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
   bool all_cycles = false;
@@ -249,6 +254,30 @@ inline bool parse_input_option(ArgCursor& c, io::ReadOptions& read) {
   return true;
 }
 
+/// Parses the value of `--mount`: three comma-separated angles in degrees
+/// (roll, pitch, yaw; each finite, -360 to 360).
+inline std::array<double, 3> parse_mount(const std::string& value) {
+  const std::string expected =
+      "--mount: expected ROLL,PITCH,YAW in degrees (e.g. 0,15,0 or 180,0,0), got '" + value + "'";
+  std::array<double, 3> angles{};
+  std::size_t start = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto comma = value.find(',', start);
+    if ((k < 2) != (comma != std::string::npos)) throw UsageError(expected);
+    const std::string item = value.substr(start, k < 2 ? comma - start : std::string::npos);
+    try {
+      angles[k] = parse_number("--mount", item);
+    } catch (const UsageError&) {
+      throw UsageError(expected);
+    }
+    if (!(std::abs(angles[k]) <= 360.0)) {
+      throw UsageError("--mount: expected angles from -360 to 360 degrees, got '" + value + "'");
+    }
+    start = comma + 1;
+  }
+  return angles;
+}
+
 /// Parses `streamclust cluster` arguments (argv after the subcommand).
 inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args) {
   ClusterOptions o;
@@ -272,6 +301,10 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
                                                                             : ProjectionKind::cylindrical;
     } else if (a == "--mode") {
       o.mode = c.choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
+    } else if (a == "--poses") {
+      o.poses_path = c.value();
+    } else if (a == "--mount") {
+      o.mount_deg = parse_mount(c.value());
     } else if (a == "--labels") {
       o.labels_path = c.value();
     } else if (a == "--report") {
