@@ -82,9 +82,13 @@ class BruteGround {
     }
     if (!bound) return sc::SurfaceClass::object;
     if (p_.sensor_height > 0.0f) {
-      const float cone = world.z() - ray.z() - p_.sensor_height +
-                         std::tan(p_.max_slope_deg * 0.01745329252f) * std::hypot(ray.x(), ray.y());
-      bound = std::min(*bound, cone);
+      const float sensor_z = world.z() - ray.z();
+      const float d = std::hypot(ray.x(), ray.y());
+      if (p_.lowest_ray_elevation_deg > -89.9f &&
+          *bound <= sensor_z + std::tan(p_.lowest_ray_elevation_deg * 0.01745329252f) * d + p_.blind_margin) {
+        bound = std::min(*bound, sensor_z - p_.sensor_height);
+      }
+      bound = std::min(*bound, sensor_z - p_.sensor_height + std::tan(p_.max_slope_deg * 0.01745329252f) * d);
     }
     return world.z() <= *bound + p_.ground_tolerance ? sc::SurfaceClass::ground : sc::SurfaceClass::object;
   }
@@ -249,6 +253,7 @@ TEST_CASE("HeightMapGround decides as its rule computed from the live points (a 
     p.search_radius = static_cast<float>(round % 4);
     p.ceiling_min_agreement = 0.3f;
     p.sensor_height = round % 2 == 0 ? 0.0f : 1.0f;
+    p.lowest_ray_elevation_deg = round % 4 == 1 ? -7.0f : -90.0f;
     sc::HeightMapGround model(p);
     BruteGround brute(p);
     std::deque<Eigen::Vector3f> window;

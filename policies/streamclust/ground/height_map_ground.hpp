@@ -41,7 +41,11 @@ namespace streamclust {
 /// under the sensor plus tan(max_slope) times the horizontal distance from
 /// it (a cone): near a sensor that cannot see the ground (a level Mid-360
 /// sees the floor from 8 m on), the lowest layer of a cell is an object's
-/// bottom, which the cone keeps an object. A point is ground iff
+/// bottom, which the cone keeps an object. With `lowest_ray_elevation_deg`
+/// too, a bound no higher than `blind_margin` above where the lowest ray
+/// reaches (sensor z + tan(lowest elevation) x distance) is where the field
+/// of view cuts an object off: the ground is hidden, taken level with the
+/// ground under the sensor. A point is ground iff
 /// z <= G + ground_tolerance; with no layer within reach it is an object (a
 /// cold start costs coverage of the ground, never objects). The tolerance
 /// absorbs the rise of a slope within a cell (tan(15 deg) x 0.5 m =
@@ -78,6 +82,10 @@ class HeightMapGround {
     float search_radius = 2.0f;        ///< [m] how far a cold cell looks for ground, [0, 50]
     std::uint32_t support = 2;         ///< points that make a layer, [1, 1000]
     float sensor_height = 0.0f;        ///< [m] sensor above the ground under it, [0, 100]; 0: unknown (no cone)
+    /// [deg] elevation of the sensor's lowest ray in world orientation (a
+    /// level Mid-360: -7), [-90, 90]; -90: off. Needs sensor_height.
+    float lowest_ray_elevation_deg = -90.0f;
+    float blind_margin = 0.15f;        ///< [m] a layer this close above the lowest ray's reach is a cut-off, [0, 2]
     bool detect_ceiling = true;        ///< class level layers overhead as ceiling
     float ceiling_clearance = 0.5f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
     float ceiling_tolerance = 0.2f;    ///< [m] below the cell's highest layer still ceiling, [0, 2]
@@ -105,6 +113,9 @@ class HeightMapGround {
           params.ceiling_tolerance, "[0, 2] m");
     check(params.ceiling_flatness >= 0.0f && params.ceiling_flatness <= 2.0f, "ceiling_flatness",
           params.ceiling_flatness, "[0, 2] m");
+    check(params.lowest_ray_elevation_deg >= -90.0f && params.lowest_ray_elevation_deg <= 90.0f,
+          "lowest_ray_elevation_deg", params.lowest_ray_elevation_deg, "[-90, 90] degrees");
+    check(params.blind_margin >= 0.0f && params.blind_margin <= 2.0f, "blind_margin", params.blind_margin, "[0, 2] m");
     check(params.sensor_height >= 0.0f && params.sensor_height <= 100.0f, "sensor_height", params.sensor_height,
           "[0, 100] m (0: unknown)");
     check(params.ceiling_min_agreement > 0.0f && params.ceiling_min_agreement <= 1.0f, "ceiling_min_agreement",
@@ -112,6 +123,10 @@ class HeightMapGround {
     inverse_cell_ = 1.0f / params.cell_size;
     inverse_bin_ = 1.0f / params.bin_height;
     slope_ = std::tan(params.max_slope_deg * 0.01745329252f);
+    // -90 degrees: no cut-off (a ray straight down reaches everything).
+    lowest_ray_slope_ = params.lowest_ray_elevation_deg <= -89.9f
+                            ? -1e30f
+                            : std::tan(params.lowest_ray_elevation_deg * 0.01745329252f);
     rise_per_cell_ = slope_ * params.cell_size;
     search_rings_ = static_cast<std::int32_t>(std::ceil(params.search_radius * inverse_cell_));
   }
@@ -127,10 +142,17 @@ class HeightMapGround {
     std::optional<float> bound = ground_bound(k);
     if (!bound) return SurfaceClass::object;
     if (params_.sensor_height > 0.0f) {
-      // The cone from the ground under the sensor (at world - ray).
-      const float under_sensor = world.z() - ray.z() - params_.sensor_height;
-      const float cone = under_sensor + slope_ * std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
-      if (cone < *bound) bound = cone;
+      const float sensor_z = world.z() - ray.z();
+      const float under_sensor = sensor_z - params_.sensor_height;
+      const float distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
+      // A layer no higher than the lowest ray reaches here is where the
+      // field of view cuts an object off, not a surface: the ground is
+      // hidden below it, taken as level with the ground under the sensor.
+      if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) {
+        bound = std::min(*bound, under_sensor);
+      }
+      // The cone from the ground under the sensor.
+      bound = std::min(*bound, under_sensor + slope_ * distance);
     }
     return world.z() <= *bound + params_.ground_tolerance ? SurfaceClass::ground : SurfaceClass::object;
   }
@@ -220,6 +242,7 @@ class HeightMapGround {
   float inverse_cell_ = 2.0f;
   float inverse_bin_ = 20.0f;
   float slope_ = 0.27f;
+  float lowest_ray_slope_ = -1e30f;
   float rise_per_cell_ = 0.13f;
   std::int32_t search_rings_ = 4;
 };
