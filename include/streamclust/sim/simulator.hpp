@@ -42,6 +42,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -383,7 +384,7 @@ class Simulator {
   Ray pending_;
   Stats stats_;
   std::vector<Knot> knots_;
-  bool mount_rotates_ = false;  // false: the identity rotation, skipped (bit for bit the unmounted stream)
+  bool mount_rotates_ = false;  // false: the identity rotation, skipped (no extra rounding)
   bool mount_offset_ = false;
   Eigen::Matrix3f mount_rotation_ = Eigen::Matrix3f::Identity();
   Eigen::Vector3f mount_translation_ = Eigen::Vector3f::Zero();
