@@ -22,6 +22,7 @@
 
 namespace {
 
+namespace sc = streamclust;
 namespace sim = streamclust::sim;
 
 /// A test-only sensor: a fixed list of directions fired in a cycle at a fixed rate.
@@ -225,7 +226,7 @@ TEST_CASE("sim shapes: random rays hit the surfaces they report") {
 
 TEST_CASE("sim scene: nearest hit and instance ids") {
   sim::Scene scene;
-  scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kZ, {0, 0, 0})));
+  scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kZ, {0, 0, 0})), sc::SurfaceClass::ground);
   const int near_box = scene.add_object("box", sim::ShapeSet().add(sim::Box::aligned({4, -1, 0}, {5, 1, 2})));
   const int far_box = scene.add_object("box", sim::ShapeSet().add(sim::Box::aligned({8, -1, 0}, {9, 1, 3})));
   const int ball = scene.add_object("ball", sim::ShapeSet().add(sim::Sphere{{0, 6, 1}, 0.5f}));
@@ -241,10 +242,12 @@ TEST_CASE("sim scene: nearest hit and instance ids") {
   auto hit = scene.cast(o, -kZ, 0.0);
   REQUIRE(hit);
   CHECK(hit->instance == 0);
+  CHECK(hit->surface == sc::SurfaceClass::ground);
   CHECK(hit->range == doctest::Approx(1.0f));
   hit = scene.cast(o, kX, 0.0);
   REQUIRE(hit);
   CHECK(hit->instance == near_box);
+  CHECK(hit->surface == sc::SurfaceClass::object);
   CHECK(hit->range == doctest::Approx(4.0f));
   hit = scene.cast({0, 0, 2.5f}, kX, 0.0);  // over the near box
   REQUIRE(hit);
@@ -258,6 +261,8 @@ TEST_CASE("sim scene: nearest hit and instance ids") {
   CHECK_FALSE(scene.cast(o, Eigen::Vector3f::Zero(), 0.0));      // degenerate
   CHECK(scene.position(ball, 0.0).isApprox(Eigen::Vector3f(0, 6, 1)));
   CHECK_THROWS_AS(scene.position(4, 0.0), std::out_of_range);
+  CHECK_THROWS_AS(scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {30, 0, 0})), sc::SurfaceClass::object),
+                  std::invalid_argument);
 }
 
 TEST_CASE("sim scene: trajectories") {
@@ -493,7 +498,7 @@ TEST_CASE("sim scenes: office objects carry their ids") {
 
 TEST_CASE("sim simulator: ego-motion shrinks the range to a wall at the driving speed") {
   sim::Scene wall;
-  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})));
+  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})), sc::SurfaceClass::wall);
   sim::Simulator<CyclingSensor>::Params params;
   params.range_noise = 0.0f;
   params.velocity = {2.0f, 0.0f, 0.0f};
@@ -520,7 +525,7 @@ TEST_CASE("sim simulator: ego-motion shrinks the range to a wall at the driving 
 
 TEST_CASE("sim simulator: yaw rotates the rays into the world") {
   sim::Scene wall;
-  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})));
+  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})), sc::SurfaceClass::wall);
   sim::Simulator<CyclingSensor>::Params params;
   params.range_noise = 0.0f;
   params.yaw_rate = 0.3f;
@@ -591,7 +596,8 @@ TEST_CASE("sim simulator: dropout rate and range noise") {
                          .add(sim::Plane::infinite(Eigen::Vector3f::UnitY(), {0, -10, 0}))
                          .add(sim::Plane::infinite(Eigen::Vector3f::UnitY(), {0, 10, 0}))
                          .add(sim::Plane::infinite(kZ, {0, 0, -9}))
-                         .add(sim::Plane::infinite(kZ, {0, 0, 11})));
+                         .add(sim::Plane::infinite(kZ, {0, 0, 11})),
+                     sc::SurfaceClass::wall);
   SUBCASE("dropout") {
     sim::Simulator<CyclingSensor>::Params params;
     params.dropout = 0.3f;
@@ -662,7 +668,7 @@ TEST_CASE("sim simulator: invalid params and scenes without returns throw") {
 
 TEST_CASE("sim simulator: a piecewise ego-motion profile integrates pose and turns the rays") {
   sim::Scene wall;
-  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})));
+  wall.add_structure(sim::ShapeSet().add(sim::Plane::infinite(kX, {20, 0, 0})), sc::SurfaceClass::wall);
   sim::Simulator<CyclingSensor>::Params params;
   params.range_noise = 0.0f;
   params.velocity = {1.0f, 0.0f, 0.0f};  // before the first segment

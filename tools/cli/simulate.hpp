@@ -3,14 +3,19 @@
 
 /// \file
 /// `streamclust simulate`: writes a simulated stream with its ground truth
-/// (the `label` column/field is the id of the object hit: 0 for structure).
+/// (the `label` column/field is the id of the object hit: 0 for structure;
+/// optionally a `class` column with the SurfaceClass number) and, beside it,
+/// the sensor trajectory it used as a TUM file (200 Hz).
 /// Sensors: the Livox models of streamclust::sim (mid360, mid40, mid70, avia)
-/// and a 32-beam spinning sensor; scenes: office, forest, street. The older
-/// stand-in (`--sensor synthetic --scene room`) stays available.
+/// and a 32-beam spinning sensor, on a tilted or upside-down mount if asked;
+/// scenes: office, forest, street, hills. The older stand-in (`--sensor
+/// synthetic --scene room`) stays available.
 
 #include "cli/options.hpp"
 
+#include <streamclust/io/tum.hpp>
 #include <streamclust/io/writers.hpp>
+#include <streamclust/motion/pose.hpp>
 #include <streamclust/sim/scenes.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
@@ -19,10 +24,13 @@
 #include <streamclust/sim/simulator.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
 
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
 #include <ostream>
 #include <stdexcept>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace streamclust::cli {
@@ -45,9 +53,19 @@ struct SimulateOptions {
   double burst_length = 0.0;    ///< [s]; 0 = no burst
   float burst_speed = 0.0f;     ///< [m/s]
   float burst_yaw_rate = 0.0f;  ///< [rad/s]
+  // The sensor's mount on the vehicle (--mount ROLL,PITCH,YAW in degrees).
+  double mount_roll_deg = 0.0;   ///< 180: upside down
+  double mount_pitch_deg = 0.0;  ///< > 0: forward axis tilted down
+  double mount_yaw_deg = 0.0;
+  bool mount_given = false;      ///< --mount was on the command line
   std::string out;
+  std::string trajectory;        ///< TUM output; "" = `out` without its extension + ".tum"
+  bool class_column = false;     ///< CSV: a `class` column (SurfaceClass number)
   bool quiet = false;
 };
+
+/// Trajectory poses per second written beside a simulated stream.
+inline constexpr double kTrajectoryRateHz = 200.0;
 
 /// Parses one option of the simulated scenario (sensor, scene, duration,
 /// seed, ego-motion, burst, noise, dropout, max range), shared by `simulate`
@@ -59,10 +77,26 @@ inline bool parse_simulation_option(ArgCursor& c, SimulateOptions& o) {
     o.sensor = c.choice({"mid360", "mid40", "mid70", "avia", "spinning32", "synthetic"});
   } else if (a == "--scene") {
     o.scene = c.value();
-    if (o.scene != "office" && o.scene != "forest" && o.scene != "street" && o.scene != "room") {
-      throw UsageError("--scene: expected office|forest|street (or room with --sensor synthetic), got '" + o.scene +
-                       "'");
+    bool known = o.scene == "room";
+    for (const char* name : sim::kSceneNames) known = known || o.scene == name;
+    if (!known) {
+      throw UsageError("--scene: expected office|forest|street|hills (or room with --sensor synthetic), got '" +
+                       o.scene + "'");
     }
+  } else if (a == "--mount") {
+    const std::string v = c.value();
+    const auto c1 = v.find(',');
+    const auto c2 = c1 == std::string::npos ? std::string::npos : v.find(',', c1 + 1);
+    if (c2 == std::string::npos || v.find(',', c2 + 1) != std::string::npos) {
+      throw UsageError("--mount: expected ROLL,PITCH,YAW in degrees, got '" + v + "'");
+    }
+    o.mount_roll_deg = parse_number(a, v.substr(0, c1));
+    o.mount_pitch_deg = parse_number(a, v.substr(c1 + 1, c2 - c1 - 1));
+    o.mount_yaw_deg = parse_number(a, v.substr(c2 + 1));
+    for (const double deg : {o.mount_roll_deg, o.mount_pitch_deg, o.mount_yaw_deg}) {
+      if (!(deg >= -360.0 && deg <= 360.0)) throw UsageError("--mount: angles must be in [-360, 360] degrees");
+    }
+    o.mount_given = true;
   } else if (a == "--speed") {
     o.speed = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--yaw-rate") {
@@ -111,6 +145,9 @@ inline void validate_simulation_options(const SimulateOptions& o) {
   if (o.sensor == "synthetic" && o.burst_length > 0.0) {
     throw UsageError("--burst needs a simulated sensor (not --sensor synthetic)");
   }
+  if (o.sensor == "synthetic" && o.mount_given) {
+    throw UsageError("--mount needs a simulated sensor (not --sensor synthetic)");
+  }
 }
 
 inline SimulateOptions parse_simulate_options(const std::vector<std::string>& args) {
@@ -120,6 +157,10 @@ inline SimulateOptions parse_simulate_options(const std::vector<std::string>& ar
     if (parse_simulation_option(c, o)) continue;
     if (a == "--out") {
       o.out = c.value();
+    } else if (a == "--trajectory") {
+      o.trajectory = c.value();
+    } else if (a == "--class-column") {
+      o.class_column = true;
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;
     } else {
@@ -133,11 +174,19 @@ inline SimulateOptions parse_simulate_options(const std::vector<std::string>& ar
     return o.out.size() >= e.size() && o.out.compare(o.out.size() - e.size(), e.size(), e) == 0;
   };
   if (!ends_with(".csv") && !ends_with(".pcd")) throw UsageError("--out: expected a .csv or .pcd file name");
+  if (o.class_column && !ends_with(".csv")) {
+    throw UsageError("--class-column: only the CSV output has it (the PCD writer has a fixed set of fields)");
+  }
+  if (o.class_column && o.sensor == "synthetic") {
+    throw UsageError("--class-column needs a simulated sensor (the synthetic stand-in has no surface classes)");
+  }
+  if (o.trajectory.empty()) o.trajectory = o.out.substr(0, o.out.size() - 4) + ".tum";
+  if (o.trajectory == o.out) throw UsageError("--trajectory: must differ from --out");
   return o;
 }
 
 /// The simulator parameters of a scenario (noise, dropout, range, ego-motion
-/// with its optional burst, seed).
+/// with its optional burst, mount, seed).
 template <class Sensor>
 typename sim::Simulator<Sensor>::Params simulator_params(const SimulateOptions& o) {
   typename sim::Simulator<Sensor>::Params p;
@@ -147,6 +196,7 @@ typename sim::Simulator<Sensor>::Params simulator_params(const SimulateOptions& 
   p.velocity = Eigen::Vector3f(o.speed, 0.0f, 0.0f);
   p.yaw_rate = o.yaw_rate;
   p.seed = o.seed;
+  p.mount = mount_from_roll_pitch_yaw_deg(o.mount_roll_deg, o.mount_pitch_deg, o.mount_yaw_deg);
   if (o.burst_length > 0.0) {
     p.motion_profile.push_back(
         sim::MotionSegment{o.burst_start, Eigen::Vector3f(o.burst_speed, 0.0f, 0.0f), o.burst_yaw_rate});
@@ -156,61 +206,128 @@ typename sim::Simulator<Sensor>::Params simulator_params(const SimulateOptions& 
   return p;
 }
 
+/// A simulated stream: the points (ground-truth instance id in `label`),
+/// their surface classes (one per record; `object` throughout for the
+/// synthetic stand-in, which has none) and the sensor trajectory over the
+/// stream's span (first to last point time, both included, at
+/// kTrajectoryRateHz; world from sensor).
+struct SimulatedStream {
+  std::vector<io::Record> records;
+  std::vector<SurfaceClass> classes;
+  std::vector<StampedPose> trajectory;
+};
+
 template <class Sensor>
-void simulate_into(Sensor sensor, const SimulateOptions& o, std::vector<io::Record>& records) {
-  sim::Scene scene = o.scene == "forest"   ? sim::forest_scene(o.seed)
-                     : o.scene == "street" ? sim::street_scene(o.seed)
-                                           : sim::office_scene(o.seed);
-  sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), simulator_params<Sensor>(o));
+void simulate_into(Sensor sensor, const SimulateOptions& o, SimulatedStream& stream) {
+  sim::Simulator<Sensor> simulator(std::move(sensor), sim::make_scene(o.scene, o.seed), simulator_params<Sensor>(o));
   while (simulator.time() < o.seconds) {
     const sim::SimPoint s = simulator.next();
-    records.push_back(io::Record{s.x, s.y, s.z, s.intensity, s.t, s.instance});
+    stream.records.push_back(io::Record{s.x, s.y, s.z, s.intensity, s.t, s.instance});
+    stream.classes.push_back(s.surface);
   }
+  const double t0 = stream.records.empty() ? 0.0 : stream.records.front().t;
+  const double t1 = stream.records.empty() ? 0.0 : stream.records.back().t;
+  stream.trajectory = simulator.trajectory(t0, t1, kTrajectoryRateHz);
 }
 
-/// The whole simulated stream of a scenario, in firing order, with the
-/// ground-truth instance id in `label`. Bad simulator parameters become a
-/// UsageError.
-inline std::vector<io::Record> simulate_records(const SimulateOptions& o) {
-  std::vector<io::Record> records;
+/// The whole simulated stream of a scenario, in firing order, with its
+/// classes and trajectory. Bad simulator parameters become a UsageError.
+inline SimulatedStream simulate_stream(const SimulateOptions& o) {
+  SimulatedStream stream;
   try {
     if (o.sensor == "synthetic") {
       SyntheticStream::Params p;
       p.point_rate = o.point_rate;
       p.seed = o.seed;
-      SyntheticStream stream(p);
-      while (stream.time() < o.seconds) {
-        const SyntheticPoint s = stream.next();
-        records.push_back(io::Record{s.x, s.y, s.z, s.intensity, s.t, s.object});
+      SyntheticStream synthetic(p);
+      while (synthetic.time() < o.seconds) {
+        const SyntheticPoint s = synthetic.next();
+        stream.records.push_back(io::Record{s.x, s.y, s.z, s.intensity, s.t, s.object});
       }
+      stream.classes.assign(stream.records.size(), SurfaceClass::object);
+      // A sensor at rest, sensor_height above the floor.
+      const Pose fixed{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.0, 0.0, static_cast<double>(p.sensor_height))};
+      const double t1 = stream.records.empty() ? 0.0 : stream.records.back().t;
+      for (std::uint64_t k = 0;; ++k) {
+        const double t = static_cast<double>(k) / kTrajectoryRateHz;
+        if (!(t < t1 - 1e-9)) break;
+        stream.trajectory.push_back(StampedPose{t, fixed});
+      }
+      stream.trajectory.push_back(StampedPose{t1, fixed});
     } else if (o.sensor == "mid360") {
-      simulate_into(sim::Mid360Model(sim::Mid360Model::Params{}), o, records);
+      simulate_into(sim::Mid360Model(sim::Mid360Model::Params{}), o, stream);
     } else if (o.sensor == "mid40") {
-      simulate_into(sim::RisleyPairModel::mid40(), o, records);
+      simulate_into(sim::RisleyPairModel::mid40(), o, stream);
     } else if (o.sensor == "mid70") {
-      simulate_into(sim::RisleyPairModel::mid70(), o, records);
+      simulate_into(sim::RisleyPairModel::mid70(), o, stream);
     } else if (o.sensor == "avia") {
-      simulate_into(sim::AviaModel(sim::AviaModel::Params{}), o, records);
+      simulate_into(sim::AviaModel(sim::AviaModel::Params{}), o, stream);
     } else {
-      simulate_into(sim::SpinningModel(sim::SpinningModel::Params{}), o, records);
+      simulate_into(sim::SpinningModel(sim::SpinningModel::Params{}), o, stream);
     }
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return records;
+  return stream;
+}
+
+/// The points of simulate_stream alone (ground-truth instance id in `label`).
+inline std::vector<io::Record> simulate_records(const SimulateOptions& o) { return simulate_stream(o).records; }
+
+/// CSV `x,y,z,intensity,t,label,class`: the io writer's columns and number
+/// format plus the SurfaceClass number of each record.
+inline void write_csv_with_classes(const std::string& path, const std::vector<io::Record>& records,
+                                   const std::vector<SurfaceClass>& classes) {
+  if (classes.size() != records.size()) throw std::invalid_argument(path + ": one class per record expected");
+  io::detail::OutFile file(path);
+  std::string s = "x,y,z,intensity,t,label,class\n";
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    io::detail::append_point_fields(s, records[i], ',');
+    s += std::to_string(records[i].label);
+    s += ',';
+    s += std::to_string(static_cast<int>(classes[i]));
+    s += '\n';
+    if (s.size() > (1u << 16)) {
+      file.write(s);
+      s.clear();
+    }
+  }
+  file.write(s);
+  file.close();
+}
+
+/// Writes `poses` as a TUM trajectory file (throws std::runtime_error naming
+/// the file when it cannot be written).
+inline void write_trajectory(const std::string& path, const std::vector<StampedPose>& poses) {
+  std::vector<io::TumRecord> rows;
+  rows.reserve(poses.size());
+  for (const StampedPose& p : poses) {
+    const Eigen::Quaterniond& q = p.pose.rotation;
+    const Eigen::Vector3d& x = p.pose.translation;
+    rows.push_back(io::TumRecord{p.time, x.x(), x.y(), x.z(), q.x(), q.y(), q.z(), q.w()});
+  }
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file) throw std::runtime_error(path + ": cannot open for writing");
+  io::write_tum(file, rows);
+  file.close();
+  if (!file) throw std::runtime_error(path + ": write failed (disk full?)");
 }
 
 inline int run_simulate(const SimulateOptions& o, std::ostream& out) {
-  const std::vector<io::Record> records = simulate_records(o);
+  const SimulatedStream stream = simulate_stream(o);
   const bool pcd = o.out.size() >= 4 && o.out.compare(o.out.size() - 4, 4, ".pcd") == 0;
   if (pcd) {
-    io::write_pcd(o.out, records, {}, "binary");
+    io::write_pcd(o.out, stream.records, {}, "binary");
+  } else if (o.class_column) {
+    write_csv_with_classes(o.out, stream.records, stream.classes);
   } else {
-    io::write_csv_points(o.out, records);
+    io::write_csv_points(o.out, stream.records);
   }
+  write_trajectory(o.trajectory, stream.trajectory);
   if (!o.quiet) {
-    out << "streamclust: simulated " << records.size() << " points (" << o.seconds << " s, sensor " << o.sensor
-        << ", scene " << o.scene << ", seed " << o.seed << ") -> " << o.out << "\n";
+    out << "streamclust: simulated " << stream.records.size() << " points (" << o.seconds << " s, sensor "
+        << o.sensor << ", scene " << o.scene << ", seed " << o.seed << ") -> " << o.out << ", trajectory -> "
+        << o.trajectory << "\n";
   }
   return kOk;
 }

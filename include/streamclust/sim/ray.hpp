@@ -10,6 +10,8 @@
 /// answers `std::optional<Hit> cast(const Eigen::Vector3f& origin, const
 /// Eigen::Vector3f& direction, double time) const` in the world frame.
 
+#include <streamclust/surface_class.hpp>
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -27,6 +29,7 @@ struct Ray {
 struct Hit {
   float range = 0.0f;  ///< distance along the ray [m]
   int instance = 0;    ///< ground-truth instance id; 0 = structure (ground, walls, ceiling)
+  SurfaceClass surface = SurfaceClass::object;  ///< ground-truth class: `object` for instance > 0, else the structure's
 };
 
 /// A simulated point with its ground truth, in the sensor frame at capture time.
@@ -37,6 +40,7 @@ struct SimPoint {
   float intensity = 0.0f;
   double t = 0.0;    ///< stream time [s]
   int instance = 0;  ///< ground truth: 0 structure, > 0 object instance
+  SurfaceClass surface = SurfaceClass::object;  ///< ground truth: `object` for instance > 0, else ground, wall or ceiling
 };
 
 }  // namespace streamclust::sim

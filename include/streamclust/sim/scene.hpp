@@ -3,13 +3,16 @@
 
 /// \file
 /// A ray-castable world for the scan simulator: static structure (instance
-/// 0), static objects and moving objects, each object a set of analytic
-/// shapes (shapes.hpp) with a unique ground-truth instance id > 0.
+/// 0, each piece with its surface class: ground, wall or ceiling), static
+/// objects and moving objects, each object a set of analytic shapes
+/// (shapes.hpp, terrain.hpp) with a unique ground-truth instance id > 0 and
+/// the class `object`.
 ///
 /// \code
 /// namespace sim = streamclust::sim;
 /// sim::Scene scene;
-/// scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite({0, 0, 1}, {0, 0, 0})));  // ground, id 0
+/// scene.add_structure(sim::ShapeSet().add(sim::Plane::infinite({0, 0, 1}, {0, 0, 0})),
+///                     streamclust::SurfaceClass::ground);  // id 0
 /// const int box = scene.add_object("box", sim::ShapeSet().add(sim::Box::aligned({4, -1, 0}, {5, 1, 1})));
 /// const int walker = scene.add_moving_object(
 ///     "person", sim::ShapeSet().add(sim::Capsule::standing(0, 0, 0, 1.7f, 0.3f)),  // local frame, feet at 0
@@ -22,6 +25,8 @@
 
 #include <streamclust/sim/ray.hpp>
 #include <streamclust/sim/shapes.hpp>
+#include <streamclust/sim/terrain.hpp>
+#include <streamclust/surface_class.hpp>
 
 #include <Eigen/Core>
 
@@ -102,6 +107,7 @@ class ShapeSet {
   ShapeSet& add(const Sphere& s) { return push(spheres_, s); }
   ShapeSet& add(const Ellipsoid& e) { return push(ellipsoids_, e); }
   ShapeSet& add(const Capsule& c) { return push(capsules_, c); }
+  ShapeSet& add(const Terrain& t) { return push(terrains_, t); }
 
   /// All shapes of `other`, in their coordinates.
   ShapeSet& add(const ShapeSet& other) {
@@ -111,6 +117,7 @@ class ShapeSet {
     for (const Sphere& s : other.spheres_) add(s);
     for (const Ellipsoid& e : other.ellipsoids_) add(e);
     for (const Capsule& c : other.capsules_) add(c);
+    for (const Terrain& t : other.terrains_) add(t);
     return *this;
   }
 
@@ -119,12 +126,14 @@ class ShapeSet {
   /// True when the set holds an infinite plane.
   bool unbounded() const { return unbounded_; }
   std::size_t size() const {
-    return planes_.size() + boxes_.size() + cylinders_.size() + spheres_.size() + ellipsoids_.size() + capsules_.size();
+    return planes_.size() + boxes_.size() + cylinders_.size() + spheres_.size() + ellipsoids_.size() + capsules_.size() +
+           terrains_.size();
   }
   bool empty() const { return size() == 0; }
 
   /// The nearest hit distance over all shapes if below `best`, else `best`.
-  /// `direction` should be a unit vector. O(size()).
+  /// `direction` should be a unit vector. O(size()), a height field
+  /// O(its marching steps).
   float nearest(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                 float best = std::numeric_limits<float>::infinity()) const {
     consider(planes_, origin, direction, best);
@@ -133,6 +142,10 @@ class ShapeSet {
     consider(spheres_, origin, direction, best);
     consider(ellipsoids_, origin, direction, best);
     consider(capsules_, origin, direction, best);
+    for (const Terrain& t : terrains_) {
+      const std::optional<float> hit = t.intersect(origin, direction, best);
+      if (hit && *hit < best) best = *hit;
+    }
     return best;
   }
 
@@ -164,12 +177,13 @@ class ShapeSet {
   std::vector<Sphere> spheres_;
   std::vector<Ellipsoid> ellipsoids_;
   std::vector<Capsule> capsules_;
+  std::vector<Terrain> terrains_;
   Aabb bounds_;
   bool unbounded_ = false;
 };
 
 /// Position and heading of a moving object at one time.
-struct Pose {
+struct ObjectPose {
   Eigen::Vector3f position = Eigen::Vector3f::Zero();  ///< world [m]
   float cos_yaw = 1.0f;                                ///< heading (direction of motion) about +z
   float sin_yaw = 0.0f;
@@ -224,8 +238,8 @@ class Trajectory {
   }
 
   /// Pose at stream time `time` [s]. O(number of polyline points).
-  Pose pose(double time) const {
-    Pose p;
+  ObjectPose pose(double time) const {
+    ObjectPose p;
     if (kind_ == Kind::circle) {
       constexpr double kTwoPi = 6.283185307179586476925;
       double angle = static_cast<double>(phase_);
@@ -306,15 +320,38 @@ struct ObjectInfo {
 /// comment for an example and thread safety.
 class Scene {
  public:
-  /// Adds structure (instance 0): ground, walls, ceiling, facades. Infinite
-  /// planes are tested for every ray; bounded shapes are culled by bounds.
-  void add_structure(const ShapeSet& shapes) {
+  /// Adds structure (instance 0) of one surface class: `ground` (floors,
+  /// roads, terrain, kerbs, steps, sidewalks), `wall` (walls, facades,
+  /// fences) or `ceiling`. Infinite planes are tested for every ray; bounded
+  /// shapes are culled by bounds. Throws std::invalid_argument for the
+  /// class `object` (objects have their own ids: add_object).
+  void add_structure(const ShapeSet& shapes, SurfaceClass surface) {
+    if (surface == SurfaceClass::object) {
+      throw std::invalid_argument(
+          "Scene::add_structure: surface = object is invalid, expected ground, wall or ceiling (objects: add_object)");
+    }
     if (shapes.empty()) return;
     if (shapes.unbounded()) {
-      unbounded_.push_back(Body{shapes.bounds(), shapes, 0});
+      unbounded_.push_back(Body{shapes.bounds(), shapes, 0, surface});
     } else {
-      statics_.push_back(Body{shapes.bounds(), shapes, 0});
+      statics_.push_back(Body{shapes.bounds(), shapes, 0, surface});
     }
+  }
+
+  /// Adds `terrain` as ground structure and makes it the scene's ground
+  /// height (`ground_height`, which a simulated vehicle follows; the last
+  /// terrain added wins).
+  void add_terrain(const Terrain& terrain) {
+    add_structure(ShapeSet().add(terrain), SurfaceClass::ground);
+    ground_ = terrain;
+  }
+
+  /// The height [m] of the scene's terrain under (x, y), clamped into its
+  /// rectangle; nothing for a scene without one (add_terrain). O(terrain terms).
+  std::optional<float> ground_height(float x, float y) const {
+    if (!ground_) return std::nullopt;
+    const Aabb b = ground_->bounds();
+    return ground_->height(std::clamp(x, b.lo.x(), b.hi.x()), std::clamp(y, b.lo.y(), b.hi.y()));
   }
 
   /// Adds a static object in world coordinates; returns its instance id
@@ -323,7 +360,7 @@ class Scene {
   int add_object(std::string label, const ShapeSet& shapes) {
     check_object(shapes, "add_object");
     const int id = next_id_++;
-    statics_.push_back(Body{shapes.bounds(), shapes, id});
+    statics_.push_back(Body{shapes.bounds(), shapes, id, SurfaceClass::object});
     infos_.push_back(ObjectInfo{id, std::move(label), false, shapes.bounds()});
     anchors_.push_back(shapes.bounds().center());
     return id;
@@ -357,8 +394,8 @@ class Scene {
 
   /// The first surface along the ray from `origin` in `direction` (world
   /// frame; normalized here if it is not a unit vector) at stream time
-  /// `time` [s]: its distance [m] and instance id (0 for structure), or
-  /// nothing. Shapes containing the origin are ignored (shapes.hpp).
+  /// `time` [s]: its distance [m], instance id (0 for structure) and
+  /// surface class, or nothing. Shapes containing the origin are ignored (shapes.hpp).
   /// O(objects) bound tests plus the shapes of the objects whose bounds the
   /// ray crosses. Thread-safe.
   std::optional<Hit> cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, double time) const {
@@ -370,14 +407,15 @@ class Scene {
 
     float best = std::numeric_limits<float>::infinity();
     int instance = -1;
-    for (const Body& b : unbounded_) take(b.shapes.nearest(origin, d, best), b.instance, best, instance);
+    SurfaceClass surface = SurfaceClass::object;
+    for (const Body& b : unbounded_) take(b.shapes.nearest(origin, d, best), b, best, instance, surface);
     for (const Body& b : statics_) {
       if (!detail::ray_hits_aabb(b.bounds, origin, inv, best)) continue;
-      take(b.shapes.nearest(origin, d, best), b.instance, best, instance);
+      take(b.shapes.nearest(origin, d, best), b, best, instance, surface);
     }
     for (const Mover& m : movers_) {
       if (!detail::ray_hits_aabb(m.swept, origin, inv, best)) continue;
-      const Pose p = m.trajectory.pose(time);
+      const ObjectPose p = m.trajectory.pose(time);
       const float c = m.face_motion ? p.cos_yaw : 1.0f;
       const float s = m.face_motion ? p.sin_yaw : 0.0f;
       // Into the object frame: rotate by -yaw about the trajectory position.
@@ -391,10 +429,15 @@ class Scene {
       if (dist2 > m.local_radius * m.local_radius || tc + m.local_radius < 0.0f || tc - m.local_radius > best) {
         continue;
       }
-      take(m.shapes.nearest(lo, ld, best), m.instance, best, instance);
+      const float t = m.shapes.nearest(lo, ld, best);
+      if (t < best) {
+        best = t;
+        instance = m.instance;
+        surface = SurfaceClass::object;
+      }
     }
     if (instance < 0) return std::nullopt;
-    return Hit{best, instance};
+    return Hit{best, instance, surface};
   }
 
   /// The objects, in order of instance id (1, 2, ...). Structure is not listed.
@@ -424,6 +467,7 @@ class Scene {
     Aabb bounds;
     ShapeSet shapes;
     int instance = 0;
+    SurfaceClass surface = SurfaceClass::object;
   };
   struct Mover {
     ShapeSet shapes;  // local frame
@@ -435,10 +479,11 @@ class Scene {
     int instance = 0;
   };
 
-  static void take(float t, int id, float& best, int& instance) {
+  static void take(float t, const Body& b, float& best, int& instance, SurfaceClass& surface) {
     if (t < best) {
       best = t;
-      instance = id;
+      instance = b.instance;
+      surface = b.surface;
     }
   }
 
@@ -456,6 +501,7 @@ class Scene {
   std::vector<Mover> movers_;
   std::vector<ObjectInfo> infos_;
   std::vector<Eigen::Vector3f> anchors_;
+  std::optional<Terrain> ground_;
   int next_id_ = 1;
 };
 

@@ -3,8 +3,13 @@
 
 /// \file
 /// The scan simulator: a sensor model's rays, carried by a moving sensor,
-/// ray-cast into a Scene, returned as points with ground truth in the
-/// sensor frame at capture time.
+/// ray-cast into a Scene, returned as points with ground truth (instance id
+/// and surface class) in the sensor frame at capture time.
+///
+/// Poses: the vehicle moves (start_position, velocity, motion profile, yaw
+/// about world +z; its height follows the scene's terrain if it has one);
+/// the sensor sits on it with the rotation `mount` (tilted, upside down):
+/// `sensor_pose(t) = vehicle(t) * mount`, world from sensor.
 ///
 /// The sensor concept (see ray.hpp):
 ///
@@ -18,9 +23,11 @@
 /// sim::Simulator<MySensor>::Params params;
 /// params.velocity = {1.0f, 0.0f, 0.0f};  // drive along world +x at 1 m/s
 /// params.dropout = 0.05f;
+/// params.mount = streamclust::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);  // pitched 15 deg down
 /// sim::Simulator<MySensor> simulator(MySensor{}, sim::office_scene(7), params);
 /// while (simulator.time() < 1.0) {
-///   const sim::SimPoint p = simulator.next();  // sensor frame at p.t, p.instance = ground truth
+///   const sim::SimPoint p = simulator.next();  // sensor frame at p.t, p.instance / p.surface = ground truth
+///   const Eigen::Vector3d world = simulator.sensor_pose(p.t) * Eigen::Vector3d(p.x, p.y, p.z);
 ///   engine.insert(p);
 /// }
 /// \endcode
@@ -28,11 +35,14 @@
 /// Thread safety: none (one simulator per thread; the Scene may be shared
 /// by copies since casting is const).
 
+#include <streamclust/motion/pose.hpp>
 #include <streamclust/sim/ray.hpp>
 #include <streamclust/sim/scene.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -94,18 +104,24 @@ inline constexpr bool is_sim_sensor_v = detail::is_sim_sensor<S>::value;
 ///
 /// Per firing, in order:
 /// 1. `ray = sensor.next()`; the direction is normalized.
-/// 2. Sensor pose at `ray.time`: position `start_position + velocity * t`
+/// 2. Vehicle pose at `ray.time`: position `start_position + velocity * t`
 ///    (world frame, constant velocity), yaw `yaw_rate * t` about world +z
 ///    (no roll, no pitch). With a `motion_profile`, velocity and yaw rate
-///    are piecewise constant instead and the pose is their integral. The ray is rotated into the world and cast into
-///    the scene at `ray.time` (moving objects are where they are then).
+///    are piecewise constant instead and the pose is their integral. When
+///    the scene has a terrain (Scene::ground_height) and `follow_terrain`,
+///    the vehicle's z is the terrain height under it plus its start height
+///    above the terrain (`start_position.z - ground_height(start x, y)`);
+///    the vehicle stays level. The sensor pose is `vehicle * mount`. The ray
+///    is rotated into the world and cast into the scene at `ray.time`
+///    (moving objects are where they are then).
 /// 3. Measured range = true range + N(0, range_noise) along the ray.
 /// 4. No return when nothing is hit, when the measured range is outside
 ///    [min_range, max_range], or (with probability `dropout`, drawn only for
 ///    rays that would have returned) at random. Like a Livox driver, which
 ///    drops no-return firings, the simulator then moves on to the next ray.
 /// 5. The point is `direction * measured range` in the SENSOR frame at
-///    capture time, stamped `ray.time`, with the hit's instance id and an
+///    capture time, stamped `ray.time`, with the hit's instance id, its
+///    surface class (`object`, or the structure's: ground, wall, ceiling) and an
 ///    intensity `255 * reflectivity(instance)` (a fixed per-object value in
 ///    [38, 217], 89 for structure, like the calibrated reflectivity a Livox
 ///    reports: no range fall-off).
@@ -133,6 +149,12 @@ class Simulator {
     /// sensor moves with `velocity` and `yaw_rate`, from each segment's start
     /// on with the segment's. Starts finite, >= 0, non-decreasing.
     std::vector<MotionSegment> motion_profile;
+    /// The sensor on the vehicle (vehicle from sensor): a rotation, e.g.
+    /// `mount_from_roll_pitch_yaw_deg(180, 0, 0)` upside down, and an
+    /// optional lever arm [m]. Unit quaternion, finite translation.
+    Pose mount;
+    /// With a scene that has a terrain: the vehicle's height follows it.
+    bool follow_terrain = true;
   };
 
   /// What happened to the firings so far.
@@ -154,6 +176,15 @@ class Simulator {
       : sensor_(std::move(sensor)), scene_(std::move(scene)), params_(params), rng_(detail::make_rng(params.seed, 0x5115)) {
     validate(params_);
     build_knots();
+    const Eigen::Quaterniond& q = params_.mount.rotation;
+    mount_rotates_ = !(q.x() == 0.0 && q.y() == 0.0 && q.z() == 0.0);
+    mount_offset_ = !params_.mount.translation.isZero(0.0);
+    mount_rotation_ = q.toRotationMatrix().cast<float>();
+    mount_translation_ = params_.mount.translation.template cast<float>();
+    if (params_.follow_terrain) {
+      const std::optional<float> h = scene_.ground_height(params_.start_position.x(), params_.start_position.y());
+      if (h) terrain_clearance_ = params_.start_position.z() - *h;
+    }
     pending_ = sensor_.next();
   }
 
@@ -181,14 +212,50 @@ class Simulator {
   /// Stream time of the next firing [s] (it may produce no return).
   double time() const { return pending_.time; }
 
-  /// Sensor position in the world at time t [m]. O(segments of the motion profile).
+  /// Sensor position in the world at time t [m] (the vehicle's, plus the
+  /// mount's lever arm turned by the yaw). O(segments of the motion profile).
   Eigen::Vector3f sensor_position(double t) const {
-    const Knot* k = knot_at(t);
-    if (!k) return params_.start_position + static_cast<float>(t) * params_.velocity;
-    return k->position + static_cast<float>(t - k->start) * k->velocity;
+    const Eigen::Vector3f v = vehicle_position(t);
+    if (!mount_offset_) return v;
+    const double yaw = yaw_at(t);
+    const float c = static_cast<float>(std::cos(yaw));
+    const float s = static_cast<float>(std::sin(yaw));
+    const Eigen::Vector3f& m = mount_translation_;
+    return v + Eigen::Vector3f(c * m.x() - s * m.y(), s * m.x() + c * m.y(), m.z());
   }
-  /// Sensor yaw about world +z at time t [rad]. O(segments of the motion profile).
+  /// Vehicle yaw about world +z at time t [rad] (the sensor's heading when
+  /// the mount does not rotate). O(segments of the motion profile).
   float sensor_yaw(double t) const { return static_cast<float>(yaw_at(t)); }
+
+  /// World from sensor at time t: `vehicle(t) * mount`. Maps a point of
+  /// time t to the world: `sensor_pose(p.t) * Eigen::Vector3d(p.x, p.y, p.z)`
+  /// (to float rounding of the ray casting, about 1e-6 relative). O(segments).
+  Pose sensor_pose(double t) const {
+    const Pose vehicle{Eigen::Quaterniond(Eigen::AngleAxisd(yaw_at(t), Eigen::Vector3d::UnitZ())),
+                       vehicle_position(t).template cast<double>()};
+    return vehicle * params_.mount;
+  }
+
+  /// Sensor poses at `t0 + k / rate_hz` for every k with a time below `t1`,
+  /// then at `t1` (both ends included; a single pose when t0 == t1). Throws
+  /// std::invalid_argument unless t0, t1 are finite with t0 <= t1 and rate_hz is finite > 0.
+  /// O((t1 - t0) rate_hz) poses.
+  std::vector<StampedPose> trajectory(double t0, double t1, double rate_hz) const {
+    detail::require_param(std::isfinite(t0), "trajectory t0", t0, "a finite time [s]");
+    detail::require_param(std::isfinite(t1) && t1 >= t0, "trajectory t1", t1, "a finite time >= t0 [s]");
+    detail::require_param(std::isfinite(rate_hz) && rate_hz > 0.0, "trajectory rate_hz", rate_hz,
+                          "a finite rate > 0 [Hz]");
+    std::vector<StampedPose> poses;
+    const double span = (t1 - t0) * rate_hz;
+    poses.reserve(static_cast<std::size_t>(std::min(span, 1e8)) + 2);
+    for (std::uint64_t k = 0;; ++k) {
+      const double t = t0 + static_cast<double>(k) / rate_hz;
+      if (!(t < t1 - 1e-9)) break;
+      poses.push_back(StampedPose{t, sensor_pose(t)});
+    }
+    poses.push_back(StampedPose{t1, sensor_pose(t1)});
+    return poses;
+  }
 
   const Stats& stats() const { return stats_; }
   const Params& params() const { return params_; }
@@ -209,6 +276,11 @@ class Simulator {
     detail::require_param(p.velocity.allFinite(), "velocity (a component)", static_cast<double>(p.velocity.sum()),
                           "finite components [m/s]");
     detail::require_param(std::isfinite(p.yaw_rate), "yaw_rate", p.yaw_rate, "a finite value [rad/s]");
+    detail::require_param(p.mount.rotation.coeffs().allFinite() && std::abs(p.mount.rotation.norm() - 1.0) < 1e-6,
+                          "mount rotation (quaternion norm)", p.mount.rotation.norm(),
+                          "a unit quaternion (mount_from_roll_pitch_yaw_deg)");
+    detail::require_param(p.mount.translation.allFinite(), "mount translation (a component)",
+                          p.mount.translation.sum(), "finite components [m]");
     double previous = 0.0;
     for (const MotionSegment& m : p.motion_profile) {
       detail::require_param(std::isfinite(m.start) && m.start >= previous, "motion_profile start", m.start,
@@ -254,6 +326,19 @@ class Simulator {
     return found;
   }
 
+  /// The vehicle's position: the ego-motion integral, its height on the
+  /// terrain when it follows one.
+  Eigen::Vector3f vehicle_position(double t) const {
+    const Knot* k = knot_at(t);
+    Eigen::Vector3f p = k ? Eigen::Vector3f(k->position + static_cast<float>(t - k->start) * k->velocity)
+                          : Eigen::Vector3f(params_.start_position + static_cast<float>(t) * params_.velocity);
+    if (terrain_clearance_) {
+      const std::optional<float> h = scene_.ground_height(p.x(), p.y());
+      if (h) p.z() = *h + *terrain_clearance_;
+    }
+    return p;
+  }
+
   double yaw_at(double t) const {
     const Knot* k = knot_at(t);
     if (!k) return static_cast<double>(params_.yaw_rate) * t;
@@ -271,7 +356,8 @@ class Simulator {
     const double yaw = yaw_at(t);
     const float c = static_cast<float>(std::cos(yaw));
     const float s = static_cast<float>(std::sin(yaw));
-    const Eigen::Vector3f world(c * d.x() - s * d.y(), s * d.x() + c * d.y(), d.z());
+    const Eigen::Vector3f v = mount_rotates_ ? Eigen::Vector3f(mount_rotation_ * d) : d;  // vehicle frame
+    const Eigen::Vector3f world(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
     const std::optional<Hit> hit = scene_.cast(sensor_position(t), world, t);
     if (!hit) {
       ++stats_.no_hit;
@@ -288,7 +374,7 @@ class Simulator {
       return std::nullopt;
     }
     const Eigen::Vector3f p = range * d;
-    return SimPoint{p.x(), p.y(), p.z(), 255.0f * detail::reflectivity(hit->instance), t, hit->instance};
+    return SimPoint{p.x(), p.y(), p.z(), 255.0f * detail::reflectivity(hit->instance), t, hit->instance, hit->surface};
   }
 
   Sensor sensor_;
@@ -298,6 +384,11 @@ class Simulator {
   Ray pending_;
   Stats stats_;
   std::vector<Knot> knots_;
+  bool mount_rotates_ = false;  // false: the identity rotation, skipped (no extra rounding)
+  bool mount_offset_ = false;
+  Eigen::Matrix3f mount_rotation_ = Eigen::Matrix3f::Identity();
+  Eigen::Vector3f mount_translation_ = Eigen::Vector3f::Zero();
+  std::optional<float> terrain_clearance_;  // set: the vehicle follows the scene's terrain
 };
 
 }  // namespace streamclust::sim
