@@ -111,15 +111,18 @@ inline const char* simulate_help() {
   return R"(usage: streamclust simulate --out FILE [--sensor S] [--scene C] [--seconds S] [--seed N]
                             [--speed M/S] [--yaw-rate RAD/S] [--noise M] [--dropout P] [--max-range M]
                             [--burst START:LENGTH --burst-speed M/S --burst-yaw-rate RAD/S]
+                            [--mount ROLL,PITCH,YAW] [--trajectory FILE] [--class-column]
 
 Writes a simulated point stream with its ground truth to FILE (.csv: columns
 x,y,z,intensity,t,label; .pcd: binary with a label field). label is the
 instance id of the object hit, 0 for structure (ground, walls, ceiling).
+Beside it, the sensor trajectory (TUM, 200 Hz, world from sensor) in
+FILE without its extension + .tum, or --trajectory FILE.
 Points are in the sensor frame at capture time; no-returns are dropped.
 Deterministic for a given seed.
 
   --sensor mid360|mid40|mid70|avia|spinning32   (default mid360; rates 200/100/100/240/576 kHz)
-  --scene office|forest|street                  (default office)
+  --scene office|forest|street|hills            (default office)
   --sensor synthetic --scene room               the older built-in stand-in; --point-rate HZ
                                                 (default 200000) times it as t = index / HZ
   --seconds S | --duration S (default 1)  --seed N (default 1)
@@ -127,6 +130,9 @@ Deterministic for a given seed.
   --burst START:LENGTH                          from START for LENGTH seconds the sensor moves with
   --burst-speed M/S  --burst-yaw-rate RAD/S     these instead (a burst of fast ego-motion)
   --noise M (default 0.02)  --dropout P (default 0)  --max-range M (default 40)
+  --mount ROLL,PITCH,YAW                        the sensor's mount [deg] (pitch > 0 tilts it down,
+                                                roll 180 is upside down; default 0,0,0)
+  --class-column                                CSV: a class column (0 object, 1 ground, 2 wall, 3 ceiling)
 
 examples:
   streamclust simulate --sensor mid360 --scene office --seconds 2 --out office.csv
@@ -148,7 +154,8 @@ object points, OSE / USE, panoptic PQ at IoU > 0.5, coverage, object rates
 
 scenario (as for simulate):
   --sensor mid360|mid40|mid70|avia|spinning32   (default mid360)
-  --scene office|forest|street                  (default office)
+  --scene office|forest|street|hills            (default office)
+  --mount ROLL,PITCH,YAW                        the sensor's mount [deg] (default 0,0,0)
   --duration S | --seconds S (default 2)  --seed N (default 1)
   --speed M/S  --yaw-rate RAD/S                 constant ego-motion (default 0)
   --burst START:LENGTH  --burst-speed M/S  --burst-yaw-rate RAD/S
