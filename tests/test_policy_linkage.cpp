@@ -451,7 +451,7 @@ TEST_CASE("RangeAdaptiveLinkage: invalid Params throw naming the parameter, the 
   const auto msg = [](const P& p) { return invalid_argument_message([&] { RangeAdaptiveLinkage{p}; }); };
   CHECK(msg(P{}).empty());
   CHECK(RangeAdaptiveLinkage{P{}}.params().min_distance == 0.2f);
-  CHECK(RangeAdaptiveLinkage{P{}}.params().range_factor == 0.03f);
+  CHECK(RangeAdaptiveLinkage{P{}}.params().range_factor == 0.05f);
   CHECK(msg(P{0.2f, 0.0f}).empty());
   CHECK(msg(P{100.0f, 1.0f}).empty());
   for (const float bad : {0.0f, -0.1f, 100.5f, kNaN, kInf}) {

@@ -259,11 +259,11 @@ struct KnownPairs<AngularLinkage> {
 
 template <>
 struct KnownPairs<RangeAdaptiveLinkage> {
-  // defaults 0.2 m, 0.03 m per m: at 25 m (radius 0.75 m) two returns on
-  // rays 1.5 deg apart, 0.65 m apart, link (a fixed 0.5 m would split them);
-  // at 5 m (radius max(0.2, 0.15) = 0.2 m) rays 3 deg apart, 0.26 m, split
-  static std::pair<Sample, Sample> linked() { return {sample_on_ray(0.0, 0.0, 25.0), sample_on_ray(1.5, 0.0, 25.0)}; }
-  static std::pair<Sample, Sample> split() { return {sample_on_ray(0.0, 0.0, 5.0), sample_on_ray(3.0, 0.0, 5.0)}; }
+  // defaults 0.2 m, 0.05 m per m: at 25 m (radius 1.25 m) two returns on
+  // rays 2.5 deg apart, 1.09 m apart, link (a fixed 0.5 m would split them);
+  // at 3 m (radius max(0.2, 0.15) = 0.2 m) rays 5 deg apart, 0.26 m, split
+  static std::pair<Sample, Sample> linked() { return {sample_on_ray(0.0, 0.0, 25.0), sample_on_ray(2.5, 0.0, 25.0)}; }
+  static std::pair<Sample, Sample> split() { return {sample_on_ray(0.0, 0.0, 3.0), sample_on_ray(5.0, 0.0, 3.0)}; }
 };
 
 // ------------------------------------------------------ index capacity model

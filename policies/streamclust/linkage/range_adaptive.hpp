@@ -62,9 +62,9 @@ namespace streamclust {
 ///
 /// Usage:
 /// \code
-///   streamclust::RangeAdaptiveLinkage link{{0.2f, 0.03f}};  // 20 cm, 3 cm per metre of range
-///   bool joined = link(sample_a, sample_b);    // at 25 m: within 0.75 m
-///   float radius = link.radius(10.0f, 12.0f);  // 0.3 m
+///   streamclust::RangeAdaptiveLinkage link{{0.2f, 0.05f}};  // 20 cm, 5 cm per metre of range
+///   bool joined = link(sample_a, sample_b);    // at 25 m: within 1.25 m
+///   float radius = link.radius(10.0f, 12.0f);  // 0.5 m
 /// \endcode
 class RangeAdaptiveLinkage {
  public:
@@ -73,7 +73,7 @@ class RangeAdaptiveLinkage {
     float min_distance = 0.2f;
     /// [m per m of range] growth of the radius with the nearer range, finite,
     /// in [0, 1]; 0 = a fixed radius of min_distance (EuclideanLinkage)
-    float range_factor = 0.03f;
+    float range_factor = 0.05f;
   };
 
   /// Throws std::invalid_argument naming the parameter, its value and the
