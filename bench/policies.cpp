@@ -8,8 +8,9 @@
 // (Projections, SpatialIndexes, Linkages, Windows, Resolutions), each with its
 // default Params: adding a policy to its list there adds its benchmark here
 // (and its tests), with no line in this file. Benchmark names are
-// BM_<family><PolicyType>, e.g. BM_Linkage<AngularLinkage>. The motion policy
-// PosedMotion is measured on its own (BM_PosedMotion, ns per point).
+// BM_<family><PolicyType>, e.g. BM_Linkage<AngularLinkage>; a linkage with
+// `link_many` also gets BM_LinkageMany<...> (the engine's one-call path). The
+// motion policy PosedMotion is measured on its own (BM_PosedMotion, ns per point).
 //
 // Inputs are sensor ray patterns (no ray casting, so the set-up stays cheap
 // for CTest's --benchmark_min_time=0.01 smoke run), built once and shared:
@@ -35,6 +36,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/motion/posed_motion.hpp>
 #include <streamclust/motion/trajectory.hpp>
@@ -295,6 +297,38 @@ void BM_Linkage(benchmark::State& state) {
       static_cast<double>(linked) / (static_cast<double>(pairs) * static_cast<double>(state.iterations()));
 }
 
+/// The same pairs through the engine's path, for a linkage with `link_many`:
+/// each point's payload against the payloads of the 16 points fired before
+/// it, read from a payload ring through a slot list, in one call per point.
+template <class Linkage>
+void BM_LinkageMany(benchmark::State& state) {
+  using Payload = sc::linkage_payload_t<Linkage>;
+  const auto& points = office_points();
+  std::vector<Payload> ring;
+  ring.reserve(points.size());
+  for (const auto& p : points) {
+    const Eigen::Vector3f pos(p.x, p.y, p.z);
+    ring.push_back(Linkage::make_payload(sc::make_sample(pos, pos.norm(), p.intensity, p.t)));
+  }
+  constexpr std::size_t kBack = 16;
+  const Linkage linkage{typename Linkage::Params{}};
+  std::uint32_t slots[kBack];
+  std::uint8_t linked[kBack];
+  std::size_t total = 0;
+  for (auto _ : state) {
+    for (std::size_t i = kBack; i < ring.size(); ++i) {
+      for (std::size_t k = 0; k < kBack; ++k) slots[k] = static_cast<std::uint32_t>(i - kBack + k);
+      linkage.link_many(ring[i], ring.data(), slots, kBack, linked);
+      for (std::size_t k = 0; k < kBack; ++k) total += linked[k];
+    }
+  }
+  benchmark::DoNotOptimize(total);
+  const auto pairs = static_cast<std::int64_t>((ring.size() - kBack) * kBack);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * pairs);
+  state.counters["linked_share"] =
+      static_cast<double>(total) / (static_cast<double>(pairs) * static_cast<double>(state.iterations()));
+}
+
 // ------------------------------------------------------------------ window
 
 /// Window bookkeeping as the engine does it: before each push, the oldest
@@ -403,7 +437,11 @@ bool register_policy_benchmarks() {
         ->Apply(index_cases);
   });
   st::for_each_type<st::Linkages>([&](auto tag) {
-    benchmark::RegisterBenchmark(name("BM_Linkage", tag).c_str(), BM_Linkage<typename decltype(tag)::type>);
+    using L = typename decltype(tag)::type;
+    benchmark::RegisterBenchmark(name("BM_Linkage", tag).c_str(), BM_Linkage<L>);
+    if constexpr (sc::has_linkage_link_many_v<L>) {
+      benchmark::RegisterBenchmark(name("BM_LinkageMany", tag).c_str(), BM_LinkageMany<L>);
+    }
   });
   st::for_each_type<st::Windows>([&](auto tag) {
     benchmark::RegisterBenchmark(name("BM_Window", tag).c_str(), BM_Window<typename decltype(tag)::type>);

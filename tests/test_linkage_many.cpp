@@ -11,6 +11,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/fixed.hpp>
@@ -40,8 +41,8 @@ Payload ray(double azimuth, double elevation, float range) {
 /// slot order (and with every count from 0 up, so that each SIMD tail length
 /// is taken), and requires the pairwise operator's decision for each.
 /// Returns how many of the decisions were "linked".
-std::size_t require_same_decisions(const sc::AngularLinkage& link, const Payload& a, const std::vector<Payload>& ring,
-                                   std::mt19937& rng) {
+template <class Link, class P>
+std::size_t require_same_decisions(const Link& link, const P& a, const std::vector<P>& ring, std::mt19937& rng) {
   std::vector<std::uint32_t> slots(ring.size());
   for (std::uint32_t i = 0; i < slots.size(); ++i) slots[i] = i;
   std::shuffle(slots.begin(), slots.end(), rng);
@@ -68,6 +69,7 @@ std::size_t require_same_decisions(const sc::AngularLinkage& link, const Payload
 }  // namespace
 
 static_assert(sc::has_linkage_link_many_v<sc::AngularLinkage>);
+static_assert(sc::has_linkage_link_many_v<sc::RangeAdaptiveLinkage>);
 static_assert(!sc::has_linkage_link_many_v<sc::EuclideanLinkage>);
 static_assert(!sc::has_linkage_link_many_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
 static_assert(!sc::has_linkage_link_many_v<sc::AngularOrEuclidean>);
@@ -209,4 +211,115 @@ TEST_CASE("the batch clusterer with link_many gives the partition of its pairwis
     CHECK(many.last_result().components > 10);
     CHECK(many.last_result().components < points.size() / 2);
   }
+}
+
+// ------------------------------------------------------- RangeAdaptiveLinkage
+
+namespace {
+
+using RangePayload = sc::RangeAdaptiveLinkage::Payload;
+
+/// The payload of the point at `range` [m] on the ray (azimuth, elevation)
+/// [rad], its position computed in double: range and position agree as a
+/// sensor at rest measures them.
+RangePayload point(double azimuth, double elevation, double range) {
+  return RangePayload{{static_cast<float>(range * std::cos(elevation) * std::cos(azimuth)),
+                       static_cast<float>(range * std::cos(elevation) * std::sin(azimuth)),
+                       static_cast<float>(range * std::sin(elevation))},
+                      static_cast<float>(range)};
+}
+
+}  // namespace
+
+TEST_CASE("RangeAdaptiveLinkage::link_many decides as the pairwise operator on random points") {
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<double> angle(-0.03, 0.03);  // [rad]: a mask's neighbourhood, ~1.7 degrees
+  std::uniform_real_distribution<double> range(0.3, 60.0);
+  std::uniform_real_distribution<double> depth(-0.05, 0.05);  // [m] range noise and surface relief
+  std::size_t positive = 0;
+  std::size_t total = 0;
+  for (const float min_distance : {0.05f, 0.2f, 0.5f}) {
+    for (const float factor : {0.0f, 0.01f, 0.03f, 0.1f}) {
+      const sc::RangeAdaptiveLinkage link{{min_distance, factor}};
+      for (int trial = 0; trial < 40; ++trial) {
+        const double az = angle(rng) * 100.0;
+        const double el = angle(rng) * 20.0;
+        const double r = range(rng);
+        const RangePayload a = point(az, el, r);
+        std::vector<RangePayload> ring;
+        for (int k = 0; k < 37; ++k) {
+          // the same surface (range r plus noise) or anything along nearby rays
+          const double rb = k % 3 == 0 ? range(rng) : r + depth(rng);
+          ring.push_back(point(az + angle(rng), el + angle(rng), rb));
+        }
+        positive += require_same_decisions(link, a, ring, rng);
+        total += ring.size();
+      }
+    }
+  }
+  CHECK(positive > total / 10);
+  CHECK(positive < total - total / 10);
+}
+
+TEST_CASE("RangeAdaptiveLinkage::link_many decides as the pairwise operator a few ulps either side of the radius") {
+  // b on the line from a along a random direction: bisect its distance until
+  // the decision flips between two adjacent floats, then test the 14 floats
+  // around the flip. The nearer range is a's or b's, so both the floor and
+  // the proportional part of the radius are met.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> range(1.0, 40.0);
+  std::size_t flips = 0;
+  for (const float min_distance : {0.1f, 0.3f}) {
+    for (const float factor : {0.0f, 0.02f, 0.05f}) {
+      const sc::RangeAdaptiveLinkage link{{min_distance, factor}};
+      for (int trial = 0; trial < 50; ++trial) {
+        const RangePayload a = point(0.3 * unit(rng), 0.2 * unit(rng), range(rng));
+        Eigen::Vector3f step(static_cast<float>(unit(rng)), static_cast<float>(unit(rng)),
+                             static_cast<float>(unit(rng)));
+        step.normalize();
+        const float range_b = a.range * static_cast<float>(1.0 + 0.05 * unit(rng));
+        const auto at = [&](float distance) {
+          return RangePayload{{a.position[0] + distance * step.x(), a.position[1] + distance * step.y(),
+                               a.position[2] + distance * step.z()},
+                              range_b};
+        };
+        float lo = 0.0f;
+        float hi = 5.0f;
+        if (!link(a, at(lo)) || link(a, at(hi))) continue;
+        while (std::nextafter(lo, hi) < hi) {
+          const float mid = lo + (hi - lo) / 2.0f;
+          if (mid <= lo || mid >= hi) break;
+          (link(a, at(mid)) ? lo : hi) = mid;
+        }
+        std::vector<RangePayload> ring;
+        float d = lo;
+        for (int s = 0; s < 6; ++s) d = std::nextafter(d, 0.0f);
+        for (int s = 0; s < 14; ++s, d = std::nextafter(d, 10.0f)) ring.push_back(at(d));
+        const std::size_t linked = require_same_decisions(link, a, ring, rng);
+        CHECK(linked > 0);             // the flip lies inside the 14 floats
+        CHECK(linked < ring.size());
+        ++flips;
+      }
+    }
+  }
+  CHECK(flips == 300);
+}
+
+TEST_CASE("RangeAdaptiveLinkage::link_many on ties: the same payload, equal ranges, signed zeros") {
+  std::mt19937 rng(5);
+  const sc::RangeAdaptiveLinkage link{{0.2f, 0.03f}};
+  const RangePayload a = point(0.0, 0.0, 10.0);  // y = z = +0
+  std::vector<RangePayload> ring;
+  ring.push_back(a);                       // itself
+  RangePayload negative_zero = a;
+  negative_zero.position[1] = -0.0f;       // -0 against +0
+  ring.push_back(negative_zero);
+  ring.push_back(point(0.0, 0.0, 10.3));   // 0.3 m behind: radius 0.3 at the nearer 10 m
+  ring.push_back(point(0.0, 0.0, 9.7));    // 0.3 m in front: radius 0.291, split
+  ring.push_back(point(0.02, 0.0, 10.0));  // equal range, 0.2 m aside
+  ring.push_back(point(-0.02, 0.0, 10.0));
+  ring.push_back(point(0.0, 0.04, 10.0));  // 0.4 m above: split
+  require_same_decisions(link, a, ring, rng);
+  require_same_decisions(link, negative_zero, ring, rng);
 }

@@ -4,7 +4,7 @@
 // linkage: exact symmetry, the compact payload and link_many deciding as the
 // Sample operator, known values at the default parameters. Then each
 // linkage's own properties: thresholds, known beta values, the
-// near-coincident-ray remedy and the combinators.
+// near-coincident-ray remedy, the range-adaptive radius and the combinators.
 
 #include <doctest/doctest.h>
 
@@ -16,6 +16,8 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
+#include <streamclust/linkage/runtime_linkage.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,8 @@ using streamclust::AngularLinkage;
 using streamclust::AngularOrEuclidean;
 using streamclust::AnyOf;
 using streamclust::EuclideanLinkage;
+using streamclust::RangeAdaptiveLinkage;
+using streamclust::RuntimeLinkage;
 using streamclust::Sample;
 
 namespace {
@@ -366,6 +370,131 @@ TEST_CASE("AngularLinkage: invalid Params throw") {
   CHECK(msg(P{10.0f, 90.0f}).find("min_ray_angle_deg") != std::string::npos);
   CHECK(msg(P{10.0f, kInf}).find("min_ray_angle_deg") != std::string::npos);
   CHECK(msg(P{10.0f, 0.0f}).empty());
+}
+
+TEST_CASE("RangeAdaptiveLinkage: the radius is max(min_distance, range_factor * nearer range)") {
+  const RangeAdaptiveLinkage link{{0.2f, 0.03f}};
+  CHECK(link.radius(2.0f, 30.0f) == 0.2f);                  // near: the floor
+  CHECK(link.radius(30.0f, 25.0f) == doctest::Approx(0.75f));  // far: 3 cm per metre of the nearer range
+  CHECK(link.radius(25.0f, 30.0f) == link.radius(30.0f, 25.0f));
+  CHECK(link.radius(6.0f, 6.0f) == doctest::Approx(0.2f));  // where the two meet: 0.2 / 0.03 = 6.67 m
+  CHECK(link.radius(10.0f, 10.0f) == doctest::Approx(0.3f));
+  // the boundary along the ray and across it, near (floor) and far (proportional)
+  struct Case {
+    double range, radius;
+  };
+  for (const Case c : {Case{3.0, 0.2}, Case{10.0, 0.3}, Case{25.0, 0.75}, Case{40.0, 1.2}}) {
+    CAPTURE(c.range);
+    // b behind a on the same ray: the nearer range is a's
+    CHECK(link(ray(10.0, 5.0, c.range), ray(10.0, 5.0, c.range + 0.99 * c.radius)));
+    CHECK_FALSE(link(ray(10.0, 5.0, c.range), ray(10.0, 5.0, c.range + 1.01 * c.radius)));
+    // across the ray at equal range: chord 2 r sin(alpha / 2)
+    const double alpha_in = 2.0 * std::asin(0.99 * c.radius / (2.0 * c.range)) / kDeg;
+    const double alpha_out = 2.0 * std::asin(1.01 * c.radius / (2.0 * c.range)) / kDeg;
+    CHECK(link(ray(-20.0, 0.0, c.range), ray(-20.0 + alpha_in, 0.0, c.range)));
+    CHECK_FALSE(link(ray(-20.0, 0.0, c.range), ray(-20.0 + alpha_out, 0.0, c.range)));
+  }
+  // the nearer range decides: 0.5 m apart links at 20 m (radius 0.6), not
+  // when one point is at 5 m (radius 0.2), whatever the farther one's range
+  CHECK(link(ray(0.0, 0.0, 20.0), ray(0.0, 0.0, 20.5)));
+  CHECK_FALSE(link(ray(0.0, 0.0, 5.0), ray(0.0, 0.0, 5.5)));
+  // range_factor 0 is a fixed radius: EuclideanLinkage with min_distance
+  const RangeAdaptiveLinkage fixed{{0.3f, 0.0f}};
+  const EuclideanLinkage euclidean{{0.3f}};
+  for (const auto& [a, b] : random_pairs(31, 4000)) REQUIRE(fixed(a, b) == euclidean(a, b));
+}
+
+TEST_CASE("RangeAdaptiveLinkage reads position and range, not direction") {
+  // a moving sensor: the position (world frame) and the ray (from the
+  // sensor's position at capture time) no longer agree
+  const RangeAdaptiveLinkage link{{0.2f, 0.03f}};
+  Sample a = ray(0.0, 0.0, 20.0);
+  Sample b = ray(0.0, 0.0, 20.5);  // 0.5 m apart, radius 0.6 at 20 m
+  CHECK(link(a, b));
+  a.direction = Eigen::Vector3f(0.0f, 1.0f, 0.0f);  // the ray plays no part
+  CHECK(link(a, b));
+  a.range = 5.0f;  // a measured at 5 m: radius 0.2
+  CHECK_FALSE(link(a, b));
+  CHECK_FALSE(link(b, a));
+  b.position += Eigen::Vector3f(-0.35f, 0.0f, 0.0f);  // now 0.15 m apart
+  CHECK(link(a, b));
+}
+
+TEST_CASE("RangeAdaptiveLinkage: exactly symmetric at its radius") {
+  // pairs drawn so that the squared distance lands within a few ulps of the
+  // squared radius, in every order of magnitude of range
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> log_range(std::log(0.2), std::log(80.0));
+  const RangeAdaptiveLinkage link{{0.2f, 0.03f}};
+  int linked = 0;
+  int split = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double r = std::exp(log_range(rng));
+    const Sample a = ray(90.0 * unit(rng), 30.0 * unit(rng), r);
+    Eigen::Vector3d step(unit(rng), unit(rng), unit(rng));
+    step.normalize();
+    const double radius = std::max(0.2, 0.03 * r);  // b's range is at least r (below)
+    const Eigen::Vector3d pb = a.position.cast<double>() + step * radius * (1.0 + 1e-6 * unit(rng));
+    Sample b = at(pb.cast<float>());
+    b.range = std::max(b.range, a.range);
+    const bool ab = link(a, b);
+    REQUIRE(ab == link(b, a));
+    (ab ? linked : split)++;
+  }
+  CHECK(linked > 1000);
+  CHECK(split > 1000);
+}
+
+TEST_CASE("RangeAdaptiveLinkage: invalid Params throw naming the parameter, the value and the range") {
+  using P = RangeAdaptiveLinkage::Params;
+  const auto msg = [](const P& p) { return invalid_argument_message([&] { RangeAdaptiveLinkage{p}; }); };
+  CHECK(msg(P{}).empty());
+  CHECK(RangeAdaptiveLinkage{P{}}.params().min_distance == 0.2f);
+  CHECK(RangeAdaptiveLinkage{P{}}.params().range_factor == 0.05f);
+  CHECK(msg(P{0.2f, 0.0f}).empty());
+  CHECK(msg(P{100.0f, 1.0f}).empty());
+  for (const float bad : {0.0f, -0.1f, 100.5f, kNaN, kInf}) {
+    CAPTURE(bad);
+    const std::string m = msg(P{bad, 0.03f});
+    CHECK(m.find("RangeAdaptiveLinkage: parameter min_distance = ") == 0);
+    CHECK(m.find("(0, 100] m") != std::string::npos);
+  }
+  for (const float bad : {-0.01f, 1.5f, kNaN, -kInf}) {
+    CAPTURE(bad);
+    const std::string m = msg(P{0.2f, bad});
+    CHECK(m.find("RangeAdaptiveLinkage: parameter range_factor = ") == 0);
+    CHECK(m.find("[0, 1]") != std::string::npos);
+  }
+  CHECK(msg(P{0.2f, 1.5f}).find("= 1.5 ") != std::string::npos);
+}
+
+TEST_CASE("RuntimeLinkage answers as the linkage its kind selects") {
+  RuntimeLinkage::Params p;
+  p.angular = {30.0f, 0.2f};
+  p.euclidean = {0.4f};
+  p.range_adaptive = {0.1f, 0.02f};
+  const AngularLinkage angular{p.angular};
+  const EuclideanLinkage euclidean{p.euclidean};
+  const RangeAdaptiveLinkage adaptive{p.range_adaptive};
+  p.kind = RuntimeLinkage::Kind::angular;
+  const RuntimeLinkage as_angular{p};
+  p.kind = RuntimeLinkage::Kind::euclidean;
+  const RuntimeLinkage as_euclidean{p};
+  p.kind = RuntimeLinkage::Kind::range_adaptive;
+  const RuntimeLinkage as_adaptive{p};
+  CHECK(as_adaptive.kind() == RuntimeLinkage::Kind::range_adaptive);
+  int differ = 0;
+  for (const auto& [a, b] : random_pairs(12, 5000)) {
+    REQUIRE(as_angular(a, b) == angular(a, b));
+    REQUIRE(as_euclidean(a, b) == euclidean(a, b));
+    REQUIRE(as_adaptive(a, b) == adaptive(a, b));
+    differ += adaptive(a, b) != euclidean(a, b) ? 1 : 0;
+  }
+  CHECK(differ > 0);  // the kinds are distinguishable on these pairs
+  p.range_adaptive.range_factor = -1.0f;  // every child validates, whatever the kind
+  p.kind = RuntimeLinkage::Kind::angular;
+  CHECK(invalid_argument_message([&] { RuntimeLinkage{p}; }).find("range_factor") != std::string::npos);
 }
 
 TEST_CASE("AllOf / AnyOf: truth tables and short-circuit evaluation") {

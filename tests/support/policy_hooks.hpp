@@ -14,6 +14,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
@@ -120,6 +121,16 @@ struct RandomParams<AngularLinkage> {
 };
 
 template <>
+struct RandomParams<RangeAdaptiveLinkage> {
+  template <class Rng>
+  static void draw(RangeAdaptiveLinkage::Params& p, Rng& rng) {
+    p.min_distance = 0.05f + 0.5f * detail::unit_float(rng);
+    const float factor = 0.005f + 0.1f * detail::unit_float(rng);
+    p.range_factor = rng() % 4 == 0 ? 0.0f : factor;  // 0: a fixed radius
+  }
+};
+
+template <>
 struct RandomParams<BoxLinkage> {
   template <class Rng>
   static void draw(BoxLinkage::Params& p, Rng& rng) {
@@ -155,9 +166,12 @@ template <>
 struct RandomParams<RuntimeLinkage> {
   template <class Rng>
   static void draw(RuntimeLinkage::Params& p, Rng& rng) {
-    p.kind = rng() % 2 ? RuntimeLinkage::Kind::angular : RuntimeLinkage::Kind::euclidean;
+    const RuntimeLinkage::Kind kinds[] = {RuntimeLinkage::Kind::angular, RuntimeLinkage::Kind::euclidean,
+                                          RuntimeLinkage::Kind::range_adaptive};
+    p.kind = kinds[rng() % 3];
     RandomParams<AngularLinkage>::draw(p.angular, rng);
     RandomParams<EuclideanLinkage>::draw(p.euclidean, rng);
+    RandomParams<RangeAdaptiveLinkage>::draw(p.range_adaptive, rng);
   }
 };
 
@@ -241,6 +255,15 @@ struct KnownPairs<AngularLinkage> {
   // 1 m behind on rays 0.01 deg apart (floored to 0.2) has beta = 2 deg
   static std::pair<Sample, Sample> linked() { return {sample_on_ray(0.0, 0.0, 10.02), sample_on_ray(0.1, 0.0, 10.0)}; }
   static std::pair<Sample, Sample> split() { return {sample_on_ray(0.0, 0.0, 10.0), sample_on_ray(0.01, 0.0, 11.0)}; }
+};
+
+template <>
+struct KnownPairs<RangeAdaptiveLinkage> {
+  // defaults 0.2 m, 0.05 m per m: at 25 m (radius 1.25 m) two returns on
+  // rays 2.5 deg apart, 1.09 m apart, link (a fixed 0.5 m would split them);
+  // at 3 m (radius max(0.2, 0.15) = 0.2 m) rays 5 deg apart, 0.26 m, split
+  static std::pair<Sample, Sample> linked() { return {sample_on_ray(0.0, 0.0, 25.0), sample_on_ray(2.5, 0.0, 25.0)}; }
+  static std::pair<Sample, Sample> split() { return {sample_on_ray(0.0, 0.0, 3.0), sample_on_ray(5.0, 0.0, 3.0)}; }
 };
 
 // ------------------------------------------------------ index capacity model

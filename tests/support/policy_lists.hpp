@@ -40,6 +40,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
@@ -63,8 +64,8 @@ using SpatialIndexes = std::tuple<BucketGrid, CappedGrid, OverwriteGrid>;
 /// takes the same engine paths and has its own tests in
 /// test_policy_linkage.cpp. Each linkage here adds 36 oracle
 /// configurations (about a minute of compile time per build of the tests).
-using Linkages =
-    std::tuple<EuclideanLinkage, AngularLinkage, AngularOrEuclidean, RuntimeLinkage, BoxLinkage>;
+using Linkages = std::tuple<EuclideanLinkage, AngularLinkage, RangeAdaptiveLinkage, AngularOrEuclidean,
+                            RuntimeLinkage, BoxLinkage>;
 
 using Windows = std::tuple<TimeWindow, CountWindow>;
 

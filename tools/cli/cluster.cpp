@@ -7,11 +7,16 @@
 namespace streamclust::cli {
 
 int run_cluster(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
-  const bool angular = o.linkage == LinkageKind::angular;
-  if (o.projection == ProjectionKind::spherical) {
-    return angular ? run_cluster_spherical_angular(o, out, err) : run_cluster_spherical_euclidean(o, out, err);
+  const bool spherical = o.projection == ProjectionKind::spherical;
+  switch (o.linkage) {
+    case LinkageKind::euclidean:
+      return spherical ? run_cluster_spherical_euclidean(o, out, err) : run_cluster_cylindrical_euclidean(o, out, err);
+    case LinkageKind::range_adaptive:
+      return spherical ? run_cluster_spherical_range_adaptive(o, out, err)
+                       : run_cluster_cylindrical_range_adaptive(o, out, err);
+    case LinkageKind::angular: break;
   }
-  return angular ? run_cluster_cylindrical_angular(o, out, err) : run_cluster_cylindrical_euclidean(o, out, err);
+  return spherical ? run_cluster_spherical_angular(o, out, err) : run_cluster_cylindrical_angular(o, out, err);
 }
 
 }  // namespace streamclust::cli

@@ -24,5 +24,7 @@ int run_cluster_spherical_angular(const ClusterOptions& o, std::ostream& out, st
 int run_cluster_spherical_euclidean(const ClusterOptions& o, std::ostream& out, std::ostream& err);
 int run_cluster_cylindrical_angular(const ClusterOptions& o, std::ostream& out, std::ostream& err);
 int run_cluster_cylindrical_euclidean(const ClusterOptions& o, std::ostream& out, std::ostream& err);
+int run_cluster_spherical_range_adaptive(const ClusterOptions& o, std::ostream& out, std::ostream& err);
+int run_cluster_cylindrical_range_adaptive(const ClusterOptions& o, std::ostream& out, std::ostream& err);
 
 }  // namespace streamclust::cli

@@ -18,6 +18,7 @@
 #include <streamclust/index/overwrite_grid.hpp>
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/runtime_resolution.hpp>
@@ -65,6 +66,9 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
   if constexpr (std::is_same_v<typename Config::linkage, AngularLinkage>) {
     p.linkage.theta_deg = o.theta_deg;
     p.linkage.min_ray_angle_deg = o.min_ray_angle_deg;
+  } else if constexpr (std::is_same_v<typename Config::linkage, RangeAdaptiveLinkage>) {
+    p.linkage.min_distance = o.min_distance;
+    p.linkage.range_factor = o.range_factor;
   } else {
     p.linkage.max_distance = o.distance;
   }

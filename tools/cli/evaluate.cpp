@@ -177,19 +177,29 @@ Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<io::Reco
     LabelledSets labelled;
     const bool both = o.run_carc && o.run_baseline;
     std::optional<MethodResult> baseline;
-    const bool angular = o.policy.linkage == LinkageKind::angular;
+    // Calls f(TypeTag<Linkage>{}) with the linkage the options name.
+    const auto with_linkage = [&](auto&& f) {
+      switch (o.policy.linkage) {
+        case LinkageKind::euclidean: return f(TypeTag<EuclideanLinkage>{});
+        case LinkageKind::range_adaptive: return f(TypeTag<RangeAdaptiveLinkage>{});
+        case LinkageKind::angular: break;
+      }
+      return f(TypeTag<AngularLinkage>{});
+    };
     if (o.run_baseline) {
       LabelledSets* sets = both ? &labelled : nullptr;
-      baseline = angular ? run_baseline_method<AngularLinkage>(o, records, e.grid.grid, sets)
-                         : run_baseline_method<EuclideanLinkage>(o, records, e.grid.grid, sets);
+      baseline = with_linkage([&](auto linkage) {
+        return run_baseline_method<typename decltype(linkage)::type>(o, records, e.grid.grid, sets);
+      });
     }
     if (o.run_carc) {
       const LabelledSets* sets = both ? &labelled : nullptr;
       ClusterOptions policy = o.policy;
       policy.window_is_count = false;
       const auto run = [&](auto config) { return run_carc_method<typename decltype(config)::type>(o, records, e.grid.grid, sets); };
-      e.methods.push_back(angular ? with_engine_config<false, SphericalProjection, AngularLinkage>(policy, run)
-                                  : with_engine_config<false, SphericalProjection, EuclideanLinkage>(policy, run));
+      e.methods.push_back(with_linkage([&](auto linkage) {
+        return with_engine_config<false, SphericalProjection, typename decltype(linkage)::type>(policy, run);
+      }));
     }
     if (baseline) e.methods.push_back(std::move(*baseline));
   } catch (const std::invalid_argument& ex) {

@@ -49,7 +49,7 @@ enum class FrameSchedule { sliding, tumbling };
 /// Everything `streamclust evaluate` needs.
 struct EvaluateOptions {
   SimulateOptions scenario;  ///< sensor, scene, duration, seed, ego-motion, burst, noise, dropout
-  ClusterOptions policy;     ///< linkage, theta, distance, mask, window, rate, index, grid, T_M, FOV
+  ClusterOptions policy;     ///< linkage, theta, distances, mask, window, rate, index, grid, T_M, FOV
   bool run_carc = true;
   bool run_baseline = true;
   FrameSchedule frames = FrameSchedule::sliding;
@@ -312,10 +312,14 @@ inline Json evaluation_json(const EvaluateOptions& o, const Evaluation& e) {
                                                            {"speed", s.burst_speed},
                                                            {"yaw_rate", s.burst_yaw_rate}}
                                                      : Json(nullptr)}};
-  doc["policy"] = {{"linkage", p.linkage == LinkageKind::angular ? "angular" : "euclidean"},
+  doc["policy"] = {{"linkage", p.linkage == LinkageKind::angular     ? "angular"
+                               : p.linkage == LinkageKind::euclidean ? "euclidean"
+                                                                     : "range-adaptive"},
                    {"theta_deg", p.theta_deg},
                    {"min_ray_angle_deg", p.min_ray_angle_deg},
                    {"distance", p.distance},
+                   {"min_distance", p.min_distance},
+                   {"range_factor", p.range_factor},
                    {"mask", p.mask},
                    {"window_time", p.window_seconds},
                    {"rate", p.rate_hz},
@@ -405,9 +409,14 @@ inline void print_evaluation(std::ostream& out, const EvaluateOptions& o, const 
   if (p.linkage == LinkageKind::angular) {
     std::snprintf(line, sizeof line, "linkage angular theta %.3g deg, mask %d, window %.3g s, retrievals %.3g Hz",
                   static_cast<double>(p.theta_deg), p.mask, p.window_seconds, p.rate_hz);
-  } else {
+  } else if (p.linkage == LinkageKind::euclidean) {
     std::snprintf(line, sizeof line, "linkage euclidean %.3g m, mask %d, window %.3g s, retrievals %.3g Hz",
                   static_cast<double>(p.distance), p.mask, p.window_seconds, p.rate_hz);
+  } else {
+    std::snprintf(line, sizeof line,
+                  "linkage range-adaptive max(%.3g m, %.3g x range), mask %d, window %.3g s, retrievals %.3g Hz",
+                  static_cast<double>(p.min_distance), static_cast<double>(p.range_factor), p.mask, p.window_seconds,
+                  p.rate_hz);
   }
   out << line << "\n";
   if (s.burst_length > 0.0) {

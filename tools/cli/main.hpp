@@ -58,8 +58,12 @@ policies (a preset first, then every option below overrides it):
         baseline     overwrite grid in frame mode, w 3, theta 10 (the frame-based method)
   --window-time SECONDS | --window-count N   sliding window (default 0.1 s)
   --rate HZ                         retrievals per second of stream time (default 20)
-  --linkage angular|euclidean       --theta DEG (default 10)   --distance M (default 0.5)
+  --linkage angular|euclidean|range-adaptive
+  --theta DEG (default 10)          angular threshold
   --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)
+  --distance M (default 0.5)        euclidean threshold
+  --min-distance M (default 0.2)    range-adaptive: link within max(M, F x nearer range)
+  --range-factor F (default 0.05)
   --mask W                          odd mask width in cells (default 5)
   --index bucket|capped|overwrite   --cap K (capped grid, default 4)
   --connectivity forest|lazy-bfs    the engine's components: the spanning forest (default,
@@ -166,8 +170,9 @@ methods:
   --method carc|baseline|both       (default both)
   --frames sliding|tumbling         baseline: re-cluster the window at every retrieval (default),
                                     or non-overlapping frames of T_B, the last one held in between
-  --linkage angular|euclidean       --theta DEG (default 10)  --distance M (default 0.5)
-  --min-ray-angle DEG               (default 0.2)
+  --linkage angular|euclidean|range-adaptive
+  --theta DEG (default 10)  --min-ray-angle DEG (default 0.2)  --distance M (default 0.5)
+  --min-distance M (default 0.2)  --range-factor F (default 0.05)
   --mask W                          odd mask width (default 3, the paper's comparison)
   --window-time T_B                 sliding window / frame length [s] (default 0.1)
   --rate HZ                         retrievals per second of stream time (default 20)

@@ -31,7 +31,7 @@ struct UsageError : std::runtime_error {
 
 enum class ProjectionKind { spherical, cylindrical };
 enum class IndexKind { bucket, capped, overwrite };
-enum class LinkageKind { angular, euclidean };
+enum class LinkageKind { angular, euclidean, range_adaptive };
 enum class Mode { continuous, frame };
 /// How the engine keeps its components: the spanning forest (the fastest
 /// exact strategy, the default) or the paper's lazy BFS (same partition;
@@ -50,6 +50,8 @@ struct ClusterOptions {
   float theta_deg = 10.0f;
   float min_ray_angle_deg = 0.2f;
   float distance = 0.5f;
+  float min_distance = 0.2f;  ///< range-adaptive: radius near the sensor [m]
+  float range_factor = 0.05f;  ///< range-adaptive: radius per metre of the nearer range [m/m]
   int mask = 5;
   bool window_is_count = false;
   double window_seconds = 0.1;
@@ -163,7 +165,8 @@ class ArgCursor {
 };
 
 /// Parses one clustering-policy option shared by `cluster` and `evaluate`
-/// (window time, rate, linkage, theta, min ray angle, distance, mask, index,
+/// (window time, rate, linkage, theta, min ray angle, distance, min distance,
+/// range factor, mask, index,
 /// connectivity, cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
 /// under the cursor is not one of them (nothing consumed).
 inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
@@ -174,13 +177,19 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   } else if (a == "--rate") {
     o.rate_hz = parse_positive(a, c.value());
   } else if (a == "--linkage") {
-    o.linkage = c.choice({"angular", "euclidean"}) == "angular" ? LinkageKind::angular : LinkageKind::euclidean;
+    const std::string v = c.choice({"angular", "euclidean", "range-adaptive"});
+    o.linkage = v == "angular" ? LinkageKind::angular
+                : v == "euclidean" ? LinkageKind::euclidean : LinkageKind::range_adaptive;
   } else if (a == "--theta") {
     o.theta_deg = static_cast<float>(parse_positive(a, c.value()));
   } else if (a == "--min-ray-angle") {
     o.min_ray_angle_deg = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--distance") {
     o.distance = static_cast<float>(parse_positive(a, c.value()));
+  } else if (a == "--min-distance") {
+    o.min_distance = static_cast<float>(parse_positive(a, c.value()));
+  } else if (a == "--range-factor") {
+    o.range_factor = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--mask") {
     o.mask = static_cast<int>(parse_count(a, c.value()));
   } else if (a == "--index") {
