@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The objects presets: a continuous clusterer whose clusters are objects.
+/// Structure removal (HeightMapGround: ground and ceiling out of the
+/// clustering), the range-adaptive linkage (holds on the Avia's dense
+/// centre and on sparse far objects), the spanning forest (the fastest exact
+/// connectivity), the sensor's poses or mount (PosedMotion) and its field of
+/// view in world orientation. Same exactness as every preset: the object
+/// partition equals the batch partition of the window's object points.
+///
+/// | function                 | sensor FOV              | T_B   |
+/// |--------------------------|-------------------------|-------|
+/// | objects_mid360_params    | 360 x -7..52 (Mid-360)  | 0.5 s |
+/// | objects_avia_params      | 70.4 x 77.2 (Avia)      | 0.5 s |
+/// | objects_params           | any SensorFacts         | 0.5 s |
+///
+/// \code
+/// streamclust::ObjectsSetup setup;
+/// setup.mount = streamclust::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);  // pitched 15 degrees down
+/// setup.sensor_height = 1.2f;                                                // [m] above the ground
+/// streamclust::StreamClusterer<streamclust::ObjectsConfig> engine(streamclust::objects_mid360_params(setup));
+/// \endcode
+
+#include <streamclust/connectivity/spanning_forest.hpp>
+#include <streamclust/ground/height_map_ground.hpp>
+#include <streamclust/linkage/range_adaptive.hpp>
+#include <streamclust/motion/pose.hpp>
+#include <streamclust/motion/posed_motion.hpp>
+#include <streamclust/motion/trajectory.hpp>
+#include <streamclust/motion/world_field_of_view.hpp>
+#include <streamclust/presets.hpp>
+#include <streamclust/sensors.hpp>
+
+#include <Eigen/Geometry>
+
+#include <memory>
+#include <vector>
+
+namespace streamclust {
+
+/// C-ARC's projection, index, window and adaptive resolution with the
+/// objects policies.
+struct ObjectsConfig : CArcFastConfig {
+  using linkage = RangeAdaptiveLinkage;
+  using ground = HeightMapGround;
+  using motion = PosedMotion;
+};
+
+/// How the sensor is carried, for the objects presets.
+struct ObjectsSetup {
+  Pose mount;  ///< the sensor on the vehicle (roll 180: upside down); identity: level
+  std::shared_ptr<const PoseTrajectory> trajectory;  ///< odometry poses of the vehicle; null: at rest
+  /// [m] the sensor above the ground under it; 0: unknown (the ground model
+  /// then has no cone and no field-of-view cut-off: give it, or estimate it
+  /// with estimate_ground from the first window, motion/gravity_estimate.hpp).
+  float sensor_height = 0.0f;
+  double window_seconds = 0.5;  ///< T_B [s]
+};
+
+/// The rotations (world from sensor) the sensor takes: the mount, turned by
+/// every pose of the trajectory. O(poses).
+inline std::vector<Eigen::Quaterniond> sensor_rotations(const ObjectsSetup& setup) {
+  std::vector<Eigen::Quaterniond> rotations;
+  if (!setup.trajectory) {
+    rotations.push_back(setup.mount.rotation);
+    return rotations;
+  }
+  for (const StampedPose& p : setup.trajectory->poses()) rotations.push_back(p.pose.rotation * setup.mount.rotation);
+  return rotations;
+}
+
+/// Objects parameters for `sensor` carried as `setup`: the projection
+/// bounds hold the sensor's FOV in world orientation (world_field_of_view),
+/// the ground model knows the sensor's height and its lowest ray in world
+/// orientation. Throws std::invalid_argument from the policies.
+inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, const ObjectsSetup& setup = {}) {
+  ClustererParams<ObjectsConfig> p = to_clusterer_params<ObjectsConfig>(CArcParams{});
+  const std::vector<Eigen::Quaterniond> rotations = sensor_rotations(setup);
+  p.projection = world_field_of_view(field_of_view_of(sensor), rotations);
+  p.window.duration = setup.window_seconds;
+  p.motion.mount = setup.mount;
+  p.motion.trajectory = setup.trajectory;
+  p.ground.sensor_height = setup.sensor_height;
+  if (setup.sensor_height > 0.0f) {
+    SphericalProjection::Params raw;  // the sensor's rays, without the projection's margin
+    raw.azimuth_min_deg = sensor.projection_azimuth_min_deg(0.0);
+    raw.azimuth_max_deg = sensor.projection_azimuth_max_deg(0.0);
+    raw.elevation_min_deg = sensor.projection_elevation_min_deg(0.0);
+    raw.elevation_max_deg = sensor.projection_elevation_max_deg(0.0);
+    p.ground.lowest_ray_elevation_deg = world_field_of_view(raw, rotations, 0.0f).elevation_min_deg;
+  }
+  return p;
+}
+
+/// objects_params for the Livox Mid-360.
+inline ClustererParams<ObjectsConfig> objects_mid360_params(const ObjectsSetup& setup = {}) {
+  return objects_params(livox_mid360, setup);
+}
+
+/// objects_params for the Livox Avia.
+inline ClustererParams<ObjectsConfig> objects_avia_params(const ObjectsSetup& setup = {}) {
+  return objects_params(livox_avia, setup);
+}
+
+}  // namespace streamclust
