@@ -59,16 +59,23 @@ struct ObjectsSetup {
   double window_seconds = 0.5;  ///< T_B [s]
 };
 
-/// The rotations (world from sensor) the sensor takes: the mount, turned by
-/// every pose of the trajectory. O(poses).
-inline std::vector<Eigen::Quaterniond> sensor_rotations(const ObjectsSetup& setup) {
+/// The rotations (world from sensor) a sensor takes: `mount`, turned by
+/// every pose of `trajectory` (when not null). O(poses).
+inline std::vector<Eigen::Quaterniond> sensor_rotations(const Pose& mount, const PoseTrajectory* trajectory) {
   std::vector<Eigen::Quaterniond> rotations;
-  if (!setup.trajectory) {
-    rotations.push_back(setup.mount.rotation);
+  if (!trajectory) {
+    rotations.push_back(mount.rotation);
     return rotations;
   }
-  for (const StampedPose& p : setup.trajectory->poses()) rotations.push_back(p.pose.rotation * setup.mount.rotation);
+  for (const StampedPose& p : trajectory->poses()) rotations.push_back(p.pose.rotation * mount.rotation);
   return rotations;
+}
+
+/// The elevation [deg] of the lowest ray of a sensor whose rays span
+/// `sensor_fov` (sensor frame), in world orientation under `rotations`.
+inline float lowest_ray_elevation_deg(const SphericalProjection::Params& sensor_fov,
+                                      const std::vector<Eigen::Quaterniond>& rotations) {
+  return world_field_of_view(sensor_fov, rotations, 0.0f).elevation_min_deg;
 }
 
 /// Objects parameters for `sensor` carried as `setup`: the projection
@@ -77,7 +84,7 @@ inline std::vector<Eigen::Quaterniond> sensor_rotations(const ObjectsSetup& setu
 /// orientation. Throws std::invalid_argument from the policies.
 inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, const ObjectsSetup& setup = {}) {
   ClustererParams<ObjectsConfig> p = to_clusterer_params<ObjectsConfig>(CArcParams{});
-  const std::vector<Eigen::Quaterniond> rotations = sensor_rotations(setup);
+  const std::vector<Eigen::Quaterniond> rotations = sensor_rotations(setup.mount, setup.trajectory.get());
   p.projection = world_field_of_view(field_of_view_of(sensor), rotations);
   p.window.duration = setup.window_seconds;
   p.motion.mount = setup.mount;
@@ -89,7 +96,7 @@ inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, 
     raw.azimuth_max_deg = sensor.projection_azimuth_max_deg(0.0);
     raw.elevation_min_deg = sensor.projection_elevation_min_deg(0.0);
     raw.elevation_max_deg = sensor.projection_elevation_max_deg(0.0);
-    p.ground.lowest_ray_elevation_deg = world_field_of_view(raw, rotations, 0.0f).elevation_min_deg;
+    p.ground.lowest_ray_elevation_deg = lowest_ray_elevation_deg(raw, rotations);
   }
   return p;
 }

@@ -3,10 +3,22 @@
 // options' projection and linkage.
 
 #include "cli/cluster.hpp"
+#include "cli/run_setup.hpp"
+
+#include <memory>
+#include <stdexcept>
 
 namespace streamclust::cli {
 
-int run_cluster(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+int run_cluster(const ClusterOptions& options, std::ostream& out, std::ostream& err) {
+  ClusterOptions o = options;
+  if (o.mode == Mode::continuous && !o.setup) {
+    try {
+      o.setup = std::make_shared<const RunSetup>(make_run_setup(o, !o.report_path.empty(), err));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
   const bool spherical = o.projection == ProjectionKind::spherical;
   switch (o.linkage) {
     case LinkageKind::euclidean:

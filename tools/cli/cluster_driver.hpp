@@ -27,6 +27,7 @@
 #include <deque>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -37,6 +38,11 @@
 #include <unistd.h>
 
 namespace streamclust::cli {
+
+/// Labels of structure points in the labels file and the point clouds
+/// (docs/cli.md); -1 is an unlabelled (rejected) record.
+inline constexpr std::int64_t kGroundLabel = -2;
+inline constexpr std::int64_t kCeilingLabel = -3;
 
 /// Which cycles go to the labels file and the point clouds.
 class CycleSelection {
@@ -118,6 +124,17 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   report.mode = Frame ? "frame" : "continuous";
   if constexpr (!Frame) {  // named from the engine's type: what ran, not what was asked
     report.connectivity = std::is_same_v<typename Config::connectivity, LazyBfsConnectivity> ? "lazy-bfs" : "forest";
+    if (o.setup) {
+      report.ground = o.setup->ground.use_height_map;
+      report.motion = o.setup->motion.enabled;
+      report.sensor_height = o.setup->ground.height_map.sensor_height;
+      report.estimated_height = o.setup->estimated_height;
+      report.estimated_mount = o.setup->estimated_mount;
+      if (o.setup->estimate) {
+        report.estimated_roll_deg = o.setup->estimate->roll_deg;
+        report.estimated_pitch_deg = o.setup->estimate->pitch_deg;
+      }
+    }
   }
 
   RejectionCounts rejected_by_reason{};
@@ -136,7 +153,13 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   const auto declared = reader->info().declared_points;
   std::vector<std::uint64_t> index;
   std::vector<std::int64_t> label;
-  std::vector<Sample> samples;
+  std::vector<std::uint64_t> rows_index;  // object and structure rows, ascending
+  std::vector<std::int64_t> rows_label;
+  // --verify: the accepted records as offered (the batch places and projects
+  // them as the engine did), from the window's oldest point on.
+  std::deque<std::pair<std::uint64_t, io::Record>> offered_records;
+  std::vector<io::Record> verify_input;
+  double ground_seen_us = 0.0, placement_seen_us = 0.0;
   // The window's rows (labels, point clouds, the comparison of --verify) are
   // gathered only when an output needs them: copying a window per cycle
   // would evict the clusterer's data from the caches and slow the next cycle.
@@ -188,20 +211,36 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
       c.evicted = s.evicted;
       c.components = result->components.size();
       c.window = result->points.size();
+      c.structure = result->structure.size();
+      c.ground_us = engine->ground().elapsed_us() - ground_seen_us;
+      ground_seen_us += c.ground_us;
+      c.placement_us = engine->motion().elapsed_us() - placement_seen_us;
+      placement_seen_us += c.placement_us;
       if (rows_wanted) {
         for (const PointLabel& p : result->points) {
           index.push_back(p.stream_index);
           label.push_back(static_cast<std::int64_t>(p.label));
         }
-        samples.clear();
         engine->for_each_point([&](const Sample& s2, std::uint64_t) {
-          if (batch) samples.push_back(s2);
           window_out.points.push_back(
               io::Record{s2.position.x(), s2.position.y(), s2.position.z(), s2.intensity, s2.time, -1});
         });
         if (batch) {
+          // The records of the window's object points, as offered.
+          const std::uint64_t oldest_in_window = std::min(
+              index.empty() ? records : index.front(),
+              result->structure.empty() ? records : result->structure.front().stream_index);
+          while (!offered_records.empty() && offered_records.front().first < oldest_in_window) {
+            offered_records.pop_front();
+          }
+          verify_input.clear();
+          auto it = offered_records.begin();
+          for (const std::uint64_t want : index) {
+            while (it != offered_records.end() && it->first < want) ++it;
+            if (it != offered_records.end() && it->first == want) verify_input.push_back(it->second);
+          }
           batch->set_grid({engine->grid().rows, engine->grid().cols});
-          const auto& reference = batch->cluster(samples);
+          const auto& reference = batch->cluster(verify_input);
           if (const auto m = first_partition_mismatch(label, reference.labels)) {
             const std::size_t i = std::min(m->position, index.empty() ? 0 : index.size() - 1);
             err << "streamclust: verify: cycle " << cycle << " (t = " << cycle_time << " s): point "
@@ -222,14 +261,38 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
       return kOk;
     }
     window_out.point_labels = label;
+    // The rows: object points (their component), structure points (-2
+    // ground, -3 ceiling) and, below, rejected records (-1), by stream index.
+    rows_index.clear();
+    rows_label.clear();
+    {
+      std::size_t k = 0;
+      auto take_objects_before = [&](std::uint64_t limit) {
+        for (; k < index.size() && index[k] < limit; ++k) {
+          rows_index.push_back(index[k]);
+          rows_label.push_back(label[k]);
+        }
+      };
+      if constexpr (!Frame) {
+        engine->for_each_structure_point([&](const StructureEntry& e) {
+          const std::int64_t code = e.surface == SurfaceClass::ceiling ? kCeilingLabel : kGroundLabel;
+          take_objects_before(e.stream_index);
+          rows_index.push_back(e.stream_index);
+          rows_label.push_back(code);
+          window_out.points.push_back(io::Record{e.world.x(), e.world.y(), e.world.z(), 0.0f, e.time, -1});
+          window_out.point_labels.push_back(code);
+        });
+      }
+      take_objects_before(std::numeric_limits<std::uint64_t>::max());
+    }
     // Rejected records inside the window's span of stream indices: -1.
-    const std::uint64_t oldest = index.empty() ? records : index.front();
+    const std::uint64_t oldest = rows_index.empty() ? records : rows_index.front();
     while (!rejected.empty() && rejected.front() < oldest) rejected.pop_front();
     std::size_t i = 0, j = 0;
-    while (i < index.size() || j < rejected.size()) {
-      if (j == rejected.size() || (i < index.size() && index[i] < rejected[j])) {
-        window_out.index.push_back(index[i]);
-        window_out.label.push_back(label[i]);
+    while (i < rows_index.size() || j < rejected.size()) {
+      if (j == rejected.size() || (i < rows_index.size() && rows_index[i] < rejected[j])) {
+        window_out.index.push_back(rows_index[i]);
+        window_out.label.push_back(rows_label[i]);
         ++i;
       } else {
         window_out.index.push_back(rejected[j]);
@@ -264,6 +327,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
       if (reason == RejectReason::accepted) {
         ++inserted_since;
         last_time = chunk[i].t;
+        if (batch) offered_records.emplace_back(stream_index, chunk[i]);
       } else if (rows_wanted) {
         rejected.push_back(stream_index);
       }

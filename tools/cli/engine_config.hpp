@@ -9,15 +9,18 @@
 /// options to that configuration once, at start-up.
 
 #include "cli/options.hpp"
+#include "cli/run_setup.hpp"
 
 #include <streamclust/config.hpp>
 #include <streamclust/connectivity/lazy_bfs.hpp>
 #include <streamclust/connectivity/spanning_forest.hpp>
+#include <streamclust/ground/runtime_ground.hpp>
 #include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/motion/runtime_motion.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
@@ -32,7 +35,9 @@ namespace streamclust::cli {
 
 /// A configuration of the tool. Every slot is compiled in except the
 /// resolution, which only runs once (the calibration of the first window)
-/// and so costs nothing per point as a run-time choice. Not `timed`: the
+/// and so costs nothing per point as a run-time choice, and the motion and
+/// ground stages, run-time forwarders (a predictable branch per point; the
+/// object partition is what the compiled policies give). Not `timed`: the
 /// engine's phase timers read the clock a few times per point (about 15 %
 /// of a Mid-360 cycle); the report times insertion and retrieval from
 /// outside instead, and bench_latency's timed pass gives the full split.
@@ -44,6 +49,8 @@ struct CliConfig {
   using window = Window;
   using resolution = RuntimeResolution;
   using connectivity = Connectivity;
+  using motion = RuntimeMotion;
+  using ground = RuntimeGround;
   static constexpr bool timed = false;
 };
 
@@ -81,6 +88,18 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
   if (o.grid) p.resolution.fixed = {o.grid->first, o.grid->second};
   p.resolution.adaptive_loop.max_multiplicity = o.max_multiplicity;
   p.mask_size = o.mask;
+  if (o.setup) {
+    p.motion = o.setup->motion;
+    p.ground = o.setup->ground;
+    if constexpr (std::is_same_v<typename Config::projection, SphericalProjection>) {
+      if (o.setup->world_fov) {
+        p.projection.azimuth_min_deg = o.setup->world_fov->azimuth_min_deg;
+        p.projection.azimuth_max_deg = o.setup->world_fov->azimuth_max_deg;
+        p.projection.elevation_min_deg = o.setup->world_fov->elevation_min_deg;
+        p.projection.elevation_max_deg = o.setup->world_fov->elevation_max_deg;
+      }
+    }
+  }
   return p;
 }
 

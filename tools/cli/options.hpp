@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,8 @@ enum class Mode { continuous, frame };
 /// exact strategy, the default) or the paper's lazy BFS (same partition;
 /// see docs/policies.md).
 enum class ConnectivityKind { lazy_bfs, spanning_forest };
+
+struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
 
 /// Everything `streamclust cluster` needs, after presets and overrides.
 struct ClusterOptions {
@@ -70,6 +73,17 @@ struct ClusterOptions {
   // sensor poses (motion compensation) and mount: tools/cli/poses.hpp loads them
   std::string poses_path;                         ///< --poses FILE: TUM trajectory; empty: none
   std::optional<std::array<double, 3>> mount_deg;  ///< --mount ROLL,PITCH,YAW [deg]; empty: none given
+  // structure removal (HeightMapGround)
+  bool ground = false;                 ///< --ground: class ground and ceiling points out of the clustering
+  std::optional<float> sensor_height;  ///< --sensor-height [m]; empty: estimated from the first window
+  float ground_tolerance = 0.2f;       ///< --ground-tolerance [m]
+  float ground_cell = 0.5f;            ///< --ground-cell [m]
+  float max_slope_deg = 15.0f;         ///< --max-slope [deg]
+  bool ceiling = true;                 ///< false: --no-ceiling
+  /// Filled by make_run_setup before a run: the poses, the mount (given or
+  /// estimated), the ground model's parameters and the projection bounds in
+  /// world orientation. Null: none resolved (a level sensor, no ground).
+  std::shared_ptr<const RunSetup> setup;
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
   bool all_cycles = false;
@@ -111,6 +125,20 @@ inline std::uint64_t parse_count(std::string_view option, const std::string& val
 /// Applies a named preset to `o` (before the other options override it).
 inline void apply_preset(const std::string& name, ClusterOptions& o) {
   if (name == "carc") return;  // the defaults above: theta 10, w 5, T_M 2
+  if (name == "objects" || name == "objects-mid360" || name == "objects-avia") {
+    // Structure removal, the range-adaptive linkage, the spanning forest, T_B = 0.5 s.
+    o.ground = true;
+    o.linkage = LinkageKind::range_adaptive;
+    o.connectivity = ConnectivityKind::spanning_forest;
+    o.window_seconds = 0.5;
+    if (name == "objects") return;  // any sensor: the full sphere
+    const SensorFacts& sensor = name == "objects-mid360" ? livox_mid360 : livox_avia;
+    o.azimuth_min = sensor.projection_azimuth_min_deg();
+    o.azimuth_max = sensor.projection_azimuth_max_deg();
+    o.elevation_min = sensor.projection_elevation_min_deg();
+    o.elevation_max = sensor.projection_elevation_max_deg();
+    return;
+  }
   if (name == "carc-mid360") {
     o.theta_deg = 30.0f;
     o.elevation_min = livox_mid360.projection_elevation_min_deg();
@@ -127,7 +155,9 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     o.mask = 3;
     o.theta_deg = 10.0f;
   } else {
-    throw UsageError("--preset: expected carc, carc-mid360, carc-avia or baseline, got '" + name + "'");
+    throw UsageError(
+        "--preset: expected carc, carc-mid360, carc-avia, baseline, objects, objects-mid360 or objects-avia, got '" +
+        name + "'");
   }
 }
 
@@ -314,6 +344,26 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.poses_path = c.value();
     } else if (a == "--mount") {
       o.mount_deg = parse_mount(c.value());
+    } else if (a == "--ground") {
+      o.ground = true;
+    } else if (a == "--no-ground") {
+      o.ground = false;
+    } else if (a == "--sensor-height") {
+      o.sensor_height = static_cast<float>(parse_positive(a, c.value()));
+      if (*o.sensor_height > 100.0f) throw UsageError("--sensor-height: expected metres in (0, 100]");
+    } else if (a == "--ground-tolerance") {
+      o.ground_tolerance = static_cast<float>(parse_number(a, c.value()));
+      if (!(o.ground_tolerance >= 0.0f && o.ground_tolerance <= 2.0f)) {
+        throw UsageError("--ground-tolerance: expected metres in [0, 2]");
+      }
+    } else if (a == "--ground-cell") {
+      o.ground_cell = static_cast<float>(parse_positive(a, c.value()));
+      if (!(o.ground_cell > 0.05f && o.ground_cell <= 10.0f)) throw UsageError("--ground-cell: expected metres in (0.05, 10]");
+    } else if (a == "--max-slope") {
+      o.max_slope_deg = static_cast<float>(parse_number(a, c.value()));
+      if (!(o.max_slope_deg >= 0.0f && o.max_slope_deg <= 60.0f)) throw UsageError("--max-slope: expected degrees in [0, 60]");
+    } else if (a == "--no-ceiling") {
+      o.ceiling = false;
     } else if (a == "--labels") {
       o.labels_path = c.value();
     } else if (a == "--report") {
@@ -360,6 +410,9 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
   if (o.connectivity_given && o.mode == Mode::frame)
     throw UsageError("--connectivity chooses the continuous engine's strategy: use --mode continuous");
+  if (o.mode == Mode::frame && (o.ground || !o.poses_path.empty() || o.mount_deg)) {
+    throw UsageError("--ground, --poses and --mount are stages of the continuous engine: use --mode continuous");
+  }
   return o;
 }
 

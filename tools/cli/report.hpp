@@ -24,12 +24,15 @@ namespace streamclust::cli {
 struct CycleReport {
   std::uint64_t cycle = 0;
   double time = 0.0;          ///< scheduled stream time of the retrieval [s]
-  std::size_t window = 0;     ///< clustered points in the window
+  std::size_t window = 0;     ///< clustered (object) points in the window
+  std::size_t structure = 0;  ///< points of the window classed ground or ceiling (--ground)
   std::uint64_t inserted = 0; ///< points accepted since the previous cycle
   std::uint64_t evicted = 0;  ///< points evicted since the previous cycle (continuous mode)
   std::size_t components = 0;
   double retrieve_us = 0.0;   ///< the retrieval (continuous: components and labels; frame: advance and batch) [us]
   double batch_us = 0.0;      ///< frame mode: the batch clustering of the window [us]
+  double ground_us = 0.0;     ///< of total_us: the ground model's updates and decisions (--ground) [us]
+  double placement_us = 0.0;  ///< of total_us: placing points by poses or mount [us]
   /// The cycle's latency [us]: wall time of everything the clusterer did
   /// for it since the previous cycle (the inserts of the records in between,
   /// the eviction, the retrieval), reading the input excluded.
@@ -47,6 +50,11 @@ struct Report {
   std::vector<CycleReport> cycles;
   std::uint64_t records = 0;
   RejectionCounts rejections{};
+  bool ground = false;          ///< structure removal was on
+  bool motion = false;          ///< points were placed by poses or a mount
+  float sensor_height = 0.0f;   ///< [m] the ground model's (0: unknown)
+  bool estimated_mount = false, estimated_height = false;
+  double estimated_roll_deg = 0.0, estimated_pitch_deg = 0.0;  ///< when estimated_mount
 };
 
 /// The cycle latencies [us] of a report, in cycle order.
@@ -88,19 +96,28 @@ inline Json report_json(const Report& r) {
   for (const CycleReport& c : r.cycles) {
     inserted += c.inserted;
     evicted += c.evicted;
-    cycles.push_back({{"cycle", c.cycle},
-                      {"time", c.time},
-                      {"window_size", c.window},
-                      {"inserted", c.inserted},
-                      {"evicted", c.evicted},
-                      {"components", c.components},
-                      {"latency_us",
-                       {{"insertion", c.total_us - c.retrieve_us},
-                        {"retrieval", c.retrieve_us},
-                        {"batch", c.batch_us},
-                        {"total", c.total_us}}}});
+    Json latency = {{"insertion", c.total_us - c.retrieve_us},
+                    {"retrieval", c.retrieve_us},
+                    {"batch", c.batch_us},
+                    {"total", c.total_us}};
+    if (r.ground) latency["ground"] = c.ground_us;
+    if (r.motion) latency["placement"] = c.placement_us;
+    Json cycle = {{"cycle", c.cycle},
+                  {"time", c.time},
+                  {"window_size", c.window},
+                  {"inserted", c.inserted},
+                  {"evicted", c.evicted},
+                  {"components", c.components},
+                  {"latency_us", std::move(latency)}};
+    if (r.ground) cycle["structure_size"] = c.structure;
+    cycles.push_back(std::move(cycle));
   }
   doc["cycles"] = std::move(cycles);
+  if (r.ground) {
+    Json ground = {{"sensor_height", r.sensor_height}, {"sensor_height_estimated", r.estimated_height}};
+    if (r.estimated_mount) ground["estimated_mount"] = {{"roll_deg", r.estimated_roll_deg}, {"pitch_deg", r.estimated_pitch_deg}};
+    doc["ground"] = std::move(ground);
+  }
   Json rejected = Json::object();
   for (std::size_t k = 1; k < kRejectReasonCount; ++k) {
     rejected[to_string(static_cast<RejectReason>(k))] = r.rejections.by_reason[k];

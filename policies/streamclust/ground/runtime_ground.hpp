@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <chrono>
 #include <cstddef>
 #include <optional>
 
@@ -18,30 +19,46 @@ namespace streamclust {
 
 /// Forwards to HeightMapGround when `use_height_map`, else classes every
 /// point as an object (as NoGround, at the cost of the engine's structure
-/// stage: a branch and an empty ring per point). Thread safety: none.
+/// stage: a branch and an empty ring per point). With `timed`, the model's
+/// work is timed (two clock reads per point; `elapsed_us`), for a tool's
+/// report when its engine configuration is not timed. Thread safety: none.
 class RuntimeGround {
  public:
   struct Params {
     bool use_height_map = false;             ///< false: no structure removal
     HeightMapGround::Params height_map{};   ///< the model's parameters when used
+    bool timed = false;                      ///< sum the model's time into elapsed_us()
   };
   static constexpr bool enabled = true;
 
-  explicit RuntimeGround(const Params& params) {
+  explicit RuntimeGround(const Params& params) : timed_(params.timed) {
     if (params.use_height_map) model_.emplace(params.height_map);
   }
 
   SurfaceClass classify(const Eigen::Vector3f& world, const Eigen::Vector3f& ray) {
-    return model_ ? model_->classify(world, ray) : SurfaceClass::object;
+    if (!model_) return SurfaceClass::object;
+    if (!timed_) return model_->classify(world, ray);
+    const auto t0 = std::chrono::steady_clock::now();
+    const SurfaceClass c = model_->classify(world, ray);
+    elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    return c;
   }
   void forget(const Eigen::Vector3f& world) {
-    if (model_) model_->forget(world);
+    if (!model_) return;
+    if (!timed_) return model_->forget(world);
+    const auto t0 = std::chrono::steady_clock::now();
+    model_->forget(world);
+    elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
+  /// Time spent in the model since construction [us] (with `timed`; else 0).
+  double elapsed_us() const { return elapsed_us_; }
   std::size_t heap_bytes() const { return model_ ? model_->heap_bytes() : 0; }
   bool uses_height_map() const { return model_.has_value(); }
 
  private:
   std::optional<HeightMapGround> model_;
+  bool timed_ = false;
+  double elapsed_us_ = 0.0;
 };
 
 }  // namespace streamclust

@@ -11,22 +11,26 @@
 
 #include <Eigen/Core>
 
+#include <chrono>
 #include <optional>
 
 namespace streamclust {
 
 /// Forwards to PosedMotion when `enabled`, else copies the point (the
 /// sensor frame is the world, as NoMotion; the samples equal NoMotion's bit
-/// for bit). One predictable branch per point. Thread safety: as PosedMotion.
+/// for bit). One predictable branch per point. With `timed`, the placement
+/// is timed (`elapsed_us`; two clock reads per point). Thread safety: as
+/// PosedMotion.
 class RuntimeMotion {
  public:
   struct Params {
     bool enabled = false;         ///< false: no motion policy
     PosedMotion::Params posed{};  ///< the poses and mount when enabled
+    bool timed = false;           ///< sum the placement's time into elapsed_us()
   };
   static constexpr bool identity = false;
 
-  explicit RuntimeMotion(const Params& params) {
+  explicit RuntimeMotion(const Params& params) : timed_(params.timed) {
     if (params.enabled) posed_.emplace(params.posed);
   }
 
@@ -36,13 +40,21 @@ class RuntimeMotion {
       placed.ray = p;
       return RejectReason::accepted;
     }
-    return posed_->place(p, time, placed);
+    if (!timed_) return posed_->place(p, time, placed);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RejectReason r = posed_->place(p, time, placed);
+    elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   }
 
   bool enabled() const { return posed_.has_value(); }
+  /// Time spent placing points since construction [us] (with `timed`; else 0).
+  double elapsed_us() const { return elapsed_us_; }
 
  private:
   std::optional<PosedMotion> posed_;
+  bool timed_ = false;
+  double elapsed_us_ = 0.0;
 };
 
 }  // namespace streamclust

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// `streamclust cluster` with structure removal and poses, in-process: the
+// objects presets, --ground with the labels -2/-3 and the report's ground
+// fields, --poses/--mount with --verify, the mount and sensor height
+// estimated from the first window, and the usage and input errors.
+
+#include <doctest/doctest.h>
+
+#include "cli/main.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_run.hpp"
+#include "support/temp_dir.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using streamclust::test::run_cli;
+using streamclust::test::slurp;
+
+/// label -> rows of the labels file's last cycle.
+std::map<long long, std::size_t> label_histogram(const fs::path& path) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  REQUIRE(line == "cycle,time,index,label");
+  std::map<long long, std::size_t> counts;
+  while (std::getline(f, line)) {
+    std::istringstream s(line);
+    std::string cycle, time, index, label;
+    std::getline(s, cycle, ',');
+    std::getline(s, time, ',');
+    std::getline(s, index, ',');
+    std::getline(s, label, ',');
+    ++counts[std::stoll(label) < 0 ? std::stoll(label) : 0];
+  }
+  return counts;
+}
+
+/// Simulates `seconds` of a Mid-360 scene into dir/name.csv (and its .tum).
+fs::path simulate(const fs::path& dir, const std::string& name, const std::vector<std::string>& extra, double seconds) {
+  std::vector<std::string> args{"simulate", "--sensor", "mid360", "--duration", std::to_string(seconds), "--out",
+                                (dir / (name + ".csv")).string(), "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const auto r = run_cli(args);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return dir / (name + ".csv");
+}
+
+}  // namespace
+
+TEST_CASE("cluster --preset objects-mid360: ground rows -2, ceiling rows -3, verified, ground fields in the report") {
+  const streamclust::test::TempDir tmp("cli", "objects");
+  const fs::path input = simulate(tmp.dir, "office", {"--scene", "office"}, 0.8);
+  const auto r = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--sensor-height", "1",
+                          "--verify", "--labels", (tmp.dir / "labels.csv").string(), "--report",
+                          (tmp.dir / "report.json").string(), "--quiet"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto counts = label_histogram(tmp.dir / "labels.csv");
+  CHECK(counts.count(-2) == 1);  // ground
+  CHECK(counts.count(-3) == 1);  // the office ceiling, seen by the Mid-360
+  CHECK(counts.at(0) > 1000);    // object points (labels >= 0)
+  const auto doc = nlohmann::json::parse(slurp(tmp.dir / "report.json"));
+  CHECK(doc.at("ground").at("sensor_height").get<double>() == doctest::Approx(1.0));
+  CHECK_FALSE(doc.at("ground").at("sensor_height_estimated").get<bool>());
+  const auto& last = doc.at("cycles").back();
+  CHECK(last.at("structure_size").get<std::size_t>() > 1000);
+  CHECK(last.at("latency_us").at("ground").get<double>() > 0.0);
+  CHECK(last.at("latency_us").at("ground").get<double>() < last.at("latency_us").at("total").get<double>());
+}
+
+TEST_CASE("cluster --ground without a mount or height estimates both from the first window") {
+  const streamclust::test::TempDir tmp("cli", "estimate");
+  const fs::path input = simulate(tmp.dir, "pitched", {"--scene", "street", "--mount", "0,20,0"}, 0.7);
+  const auto r = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--verify", "--report",
+                          (tmp.dir / "report.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("ground of the first window") != std::string::npos);
+  const auto doc = nlohmann::json::parse(slurp(tmp.dir / "report.json"));
+  const auto& g = doc.at("ground");
+  CHECK(g.at("sensor_height_estimated").get<bool>());
+  CHECK(g.at("sensor_height").get<double>() == doctest::Approx(1.0).epsilon(0.1));
+  CHECK(g.at("estimated_mount").at("pitch_deg").get<double>() == doctest::Approx(20.0).epsilon(0.1));
+}
+
+TEST_CASE("cluster --poses with a moving, turning sensor: verified; points outside the poses' span are no_pose") {
+  const streamclust::test::TempDir tmp("cli", "poses");
+  const fs::path input =
+      simulate(tmp.dir, "moving", {"--scene", "street", "--speed", "1.5", "--yaw-rate", "0.5"}, 0.8);
+  const fs::path tum = tmp.dir / "moving.tum";
+  REQUIRE(fs::exists(tum));
+  const auto r = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--sensor-height", "1", "--poses",
+                          tum.string(), "--verify", "--report", (tmp.dir / "report.json").string(), "--quiet"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // The same stream with the poses cut to their first half.
+  std::ifstream in(tum);
+  std::ofstream cut(tmp.dir / "half.tum");
+  std::string line;
+  std::size_t kept = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || std::stod(line) <= 0.4) {
+      cut << line << '\n';
+      kept += line.empty() || line[0] == '#' ? 0 : 1;
+    }
+  }
+  cut.close();
+  REQUIRE(kept > 10);
+  const auto half = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--sensor-height", "1",
+                             "--poses", (tmp.dir / "half.tum").string(), "--verify", "--report",
+                             (tmp.dir / "half.json").string(), "--quiet"});
+  INFO(half.err);
+  REQUIRE(half.code == 0);
+  const auto doc = nlohmann::json::parse(slurp(tmp.dir / "half.json"));
+  CHECK(doc.at("totals").at("rejected").at("no_pose").get<std::uint64_t>() > 1000);
+}
+
+TEST_CASE("cluster: structure options are usage errors in frame mode or out of range; a bad poses file names its line") {
+  const streamclust::test::TempDir tmp("cli", "errors");
+  const fs::path input = simulate(tmp.dir, "office", {"--scene", "office"}, 0.2);
+  CHECK(run_cli({"cluster", input.string(), "--ground", "--mode", "frame"}).code == 2);
+  CHECK(run_cli({"cluster", input.string(), "--ground", "--sensor-height", "-1"}).code == 2);
+  CHECK(run_cli({"cluster", input.string(), "--ground", "--max-slope", "80"}).code == 2);
+  CHECK(run_cli({"cluster", input.string(), "--preset", "objects-lidar"}).code == 2);
+  {
+    std::ofstream bad(tmp.dir / "bad.tum");
+    bad << "# t tx ty tz qx qy qz qw\n0.0 0 0 0 0 0 0 1\n0.1 0 0 zero 0 0 0 1\n";
+  }
+  const auto r = run_cli({"cluster", input.string(), "--poses", (tmp.dir / "bad.tum").string()});
+  CHECK(r.code == 4);
+  CHECK(r.err.find("line 3") != std::string::npos);
+}

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// What `streamclust cluster`'s options resolve to before a run: the poses
+/// and mount (given, or the mount estimated from the first window), the
+/// ground model's parameters (the sensor height given or estimated) and the
+/// projection bounds in world orientation.
+
+#include "cli/options.hpp"
+#include "cli/poses.hpp"
+
+#include <streamclust/ground/runtime_ground.hpp>
+#include <streamclust/io/reader.hpp>
+#include <streamclust/motion/gravity_estimate.hpp>
+#include <streamclust/motion/runtime_motion.hpp>
+#include <streamclust/motion/world_field_of_view.hpp>
+#include <streamclust/objects_presets.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace streamclust::cli {
+
+struct RunSetup {
+  RuntimeMotion::Params motion;  ///< enabled with --poses, --mount or an estimated mount
+  RuntimeGround::Params ground;  ///< use_height_map with --ground
+  /// Spherical projection bounds in world orientation (motion enabled):
+  /// the options' bounds are the sensor's.
+  std::optional<SphericalProjection::Params> world_fov;
+  std::optional<GroundEstimate> estimate;  ///< the first window's ground, when one was estimated
+  bool estimated_mount = false;            ///< the mount is the estimate's
+  bool estimated_height = false;           ///< the sensor height is the estimate's
+};
+
+/// Sensor-frame positions of the first window of `o.input`: the records of
+/// the first T_B seconds (or the first --window-count records), at most
+/// `max_points` finite ones. O(window).
+inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o, std::size_t max_points = 400000) {
+  auto reader = io::open_reader(o.input, o.read);
+  std::vector<Eigen::Vector3f> points;
+  std::vector<io::Record> chunk;
+  std::optional<double> t0;
+  std::size_t seen = 0;
+  while (points.size() < max_points) {
+    chunk.clear();
+    if (reader->read(chunk, 65536) == 0) break;
+    for (const io::Record& r : chunk) {
+      if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || !std::isfinite(r.t)) continue;
+      if (!t0) t0 = r.t;
+      if (o.window_is_count ? seen >= o.window_count : r.t - *t0 >= o.window_seconds) return points;
+      ++seen;
+      points.emplace_back(r.x, r.y, r.z);
+      if (points.size() >= max_points) return points;
+    }
+  }
+  return points;
+}
+
+/// Resolves `o` for a run: loads --poses (io::InputError on a malformed
+/// file), builds the mount; with --ground, estimates from the first window
+/// what is not given (the mount when neither --mount nor --poses is, the
+/// sensor height without --sensor-height; see estimate_ground) and notes it
+/// on `err` unless quiet. `timed` times the ground and placement stages (the
+/// report). Throws UsageError for a value a policy rejects.
+inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream& err) {
+  RunSetup s;
+  s.motion.enabled = has_motion_options(o);
+  s.motion.posed = load_motion_params(o);
+  s.motion.timed = timed;
+  s.ground.use_height_map = o.ground;
+  s.ground.timed = timed;
+  HeightMapGround::Params& g = s.ground.height_map;
+  g.ground_tolerance = o.ground_tolerance;
+  g.cell_size = o.ground_cell;
+  g.max_slope_deg = o.max_slope_deg;
+  g.detect_ceiling = o.ceiling;
+  if (o.sensor_height) g.sensor_height = *o.sensor_height;
+  if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
+    s.estimate = estimate_ground(first_window_points(o));
+    if (s.estimate) {
+      if (!s.motion.enabled) {
+        s.motion.enabled = true;
+        s.motion.posed.mount = s.estimate->mount;
+        s.estimated_mount = true;
+      }
+      if (!o.sensor_height) {
+        g.sensor_height = static_cast<float>(s.estimate->height);
+        s.estimated_height = true;
+      }
+      if (!o.quiet) {
+        char line[200];
+        std::snprintf(line, sizeof line, "streamclust: ground of the first window: roll %.1f deg, pitch %.1f deg, "
+                      "sensor %.2f m above it%s\n", s.estimate->roll_deg, s.estimate->pitch_deg, s.estimate->height,
+                      s.estimated_mount ? "" : " (the mount given is used)");
+        err << line;
+      }
+    } else if (!o.quiet) {
+      err << "streamclust: no ground plane in the first window: a level sensor is assumed, its height unknown "
+             "(give --mount and --sensor-height)\n";
+    }
+  }
+  if (s.motion.enabled && o.projection == ProjectionKind::spherical) {
+    SphericalProjection::Params sensor_fov;
+    sensor_fov.azimuth_min_deg = o.azimuth_min;
+    sensor_fov.azimuth_max_deg = o.azimuth_max;
+    sensor_fov.elevation_min_deg = o.elevation_min;
+    sensor_fov.elevation_max_deg = o.elevation_max;
+    sensor_fov.min_range = o.min_range;
+    const auto rotations = sensor_rotations(s.motion.posed.mount, s.motion.posed.trajectory.get());
+    s.world_fov = world_field_of_view(sensor_fov, rotations);
+    if (g.sensor_height > 0.0f) g.lowest_ray_elevation_deg = lowest_ray_elevation_deg(sensor_fov, rotations);
+  } else if (o.projection == ProjectionKind::spherical && g.sensor_height > 0.0f) {
+    g.lowest_ray_elevation_deg = o.elevation_min;
+  }
+  return s;
+}
+
+}  // namespace streamclust::cli
