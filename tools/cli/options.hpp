@@ -76,7 +76,7 @@ struct ClusterOptions {
   // structure removal (HeightMapGround)
   bool ground = false;                 ///< --ground: class ground and ceiling points out of the clustering
   std::optional<float> sensor_height;  ///< --sensor-height [m]; empty: estimated from the first window
-  float ground_tolerance = 0.2f;       ///< --ground-tolerance [m]
+  float ground_tolerance = 0.05f;      ///< --ground-tolerance [m]
   float ground_cell = 0.5f;            ///< --ground-cell [m]
   float max_slope_deg = 15.0f;         ///< --max-slope [deg]
   bool ceiling = true;                 ///< false: --no-ceiling
@@ -131,6 +131,8 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     o.linkage = LinkageKind::range_adaptive;
     o.connectivity = ConnectivityKind::spanning_forest;
     o.window_seconds = 0.5;
+    o.mask = 7;                  // kObjectsMaskSize
+    o.max_multiplicity = 4.0f;   // kObjectsMaxMultiplicity
     if (name == "objects") return;  // any sensor: the full sphere
     const SensorFacts& sensor = name == "objects-mid360" ? livox_mid360 : livox_avia;
     o.azimuth_min = sensor.projection_azimuth_min_deg();

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -28,7 +29,10 @@ namespace streamclust {
 /// insertion and uncounted at eviction).
 ///
 /// Ground. The ground surface under a cell is its lowest supported layer:
-/// the lowest bin that holds, with the bin above, `support` points or more.
+/// the lowest bin that holds, with the bin above, `support` points or more;
+/// its height is the mean of the densest bin within `layer_thickness` above
+/// it (the range noise scatters a surface's points over a bin or two, a few
+/// below it).
 /// Its bound at a point of cell c is
 ///
 ///     G = min(layer(c), min over the 8 neighbours j of layer(j) + tan(max_slope) cell_size)
@@ -46,20 +50,25 @@ namespace streamclust {
 /// reaches (sensor z + tan(lowest elevation) x distance) is where the field
 /// of view cuts an object off: the ground is hidden, taken level with the
 /// ground under the sensor. A point is ground iff
-/// z <= G + ground_tolerance; with no layer within reach it is an object (a
-/// cold start costs coverage of the ground, never objects). The tolerance
-/// absorbs the rise of a slope within a cell (tan(15 deg) x 0.5 m =
-/// 0.13 m), the bin and the range noise; kerbs and steps lower than the
-/// tolerance plus one cell's slope allowance join the ground.
+/// z <= G + ground_tolerance + the rise of the local slope across a cell
+/// (from the neighbours' layers where they rise monotonically through
+/// the cell); with no layer within reach it is an object (a cold start costs
+/// coverage of the ground, never objects). The tolerance is what an object
+/// on level ground loses at its foot: 5 cm covers the range noise of a
+/// surface seen at a slant (2 cm along the ray); kerbs and steps up to one
+/// cell's slope allowance (tan(max_slope) x cell_size = 0.13 m) join the
+/// ground through their neighbours.
 ///
 /// Ceiling (`detect_ceiling`, decided before the ground: near a sensor that
 /// sees the ceiling but not the floor, the ceiling is a cell's only layer).
 /// A point at least `ceiling_clearance` above the sensor, within
 /// `ceiling_tolerance` of its cell's highest supported layer, is ceiling
-/// when that layer is level and wide: at least `ceiling_min_agreement` of
-/// the cells within two rings have a highest layer within
-/// `ceiling_flatness` of it (a tree's crown is curved and a slope rises:
-/// both fail this; a ceiling passes).
+/// when that layer is a surface seen from below (its two bins hold
+/// `ceiling_peak_ratio` times the points per bin of the 0.5 m below them:
+/// the top of a cabinet's side does not), level and wide: at least
+/// `ceiling_min_agreement` of the cells within two rings have a highest
+/// layer within `ceiling_flatness` of it (a tree's crown is curved and a
+/// slope rises: both fail this; a ceiling passes).
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
 /// ceiling candidate), a ring search only in cold cells. Memory: 528 bytes
@@ -70,27 +79,29 @@ namespace streamclust {
 ///   using ground = streamclust::HeightMapGround;
 /// };
 /// streamclust::ClustererParams<ObjectsConfig> params;
-/// params.ground.ground_tolerance = 0.15f;
+/// params.ground.sensor_height = 1.2f;  // [m]
 /// \endcode
 class HeightMapGround {
  public:
   struct Params {
     float cell_size = 0.5f;            ///< [m] horizontal cell edge, (0.05, 10]
     float bin_height = 0.05f;          ///< [m] height bin, (0.005, 1]
-    float ground_tolerance = 0.2f;     ///< [m] above the ground bound still ground, [0, 2]
+    float ground_tolerance = 0.05f;    ///< [m] above the ground bound still ground, [0, 2]
     float max_slope_deg = 15.0f;       ///< [deg] steepest ground between neighbouring cells, [0, 60]
     float search_radius = 2.0f;        ///< [m] how far a cold cell looks for ground, [0, 50]
     std::uint32_t support = 2;         ///< points that make a layer, [1, 1000]
+    float layer_thickness = 0.1f;      ///< [m] a layer's height is its densest bin's within this, [bin_height, 1]
     float sensor_height = 0.0f;        ///< [m] sensor above the ground under it, [0, 100]; 0: unknown (no cone)
     /// [deg] elevation of the sensor's lowest ray in world orientation (a
     /// level Mid-360: -7), [-90, 90]; -90: off. Needs sensor_height.
     float lowest_ray_elevation_deg = -90.0f;
     float blind_margin = 0.15f;        ///< [m] a layer this close above the lowest ray's reach is a cut-off, [0, 2]
     bool detect_ceiling = true;        ///< class level layers overhead as ceiling
-    float ceiling_clearance = 0.5f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
+    float ceiling_clearance = 0.1f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
     float ceiling_tolerance = 0.2f;    ///< [m] below the cell's highest layer still ceiling, [0, 2]
     float ceiling_flatness = 0.1f;     ///< [m] a neighbour's highest layer this close agrees, [0, 2]
     float ceiling_min_agreement = 0.6f;  ///< fraction of the cells within two rings that agree, (0, 1]
+    float ceiling_peak_ratio = 3.0f;   ///< points per bin of the layer over those of the 0.5 m below it, [0, 100]
   };
 
   static constexpr bool enabled = true;
@@ -107,6 +118,8 @@ class HeightMapGround {
     check(params.search_radius >= 0.0f && params.search_radius <= 50.0f, "search_radius", params.search_radius,
           "[0, 50] m");
     check(params.support >= 1 && params.support <= 1000, "support", static_cast<float>(params.support), "[1, 1000]");
+    check(params.layer_thickness >= params.bin_height && params.layer_thickness <= 1.0f, "layer_thickness",
+          params.layer_thickness, "[bin_height, 1] m");
     check(params.ceiling_clearance >= 0.0f && params.ceiling_clearance <= 100.0f, "ceiling_clearance",
           params.ceiling_clearance, "[0, 100] m");
     check(params.ceiling_tolerance >= 0.0f && params.ceiling_tolerance <= 2.0f, "ceiling_tolerance",
@@ -118,6 +131,8 @@ class HeightMapGround {
     check(params.blind_margin >= 0.0f && params.blind_margin <= 2.0f, "blind_margin", params.blind_margin, "[0, 2] m");
     check(params.sensor_height >= 0.0f && params.sensor_height <= 100.0f, "sensor_height", params.sensor_height,
           "[0, 100] m (0: unknown)");
+    check(params.ceiling_peak_ratio >= 0.0f && params.ceiling_peak_ratio <= 100.0f, "ceiling_peak_ratio",
+          params.ceiling_peak_ratio, "[0, 100]");
     check(params.ceiling_min_agreement > 0.0f && params.ceiling_min_agreement <= 1.0f, "ceiling_min_agreement",
           params.ceiling_min_agreement, "(0, 1]");
     inverse_cell_ = 1.0f / params.cell_size;
@@ -128,14 +143,15 @@ class HeightMapGround {
                             ? -1e30f
                             : std::tan(params.lowest_ray_elevation_deg * 0.01745329252f);
     rise_per_cell_ = slope_ * params.cell_size;
+    layer_bins_ = std::max<std::int32_t>(1, static_cast<std::int32_t>(std::lround(params.layer_thickness * inverse_bin_)));
     search_rings_ = static_cast<std::int32_t>(std::ceil(params.search_radius * inverse_cell_));
   }
 
   /// Counts the point, then classes it (see the class comment). Amortised O(1).
   SurfaceClass classify(const Eigen::Vector3f& world, const Eigen::Vector3f& ray) {
     const Key k = key_of(world);
-    const std::int32_t bin = bin_of(world.z());
-    cells_[cells_.find_or_create(k.ix, k.iy)].add(bin);
+    const Height h = height_of(world.z());
+    cells_[cells_.find_or_create(k.ix, k.iy)].add(h.bin, h.fraction);
     if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
       return SurfaceClass::ceiling;
     }
@@ -154,7 +170,7 @@ class HeightMapGround {
       // The cone from the ground under the sensor.
       bound = std::min(*bound, under_sensor + slope_ * distance);
     }
-    return world.z() <= *bound + params_.ground_tolerance ? SurfaceClass::ground : SurfaceClass::object;
+    return world.z() <= *bound + params_.ground_tolerance + slope_rise(k) ? SurfaceClass::ground : SurfaceClass::object;
   }
 
   /// Uncounts a point `classify` counted. O(1) expected.
@@ -162,7 +178,8 @@ class HeightMapGround {
     const Key k = key_of(world);
     const std::uint32_t c = cells_.find(k.ix, k.iy);
     HeightColumn& column = cells_[c];
-    column.remove(bin_of(world.z()));
+    const Height h = height_of(world.z());
+    column.remove(h.bin, h.fraction);
     if (column.points() == 0) cells_.release(k.ix, k.iy);
   }
 
@@ -186,22 +203,40 @@ class HeightMapGround {
     return Key{static_cast<std::int32_t>(std::floor(p.x() * inverse_cell_)),
                static_cast<std::int32_t>(std::floor(p.y() * inverse_cell_))};
   }
-  std::int32_t bin_of(float z) const { return static_cast<std::int32_t>(std::floor(z * inverse_bin_)); }
+  /// A height as its bin and its position within it (HeightColumn's units).
+  struct Height {
+    std::int32_t bin, fraction;
+  };
+  Height height_of(float z) const {
+    const float scaled = z * inverse_bin_;
+    const float bin = std::floor(scaled);
+    const auto fraction = static_cast<std::int32_t>((scaled - bin) * HeightColumn::kFractionUnits);
+    return Height{static_cast<std::int32_t>(bin), std::clamp(fraction, 0, HeightColumn::kFractionUnits - 1)};
+  }
 
-  /// Height of the lowest supported layer of cell (ix, iy) [m].
+  /// Height of the lowest supported layer of cell (ix, iy) [m]: the mean
+  /// height of the densest bin within `layer_thickness` of its lowest
+  /// supported bin (a level surface piles its points into a bin or two; an
+  /// object standing on it spreads its points over many).
   std::optional<float> lowest_layer(std::int32_t ix, std::int32_t iy) const {
     const std::uint32_t c = cells_.find(ix, iy);
     if (c == CellTable<HeightColumn>::kNone) return std::nullopt;
-    const std::optional<std::int32_t> b = cells_[c].lowest_supported(params_.support);
+    const HeightColumn& column = cells_[c];
+    const std::optional<std::int32_t> b = column.lowest_supported(params_.support);
     if (!b) return std::nullopt;
-    return static_cast<float>(*b) * params_.bin_height;
+    const std::int32_t densest = column.densest(*b, *b + layer_bins_ - 1);
+    return static_cast<float>(*column.mean_bin(densest, densest)) * params_.bin_height;
   }
+  /// Height of the highest supported layer [m]: as lowest_layer, from the
+  /// highest supported bin down.
   std::optional<float> highest_layer(std::int32_t ix, std::int32_t iy) const {
     const std::uint32_t c = cells_.find(ix, iy);
     if (c == CellTable<HeightColumn>::kNone) return std::nullopt;
-    const std::optional<std::int32_t> b = cells_[c].highest_supported(params_.support);
+    const HeightColumn& column = cells_[c];
+    const std::optional<std::int32_t> b = column.highest_supported(params_.support);
     if (!b) return std::nullopt;
-    return static_cast<float>(*b + 1) * params_.bin_height;
+    const std::int32_t densest = column.densest(*b - layer_bins_ + 1, *b);
+    return static_cast<float>(*column.mean_bin(densest, densest)) * params_.bin_height;
   }
 
   /// The ground bound G at cell k, or nullopt when no layer is within reach.
@@ -221,9 +256,37 @@ class HeightMapGround {
     return bound;
   }
 
+  /// How much a slope through cell k rises across a cell [m], from the
+  /// layers of its four neighbours; an axis counts only where
+  /// the layers rise (or fall) monotonically through k, by the smaller of
+  /// the two steps (an object's cell beside level ground is no slope). At
+  /// most tan(max_slope) x cell_size. O(1).
+  float slope_rise(Key k) const {
+    const std::optional<float> centre = lowest_layer(k.ix, k.iy);
+    if (!centre) return 0.0f;
+    auto gradient = [&](std::int32_t dx, std::int32_t dy) {
+      const std::optional<float> before = lowest_layer(k.ix - dx, k.iy - dy);
+      const std::optional<float> after = lowest_layer(k.ix + dx, k.iy + dy);
+      if (!before || !after) return 0.0f;
+      const float d1 = *centre - *before, d2 = *after - *centre;
+      if (d1 * d2 <= 0.0f) return 0.0f;
+      return std::min(std::fabs(d1), std::fabs(d2));
+    };
+    const float gx = gradient(1, 0), gy = gradient(0, 1);  // [m per cell]
+    return std::min(rise_per_cell_, std::sqrt(gx * gx + gy * gy));
+  }
+
   bool is_ceiling(Key k, float z) const {
     const std::optional<float> top = highest_layer(k.ix, k.iy);
     if (!top || z < *top - params_.ceiling_tolerance) return false;
+    // A surface seen from below piles its points into its bins; the top of a
+    // tall object's side does not (its points spread evenly over heights).
+    const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)];
+    const std::int32_t b = *column.highest_supported(params_.support);
+    const double peak = static_cast<double>(column.count(b)) + column.count(b - 1);
+    double below = 0.0;
+    for (std::int32_t i = b - 2 - kPeakSpan; i < b - 2; ++i) below += column.count(i);
+    if (peak / 2.0 < params_.ceiling_peak_ratio * below / kPeakSpan) return false;
     int agreeing = 0;
     int cells = 0;
     for (std::int32_t dy = -2; dy <= 2; ++dy) {
@@ -237,6 +300,9 @@ class HeightMapGround {
     return static_cast<float>(agreeing) >= params_.ceiling_min_agreement * static_cast<float>(cells);
   }
 
+  /// Bins below a ceiling layer its peak is compared with.
+  static constexpr std::int32_t kPeakSpan = 10;
+
   Params params_;
   CellTable<HeightColumn> cells_;
   float inverse_cell_ = 2.0f;
@@ -245,6 +311,7 @@ class HeightMapGround {
   float lowest_ray_slope_ = -1e30f;
   float rise_per_cell_ = 0.13f;
   std::int32_t search_rings_ = 4;
+  std::int32_t layer_bins_ = 3;
 };
 
 }  // namespace streamclust
