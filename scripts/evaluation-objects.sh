@@ -13,7 +13,8 @@
 #                       down, 1.5 s streams; no doc rewrite
 #
 # A run that fails (or whose --verify finds a difference: exit 3) is listed in
-# failed.txt and in the doc's table of failed runs.
+# failed.txt and in the doc. The committed run: 96 runs in 330 s with JOBS=2
+# (plus the build), 4793 retrievals verified.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
