@@ -314,34 +314,8 @@ for tb in btbs:
                     f"{avg(rec, 'settled'):.1f} | {shown} | {ratio} | {avg(und, 'peak'):.2f} / {avg(und, 'settled'):.2f} |")
 tables["burst"] = "\n".join(rows)
 
-# --- the time series around the burst (T_B = first)
-def read_series(path):
-    rows = {}
-    if not os.path.exists(path):
-        return rows
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-        for line in f:
-            v = line.strip().split(",")
-            d = dict(zip(header, v))
-            rows.setdefault(d["method"], []).append(d)
-    return rows
-sl = read_series(os.path.join(out, "series_sliding.csv"))
-tu = read_series(os.path.join(out, "series_tumbling.csv"))
-rows = ["| t [s] | phase | USE C-ARC | USE baseline (sliding) | USE baseline (tumbling) | under-seg C-ARC | under-seg baseline (sliding) | ARI C-ARC | ARI baseline (sliding) |",
-        "|---|---|---|---|---|---|---|---|---|"]
-if sl:
-    for i, c in enumerate(sl.get("carc", [])):
-        t = float(c["time"])
-        if t < 0.8 or t > 1.95:
-            continue
-        b = sl["baseline"][i]
-        tt = tu.get("baseline", [None] * (i + 1))[i] if tu else None
-        phase = "rest" if t < 1.0 else ("burst" if t < 1.35 else "rest")
-        rows.append(f"| {t:.2f} | {phase} | {float(c['use']):.1f} | {float(b['use']):.1f} | "
-                    f"{(float(tt['use']) if tt else float('nan')):.1f} | {float(c['under_segmented']):.2f} | "
-                    f"{float(b['under_segmented']):.2f} | {float(c['ari']):.2f} | {float(b['ari']):.2f} |")
-tables["series"] = "\n".join(rows)
+# (the time series around the burst goes to docs/evaluation-burst.png below;
+# its CSV stays in $OUT/series_*.csv)
 
 failed = [l.strip() for l in open(os.path.join(out, "failed.txt")) if l.strip()] if os.path.exists(os.path.join(out, "failed.txt")) else []
 tables["failed"] = "\n".join(["| run | message |", "|---|---|"] + [

@@ -8,6 +8,7 @@
 
 #include "cli/cluster.hpp"
 #include "cli/evaluate.hpp"
+#include "cli/evaluate_objects.hpp"
 #include "cli/info.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
@@ -33,6 +34,8 @@ commands:
   simulate        write a simulated stream with its ground truth
   evaluate        simulate a scenario, cluster it (C-ARC and/or the frame baseline)
                   and score every retrieval against the ground truth
+  evaluate --objects   the objects preset against C-ARC, Euclidean clustering and the
+                  RANSAC + Euclidean frame pipeline: are the clusters objects?
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error.
@@ -147,6 +150,7 @@ examples:
 
 inline const char* evaluate_help() {
   return R"(usage: streamclust evaluate [scenario options] [method options] [--json FILE] [--series FILE]
+       streamclust evaluate --objects [options]   (see streamclust evaluate --objects --help)
 
 Simulates a scenario with ground truth, clusters it with C-ARC (the continuous
 engine) and/or the frame baseline (Bogoslavskyi & Stachniss: overwrite range
@@ -232,6 +236,16 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       return run_simulate(parse_simulate_options(rest), out);
     }
     if (command == "evaluate") {
+      const auto objects = std::find(rest.begin(), rest.end(), "--objects");
+      if (objects != rest.end()) {
+        if (help) {
+          out << evaluate_objects_help();
+          return kOk;
+        }
+        std::vector<std::string> options(rest.begin(), objects);
+        options.insert(options.end(), objects + 1, rest.end());
+        return run_evaluate_objects(parse_evaluate_objects_options(options), out, err);
+      }
       if (help) {
         out << evaluate_help();
         return kOk;

@@ -1,0 +1,620 @@
+// SPDX-License-Identifier: MIT
+// `streamclust evaluate --objects`: the objects preset and its three peers
+// on one simulated scenario, every retrieval scored with eval::object_metrics.
+
+#include "cli/evaluate_objects.hpp"
+
+#include "cli/euclidean_clusters.hpp"
+
+#include <streamclust/batch_clusterer.hpp>
+#include <streamclust/eval/object_metrics.hpp>
+#include <streamclust/motion/trajectory.hpp>
+#include <streamclust/objects_presets.hpp>
+#include <streamclust/partition_compare.hpp>
+#include <streamclust/percentiles.hpp>
+#include <streamclust/presets.hpp>
+#include <streamclust/retrieval_schedule.hpp>
+#include <streamclust/stream_clusterer.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace streamclust::cli {
+namespace {
+
+/// The sensors this evaluation knows: their facts (FOV) and the paper's theta.
+struct SensorChoice {
+  const char* name;
+  const SensorFacts* facts;
+  float carc_theta_deg;  ///< the paper's per-sensor theta; 10 (Bogoslavskyi's) where the paper gives none
+};
+
+constexpr SensorChoice kSensors[] = {{"mid360", &livox_mid360, 30.0f},
+                                     {"avia", &livox_avia, 80.0f},
+                                     {"mid40", &livox_mid40, 10.0f},
+                                     {"mid70", &livox_mid70, 10.0f}};
+
+const SensorChoice& sensor_choice(const std::string& name) {
+  for (const SensorChoice& s : kSensors) {
+    if (name == s.name) return s;
+  }
+  throw UsageError("--sensor: evaluate --objects needs a Livox model: mid360|avia|mid40|mid70, got '" + name + "'");
+}
+
+/// Fills `stream` like simulate_stream, with the sensor `height` above the
+/// ground at the start (the simulator keeps it over a terrain).
+template <class Sensor>
+void simulate_at_height(Sensor sensor, const SimulateOptions& o, float height, SimulatedStream& stream) {
+  typename sim::Simulator<Sensor>::Params params = simulator_params<Sensor>(o);
+  params.start_position = Eigen::Vector3f(0.0f, 0.0f, height);
+  sim::Simulator<Sensor> simulator(std::move(sensor), sim::make_scene(o.scene, o.seed), params);
+  while (simulator.time() < o.seconds) {
+    const sim::SimPoint s = simulator.next();
+    stream.records.push_back(io::Record{s.x, s.y, s.z, s.intensity, s.t, s.instance});
+    stream.classes.push_back(s.surface);
+  }
+  if (stream.records.empty()) throw UsageError("the scenario returned no point (--duration)");
+  stream.trajectory = simulator.trajectory(stream.records.front().t, stream.records.back().t, kTrajectoryRateHz);
+}
+
+SimulatedStream simulate_objects_stream(const EvaluateObjectsOptions& o, float height) {
+  SimulatedStream stream;
+  const SimulateOptions& s = o.scenario;
+  try {
+    if (s.sensor == "mid360") {
+      simulate_at_height(sim::Mid360Model(sim::Mid360Model::Params{}), s, height, stream);
+    } else if (s.sensor == "avia") {
+      simulate_at_height(sim::AviaModel(sim::AviaModel::Params{}), s, height, stream);
+    } else if (s.sensor == "mid40") {
+      simulate_at_height(sim::RisleyPairModel::mid40(), s, height, stream);
+    } else {
+      simulate_at_height(sim::RisleyPairModel::mid70(), s, height, stream);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return stream;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+/// A continuous engine of the evaluation, fed in stretches between
+/// retrievals; its labels written over the scored window [lo, hi).
+template <class Config>
+struct EngineRun {
+  StreamClusterer<Config> engine;
+  double pending_ms = 0.0;  ///< work since the last retrieval
+
+  explicit EngineRun(const ClustererParams<Config>& params) : engine(params) {}
+
+  void feed(const std::vector<io::Record>& records, std::size_t first, std::size_t last) {
+    const auto t0 = Clock::now();
+    for (std::size_t i = first; i < last; ++i) engine.insert(records[i], records[i].t);
+    pending_ms += ms_since(t0);
+  }
+  const Clustering& retrieve(double time) {
+    const auto t0 = Clock::now();
+    engine.advance_to(time);
+    const Clustering& result = engine.retrieve();
+    pending_ms += ms_since(t0);
+    return result;
+  }
+  /// The work since the previous call [ms].
+  double take_cost() {
+    const double c = pending_ms;
+    pending_ms = 0.0;
+    return c;
+  }
+};
+
+/// Predicted labels of the window [lo, lo + n) from an engine's result:
+/// cluster ids, -2 / -3 for structure, -1 for points the engine does not
+/// hold. Returns the result's points outside the window.
+std::size_t labels_from(const Clustering& result, std::size_t lo, std::vector<std::int64_t>& predicted) {
+  std::size_t outside = 0;
+  const std::size_t n = predicted.size();
+  const auto put = [&](std::uint64_t index, std::int64_t label) {
+    if (index < lo || index - lo >= n) {
+      ++outside;
+      return;
+    }
+    predicted[static_cast<std::size_t>(index - lo)] = label;
+  };
+  for (const PointLabel& p : result.points) put(p.stream_index, static_cast<std::int64_t>(p.label));
+  for (const StructurePoint& s : result.structure) {
+    put(s.stream_index, s.surface == SurfaceClass::ceiling ? eval::kClassedCeiling : eval::kClassedGround);
+  }
+  return outside;
+}
+
+/// The objects engine's last retrieval against the batch clusterer on its
+/// object points (tests/support/oracle_input.hpp): "" when equal.
+std::string verify_objects(const StreamClusterer<ObjectsConfig>& engine, BatchClusterer<ObjectsConfig>& batch,
+                           const std::vector<io::Record>& records, std::size_t outside) {
+  const Clustering& result = engine.last_result();
+  if (outside != 0) return std::to_string(outside) + " labelled points outside the scored window";
+  if (result.structure.size() != engine.structure_size()) return "the structure list and the structure ring differ";
+  if (engine.calibrating()) return result.points.empty() ? "" : "labels while calibrating";
+  if (result.points.size() != engine.size()) return "the result and the window differ in size";
+  std::vector<io::Record> window;
+  std::vector<ComponentId> continuous;
+  window.reserve(result.points.size());
+  for (const PointLabel& p : result.points) {
+    window.push_back(records[static_cast<std::size_t>(p.stream_index)]);
+    continuous.push_back(p.label);
+  }
+  if (window.empty()) return "";
+  batch.set_grid({engine.grid().rows, engine.grid().cols});
+  const BatchResult& reference = batch.cluster(window);
+  if (reference.rejections.rejected() != 0) return "the batch rejected a point the engine accepted";
+  const auto m = first_partition_mismatch(continuous, reference.labels);
+  if (!m) return "";
+  if (m->sizes_differ) return "the batch labelled a different number of points";
+  return "window point " + std::to_string(m->position) + ": engine label " + std::to_string(continuous[m->position]) +
+         ", batch label " + std::to_string(reference.labels[m->position]);
+}
+
+void summarize(ObjectsMethodResult& m) {
+  m.cost_median_ms = percentile(m.cost_ms, 50.0);
+  m.cost_p99_ms = percentile(m.cost_ms, 99.0);
+}
+
+}  // namespace
+
+EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::string>& args) {
+  EvaluateObjectsOptions o;
+  o.scenario.seconds = 3.0;
+  for (ArgCursor c(args); !c.done(); c.next()) {
+    const std::string& a = c.option();
+    if (a == "--velocity") {
+      o.scenario.speed = static_cast<float>(parse_number(a, c.value()));
+      continue;
+    }
+    if (a == "--burst" || a == "--burst-speed" || a == "--burst-yaw-rate" || a == "--point-rate") {
+      throw UsageError(a + ": not an option of evaluate --objects (see streamclust evaluate --objects --help)");
+    }
+    if (parse_simulation_option(c, o.scenario)) continue;
+    if (a == "--height") {
+      o.height = static_cast<float>(parse_positive(a, c.value()));
+      if (o.height > 100.0f) throw UsageError("--height: expected (0, 100] m");
+    } else if (a == "--poses") {
+      o.poses = c.choice({"on", "off"}) == "on";
+    } else if (a == "--method") {
+      const std::string v = c.value();
+      o.run_objects = o.run_carc = o.run_euclidean = o.run_frame = false;
+      std::stringstream list(v);
+      std::string item;
+      bool any = false;
+      while (std::getline(list, item, ',')) {
+        any = true;
+        if (item == "all") {
+          o.run_objects = o.run_carc = o.run_euclidean = o.run_frame = true;
+        } else if (item == "objects") {
+          o.run_objects = true;
+        } else if (item == "carc") {
+          o.run_carc = true;
+        } else if (item == "euclidean") {
+          o.run_euclidean = true;
+        } else if (item == "frame") {
+          o.run_frame = true;
+        } else {
+          throw UsageError("--method: expected all|objects|carc|euclidean|frame (comma-separated), got '" + v + "'");
+        }
+      }
+      if (!any) throw UsageError("--method: expected all|objects|carc|euclidean|frame, got ''");
+    } else if (a == "--window-time") {
+      o.window_seconds = parse_positive(a, c.value());
+      if (o.window_seconds > 60.0) throw UsageError("--window-time: expected (0, 60] s");
+    } else if (a == "--rate") {
+      o.rate_hz = parse_positive(a, c.value());
+      if (o.rate_hz > 10000.0) throw UsageError("--rate: expected (0, 10000] Hz");
+    } else if (a == "--distance") {
+      o.euclidean_distance = static_cast<float>(parse_positive(a, c.value()));
+      if (o.euclidean_distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
+    } else if (a == "--plane-distance") {
+      o.plane_distance = static_cast<float>(parse_positive(a, c.value()));
+      if (o.plane_distance > 10.0f) throw UsageError("--plane-distance: expected (0, 10] m");
+    } else if (a == "--ransac-iterations") {
+      o.ransac_iterations = static_cast<std::size_t>(parse_count(a, c.value()));
+      if (o.ransac_iterations > 100000) throw UsageError("--ransac-iterations: expected [1, 100000]");
+    } else if (a == "--min-points") {
+      o.min_points = static_cast<std::size_t>(parse_count(a, c.value()));
+    } else if (a == "--verify") {
+      o.verify = true;
+    } else if (a == "--json") {
+      o.json_path = c.value();
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else {
+      throw UsageError("unknown option '" + a + "' (see streamclust evaluate --objects --help)");
+    }
+  }
+  validate_simulation_options(o.scenario);
+  sensor_choice(o.scenario.sensor);  // throws for the others
+  if (!(o.scenario.speed >= -10.0f && o.scenario.speed <= 10.0f)) throw UsageError("--speed: expected [-10, 10] m/s");
+  if (!(o.scenario.yaw_rate >= -5.0f && o.scenario.yaw_rate <= 5.0f)) {
+    throw UsageError("--yaw-rate: expected [-5, 5] rad/s");
+  }
+  if (o.verify && !o.run_objects) throw UsageError("--verify checks the objects method: add it to --method");
+  const double period = 1.0 / o.rate_hz;
+  if (o.scenario.seconds < o.window_seconds + period) {
+    throw UsageError("--duration: at least one retrieval after the first window is needed: expected >= T_B + 1/rate = " +
+                     std::to_string(o.window_seconds + period) + " s, got " + std::to_string(o.scenario.seconds) +
+                     " s");
+  }
+  return o;
+}
+
+ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
+  const SensorChoice& sensor = sensor_choice(o.scenario.sensor);
+  ObjectsEvaluation e;
+  e.height = effective_height(o);
+  const SimulatedStream stream = simulate_objects_stream(o, e.height);
+  const std::vector<io::Record>& records = stream.records;
+  e.records = records.size();
+  for (const SurfaceClass c : stream.classes) e.scene_has_ceiling = e.scene_has_ceiling || c == SurfaceClass::ceiling;
+
+  const SimulateOptions& s = o.scenario;
+  const Pose mount = mount_from_roll_pitch_yaw_deg(s.mount_roll_deg, s.mount_pitch_deg, s.mount_yaw_deg);
+
+  // The objects engine: the vehicle's trajectory (the simulator's sensor
+  // poses without the mount) and the mount, or the mount alone.
+  ObjectsSetup setup;
+  setup.mount = mount;
+  setup.sensor_height = e.height;
+  setup.window_seconds = o.window_seconds;
+  if (o.poses) {
+    std::vector<StampedPose> vehicle;
+    vehicle.reserve(stream.trajectory.size());
+    const Pose unmount = mount.inverse();
+    for (const StampedPose& p : stream.trajectory) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
+    setup.trajectory = std::make_shared<const PoseTrajectory>(std::move(vehicle));
+  }
+  std::optional<EngineRun<ObjectsConfig>> objects;
+  std::optional<BatchClusterer<ObjectsConfig>> batch;
+  // The paper's preset, sensor frame.
+  std::optional<EngineRun<CArcFastConfig>> carc;
+  try {
+    const ClustererParams<ObjectsConfig> objects_parameters = objects_params(*sensor.facts, setup);
+    if (o.run_objects) objects.emplace(objects_parameters);
+    if (o.verify) batch.emplace(objects_parameters);
+    CArcParams paper;
+    paper.theta_deg = sensor.carc_theta_deg;
+    paper.field_of_view = field_of_view_of(*sensor.facts);
+    paper.window_seconds = o.window_seconds;
+    if (o.run_carc) carc.emplace(to_clusterer_params<CArcFastConfig>(paper));
+  } catch (const std::invalid_argument& ex) {
+    throw UsageError(ex.what());
+  }
+  EuclideanClustering euclidean(o.euclidean_distance);
+
+  ObjectsMethodResult r_objects{"objects", {}, {}, 0.0, 0.0}, r_carc{"carc", {}, {}, 0.0, 0.0},
+      r_euclidean{"euclidean", {}, {}, 0.0, 0.0}, r_frame{"frame", {}, {}, 0.0, 0.0};
+  eval::MetricOptions metric_options;
+  metric_options.min_points = o.min_points;
+
+  // Heights above the scene's ground of the object points (diagnostics):
+  // world position from the simulator's sensor poses.
+  std::vector<float> heights(records.size(), 0.0f);
+  if (o.run_objects) {
+    const sim::Scene scene = sim::make_scene(s.scene, s.seed);
+    PoseTrajectory sensor_poses(stream.trajectory);
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      if (records[i].label <= 0) continue;
+      const std::optional<Pose> pose = sensor_poses.at(records[i].t);
+      if (!pose) continue;
+      const Eigen::Vector3d w = *pose * Eigen::Vector3d(records[i].x, records[i].y, records[i].z);
+      const std::optional<float> ground =
+          scene.ground_height(static_cast<float>(w.x()), static_cast<float>(w.y()));
+      heights[i] = static_cast<float>(w.z()) - ground.value_or(0.0f);
+    }
+  }
+
+  std::vector<std::int64_t> truth, predicted;
+  std::vector<SurfaceClass> classes;
+  std::vector<Eigen::Vector3f> points, rest;
+  std::vector<std::size_t> rest_index;
+  RetrievalSchedule schedule(o.rate_hz);
+  const double first = records.front().t;
+  std::size_t fed = 0, lo = 0;
+  double window_points = 0.0;
+  bool first_evaluated = true;
+
+  const auto retrieve = [&](double time, std::size_t hi) {
+    if (objects) objects->feed(records, fed, hi);
+    if (carc) carc->feed(records, fed, hi);
+    fed = hi;
+    const Clustering* objects_result = objects ? &objects->retrieve(time) : nullptr;
+    const Clustering* carc_result = carc ? &carc->retrieve(time) : nullptr;
+    const double objects_cost = objects ? objects->take_cost() : 0.0;
+    const double carc_cost = carc ? carc->take_cost() : 0.0;
+    // The window at `time`: the points no more than T_B older (TimeWindow's rule).
+    while (lo < hi && time - records[lo].t > o.window_seconds) ++lo;
+    // Scored from the first retrieval at which the first window is full and
+    // no engine still buffers its first window (the objects engine's starts
+    // at its first object point).
+    if (time - first < o.window_seconds - 1e-9) return;
+    if ((objects && objects->engine.calibrating()) || (carc && carc->engine.calibrating())) return;
+    const std::size_t n = hi - lo;
+    truth.resize(n);
+    classes.resize(n);
+    points.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const io::Record& rec = records[lo + k];
+      truth[k] = rec.label;
+      classes[k] = stream.classes[lo + k];
+      points[k] = Eigen::Vector3f(rec.x, rec.y, rec.z);
+    }
+    ++e.retrievals;
+    window_points += static_cast<double>(n);
+    // Cycle costs skip the first scored retrieval: it holds the grid's calibration.
+    const bool timed = !first_evaluated;
+    first_evaluated = false;
+    const auto score = [&](ObjectsMethodResult& m, double cost_ms) {
+      m.average.add(eval::object_metrics(truth, classes, predicted, metric_options));
+      if (timed) m.cost_ms.push_back(cost_ms);
+    };
+    if (objects) {
+      predicted.assign(n, eval::kUnlabelled);
+      const std::size_t outside = labels_from(*objects_result, lo, predicted);
+      score(r_objects, objects_cost);
+      StructureDiagnostics& d = e.structure;
+      for (std::size_t k = 0; k < n; ++k) {
+        const bool lost = predicted[k] == eval::kClassedGround || predicted[k] == eval::kClassedCeiling;
+        if (truth[k] > 0) {
+          const std::size_t bin = StructureDiagnostics::bin_of(heights[lo + k]);
+          ++d.object_points[bin];
+          d.object_points_lost[bin] += lost ? 1u : 0u;
+        }
+        const auto c = static_cast<std::size_t>(classes[k]);
+        if (predicted[k] == eval::kClassedGround) ++d.classed_ground[c];
+        if (predicted[k] == eval::kClassedCeiling) ++d.classed_ceiling[c];
+      }
+      if (batch) {
+        ++e.verified;
+        const std::string mismatch = verify_objects(objects->engine, *batch, records, outside);
+        if (!mismatch.empty()) {
+          char at[48];
+          std::snprintf(at, sizeof at, "retrieval at %.3f s: ", time);
+          e.mismatches.push_back(at + mismatch);
+        }
+      }
+    }
+    if (carc) {
+      predicted.assign(n, eval::kUnlabelled);
+      labels_from(*carc_result, lo, predicted);
+      score(r_carc, carc_cost);
+    }
+    if (o.run_euclidean) {
+      const auto t0 = Clock::now();
+      const std::vector<std::int64_t>& labels = euclidean.cluster(points);
+      const double cost = ms_since(t0);
+      predicted = labels;
+      score(r_euclidean, cost);
+    }
+    if (o.run_frame) {
+      const auto t0 = Clock::now();
+      const PlaneFit plane = ransac_dominant_plane(points, o.plane_distance, o.ransac_iterations, o.scenario.seed);
+      predicted.assign(n, eval::kClassedGround);
+      rest.clear();
+      rest_index.clear();
+      for (std::size_t k = 0; k < n; ++k) {
+        if (plane.found && std::abs(plane.normal.dot(points[k]) + plane.offset) <= o.plane_distance) continue;
+        rest.push_back(points[k]);
+        rest_index.push_back(k);
+      }
+      const std::vector<std::int64_t>& labels = euclidean.cluster(rest);
+      for (std::size_t k = 0; k < rest.size(); ++k) predicted[rest_index[k]] = labels[k];
+      const double cost = ms_since(t0);
+      score(r_frame, cost);
+    }
+  };
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (const auto due = schedule.on_record(records[i].t)) retrieve(*due, i);
+  }
+  if (e.retrievals == 0) throw UsageError("--duration: no retrieval after the first window");
+  e.window_points = window_points / static_cast<double>(e.retrievals);
+  for (ObjectsMethodResult* m : {&r_objects, &r_carc, &r_euclidean, &r_frame}) {
+    if (m->average.frames() == 0) continue;
+    summarize(*m);
+    e.methods.push_back(std::move(*m));
+  }
+  return e;
+}
+
+namespace {
+
+Json mean_json(const ObjectsMethodResult& m) {
+  const eval::MeanObjectMetrics a = m.average.mean();
+  const eval::StrictObjectRates pooled = m.average.pooled_objects();
+  return Json{{"ari", a.ari},
+              {"correct", a.correct},
+              {"over_segmented", a.over_segmented},
+              {"under_segmented", a.under_segmented},
+              {"missed", a.missed},
+              {"objects", a.objects},
+              {"object_point_coverage", a.object_point_coverage},
+              {"ground_precision", a.ground_precision},
+              {"ground_recall", a.ground_recall},
+              {"ground_f1", a.ground_f1},
+              {"ceiling_precision", a.ceiling_precision},
+              {"ceiling_recall", a.ceiling_recall},
+              {"ceiling_f1", a.ceiling_f1},
+              {"pooled_correct", pooled.correct},
+              {"pooled_ground_f1", m.average.pooled_ground().f1},
+              {"pooled_ceiling_f1", m.average.pooled_ceiling().f1},
+              {"pooled_object_point_coverage", m.average.pooled_object_point_coverage()}};
+}
+
+}  // namespace
+
+Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvaluation& e) {
+  const SimulateOptions& s = o.scenario;
+  Json doc;
+  doc["scenario"] = {{"sensor", s.sensor},
+                     {"scene", s.scene},
+                     {"mount", Json::array({s.mount_roll_deg, s.mount_pitch_deg, s.mount_yaw_deg})},
+                     {"height", e.height},
+                     {"speed", s.speed},
+                     {"yaw_rate", s.yaw_rate},
+                     {"poses", o.poses},
+                     {"seconds", s.seconds},
+                     {"seed", s.seed},
+                     {"noise", s.noise},
+                     {"dropout", s.dropout},
+                     {"max_range", s.max_range}};
+  doc["settings"] = {{"window_time", o.window_seconds},
+                     {"rate", o.rate_hz},
+                     {"distance", o.euclidean_distance},
+                     {"plane_distance", o.plane_distance},
+                     {"ransac_iterations", o.ransac_iterations},
+                     {"min_points", o.min_points}};
+  doc["records"] = e.records;
+  doc["retrievals"] = e.retrievals;
+  doc["window_points"] = e.window_points;
+  doc["scene_has_ceiling"] = e.scene_has_ceiling;
+  if (o.run_objects) {
+    const StructureDiagnostics& d = e.structure;
+    Json bins = Json::array();
+    for (std::size_t b = 0; b < StructureDiagnostics::kHeightBins; ++b) {
+      bins.push_back({{"below_m", b + 1 < StructureDiagnostics::kHeightBins ? Json(StructureDiagnostics::kHeightEdges[b])
+                                                                           : Json(nullptr)},
+                      {"object_points", d.object_points[b]},
+                      {"classed_structure", d.object_points_lost[b]}});
+    }
+    Json ground = Json::object(), ceiling = Json::object();
+    for (std::size_t c = 0; c < static_cast<std::size_t>(kSurfaceClassCount); ++c) {
+      ground[to_string(static_cast<SurfaceClass>(c))] = d.classed_ground[c];
+      ceiling[to_string(static_cast<SurfaceClass>(c))] = d.classed_ceiling[c];
+    }
+    doc["objects_structure"] = {{"object_points_by_height", std::move(bins)},
+                                {"classed_ground_by_truth", std::move(ground)},
+                                {"classed_ceiling_by_truth", std::move(ceiling)}};
+  }
+  doc["verify"] = o.verify ? Json{{"retrievals", e.verified}, {"mismatches", e.mismatches}} : Json(nullptr);
+  Json methods = Json::array();
+  for (const ObjectsMethodResult& m : e.methods) {
+    methods.push_back({{"name", m.name},
+                       {"retrievals", m.average.frames()},
+                       {"cost_median_ms", m.cost_median_ms},
+                       {"cost_p99_ms", m.cost_p99_ms},
+                       {"mean", mean_json(m)}});
+  }
+  doc["methods"] = std::move(methods);
+  return doc;
+}
+
+void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o, const ObjectsEvaluation& e) {
+  const SimulateOptions& s = o.scenario;
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "streamclust evaluate --objects: sensor %s, scene %s, mount %g,%g,%g deg, height %.2f m, %.3g s, "
+                "seed %llu, %zu points",
+                s.sensor.c_str(), s.scene.c_str(), s.mount_roll_deg, s.mount_pitch_deg, s.mount_yaw_deg,
+                static_cast<double>(e.height), s.seconds, static_cast<unsigned long long>(s.seed), e.records);
+  out << line << "\n";
+  if (s.speed != 0.0f || s.yaw_rate != 0.0f) {
+    std::snprintf(line, sizeof line, "moving %.3g m/s, yaw rate %.3g rad/s; objects engine %s", static_cast<double>(s.speed),
+                  static_cast<double>(s.yaw_rate), o.poses ? "with the vehicle's poses" : "with the mount only");
+  } else {
+    std::snprintf(line, sizeof line, "at rest; objects engine %s", o.poses ? "with the vehicle's poses" : "with the mount only");
+  }
+  out << line << "\n";
+  std::snprintf(line, sizeof line, "T_B %.3g s, retrievals %.3g Hz: %zu scored, %.0f points per window", o.window_seconds,
+                o.rate_hz, e.retrievals, e.window_points);
+  out << line << "\n\n";
+  std::snprintf(line, sizeof line, "%-30s", "mean over retrievals");
+  out << line;
+  for (const ObjectsMethodResult& m : e.methods) {
+    std::snprintf(line, sizeof line, "%11s", m.name.c_str());
+    out << line;
+  }
+  out << "\n";
+  struct Row {
+    const char* label;
+    double eval::MeanObjectMetrics::*field;
+  };
+  std::vector<Row> rows = {{"ARI (object points)", &eval::MeanObjectMetrics::ari},
+                           {"objects correct (strict)", &eval::MeanObjectMetrics::correct},
+                           {"objects over-segmented", &eval::MeanObjectMetrics::over_segmented},
+                           {"objects under-segmented", &eval::MeanObjectMetrics::under_segmented},
+                           {"objects missed", &eval::MeanObjectMetrics::missed},
+                           {"object-point coverage", &eval::MeanObjectMetrics::object_point_coverage},
+                           {"ground F1", &eval::MeanObjectMetrics::ground_f1}};
+  if (e.scene_has_ceiling) rows.push_back({"ceiling F1", &eval::MeanObjectMetrics::ceiling_f1});
+  rows.push_back({"objects rated per window", &eval::MeanObjectMetrics::objects});
+  for (const Row& r : rows) {
+    std::snprintf(line, sizeof line, "%-30s", r.label);
+    out << line;
+    for (const ObjectsMethodResult& m : e.methods) {
+      std::snprintf(line, sizeof line, "%11.3f", m.average.mean().*(r.field));
+      out << line;
+    }
+    out << "\n";
+  }
+  for (const bool p99 : {false, true}) {
+    std::snprintf(line, sizeof line, "%-30s", p99 ? "cycle cost P99 [ms]" : "cycle cost median [ms]");
+    out << line;
+    for (const ObjectsMethodResult& m : e.methods) {
+      std::snprintf(line, sizeof line, "%11.2f", p99 ? m.cost_p99_ms : m.cost_median_ms);
+      out << line;
+    }
+    out << "\n";
+  }
+  if (o.run_objects) {
+    const StructureDiagnostics& d = e.structure;
+    out << "\nobjects: object points classed structure, by height above the ground:";
+    double lower = -1e9;
+    const char* separator = " ";
+    for (std::size_t b = 0; b < StructureDiagnostics::kHeightBins; ++b) {
+      if (d.object_points[b] > 0) {
+        out << separator;
+        separator = ", ";
+        const double rate = static_cast<double>(d.object_points_lost[b]) / static_cast<double>(d.object_points[b]);
+        if (b == 0) {
+          std::snprintf(line, sizeof line, "<0 m %.3f", rate);
+        } else if (b + 1 == StructureDiagnostics::kHeightBins) {
+          std::snprintf(line, sizeof line, ">=%g m %.3f", lower, rate);
+        } else {
+          std::snprintf(line, sizeof line, "%g-%g m %.3f", lower, StructureDiagnostics::kHeightEdges[b], rate);
+        }
+        out << line;
+      }
+      if (b < StructureDiagnostics::kHeightBins - 1) lower = StructureDiagnostics::kHeightEdges[b];
+    }
+    out << "\nobjects: points classed ground / ceiling by truth class (object, ground, wall, ceiling):";
+    for (const auto* counts : {&d.classed_ground, &d.classed_ceiling}) {
+      out << (counts == &d.classed_ground ? " ground" : "; ceiling");
+      for (const std::uint64_t v : *counts) out << ' ' << v;
+    }
+    out << "\n";
+  }
+  if (o.verify) {
+    if (e.mismatches.empty()) {
+      out << "verify: the objects partition equals the batch partition of its object points at all " << e.verified
+          << " retrievals\n";
+    } else {
+      out << "verify: " << e.mismatches.size() << " of " << e.verified << " retrievals differ from the batch\n";
+    }
+  }
+}
+
+int run_evaluate_objects(const EvaluateObjectsOptions& o, std::ostream& out, std::ostream& err) {
+  const ObjectsEvaluation e = evaluate_objects(o);
+  if (!o.json_path.empty()) write_json_file("--json", o.json_path, objects_evaluation_json(o, e));
+  if (!o.quiet) print_objects_evaluation(out, o, e);
+  if (!e.mismatches.empty()) {
+    for (const std::string& m : e.mismatches) err << "streamclust: verify: " << m << "\n";
+    return kMismatch;
+  }
+  return kOk;
+}
+
+}  // namespace streamclust::cli

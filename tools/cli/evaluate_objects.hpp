@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// `streamclust evaluate --objects`: are the clusters objects? Simulates one
+/// scenario (sensor, scene, mount, height, ego-motion), runs four methods on
+/// the same stream and scores every retrieval of a 20 Hz schedule after the
+/// first window with eval::object_metrics:
+/// - objects: StreamClusterer<ObjectsConfig> from objects_params (structure
+///   removal, range-adaptive linkage, poses or mount, sensor height);
+/// - carc: the paper's preset (CArcFastConfig, theta 30 for the Mid-360, 80
+///   for the Avia, the sensor's FOV), every point clustered;
+/// - euclidean: exact Euclidean single linkage at 0.3 m of each window
+///   (EuclideanClustering: PCL's definition);
+/// - frame: RANSAC removal of the dominant plane, then the same Euclidean
+///   clustering, per window.
+/// The peers see the window's points in the sensor frame, without poses.
+/// Results and definitions: docs/evaluation.md, section "Objects".
+
+#include "cli/json.hpp"
+#include "cli/options.hpp"
+#include "cli/simulate.hpp"
+
+#include <streamclust/eval/object_average.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace streamclust::cli {
+
+/// Everything `streamclust evaluate --objects` needs.
+struct EvaluateObjectsOptions {
+  SimulateOptions scenario;        ///< sensor, scene, mount, duration (default 3 s), seed, speed, yaw rate, noise
+  float height = 0.0f;             ///< [m] sensor above the ground; 0: 1.0, or 2.5 when mounted upside down
+  bool poses = true;               ///< the objects engine gets the simulator's vehicle trajectory (else the mount only)
+  double window_seconds = 0.5;     ///< T_B [s], every method
+  double rate_hz = 20.0;           ///< retrievals per second of stream time
+  bool run_objects = true, run_carc = true, run_euclidean = true, run_frame = true;
+  float euclidean_distance = 0.3f;  ///< [m] euclidean and frame
+  float plane_distance = 0.2f;      ///< [m] frame: points this close to the RANSAC plane are ground
+  std::size_t ransac_iterations = 100;  ///< frame
+  std::size_t min_points = 10;      ///< eval::MetricOptions::min_points
+  bool verify = false;              ///< objects: every retrieval against the batch partition
+  std::string json_path;
+  bool quiet = false;
+};
+
+/// The sensor height a run uses [m]: the given one, else 2.5 m for a
+/// mount rolled by more than 90 degrees (upside down, under a ceiling or
+/// on a mast) and 1.0 m otherwise (the simulator's default).
+inline float effective_height(const EvaluateObjectsOptions& o) {
+  if (o.height > 0.0f) return o.height;
+  const double roll = std::remainder(o.scenario.mount_roll_deg, 360.0);
+  return std::abs(roll) > 90.0 ? 2.5f : 1.0f;
+}
+
+/// Parses the options of `evaluate --objects` (`args` without "--objects").
+/// Throws UsageError naming the option.
+EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::string>& args);
+
+/// One method's scores, averaged over the evaluated retrievals.
+struct ObjectsMethodResult {
+  std::string name;                  ///< objects, carc, euclidean or frame
+  eval::ObjectMetricsAverage average;
+  std::vector<double> cost_ms;       ///< per evaluated retrieval: the method's work since the previous one [ms]
+  double cost_median_ms = 0.0;
+  double cost_p99_ms = 0.0;
+};
+
+/// Where the objects method's structure removal errs, pooled over the
+/// evaluated retrievals: object points (truth instance > 0) and those
+/// classed ground or ceiling, by height above the scene's ground; points
+/// classed ground and ceiling by their truth class.
+struct StructureDiagnostics {
+  /// Upper edges of the height bins [m] (a last bin holds the rest).
+  static constexpr double kHeightEdges[] = {0.0, 0.25, 0.5, 1.0, 2.0, 4.0};
+  static constexpr std::size_t kHeightBins = sizeof(kHeightEdges) / sizeof(kHeightEdges[0]) + 1;
+  std::array<std::uint64_t, kHeightBins> object_points{};
+  std::array<std::uint64_t, kHeightBins> object_points_lost{};  ///< classed ground or ceiling
+  std::array<std::uint64_t, kSurfaceClassCount> classed_ground{};   ///< by truth class
+  std::array<std::uint64_t, kSurfaceClassCount> classed_ceiling{};  ///< by truth class
+
+  static std::size_t bin_of(double height) {
+    std::size_t b = 0;
+    while (b < kHeightBins - 1 && !(height < kHeightEdges[b])) ++b;
+    return b;
+  }
+};
+
+/// The outcome of one run.
+struct ObjectsEvaluation {
+  std::size_t records = 0;
+  float height = 0.0f;               ///< [m]
+  bool scene_has_ceiling = false;    ///< some point's truth class is ceiling
+  std::size_t retrievals = 0;        ///< evaluated retrievals
+  double window_points = 0.0;        ///< mean points per evaluated window
+  std::vector<ObjectsMethodResult> methods;
+  StructureDiagnostics structure;    ///< the objects method's
+  std::size_t verified = 0;          ///< retrievals checked against the batch (--verify)
+  std::vector<std::string> mismatches;  ///< one line per retrieval that differed
+};
+
+/// Simulates the scenario and runs the methods (tools/cli/evaluate_objects.cpp).
+ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o);
+
+/// The run as JSON (docs/cli.md style: one method per entry).
+Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvaluation& e);
+
+/// The human-readable table.
+void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o, const ObjectsEvaluation& e);
+
+/// Runs `streamclust evaluate --objects`: 0, or kMismatch (3) when
+/// --verify found a difference; throws UsageError (exit 2) and
+/// std::runtime_error for an unwritable output (exit 4).
+int run_evaluate_objects(const EvaluateObjectsOptions& o, std::ostream& out, std::ostream& err);
+
+inline const char* evaluate_objects_help() {
+  return R"(usage: streamclust evaluate --objects [scenario options] [method options] [--verify] [--json FILE]
+
+Simulates one scenario with ground truth and scores, at every retrieval of a
+--rate Hz schedule after the first window, four methods on the window's points
+(eval::object_metrics; docs/evaluation.md, section Objects):
+  objects    the objects preset (StreamClusterer<ObjectsConfig>, objects_params):
+             ground / ceiling removal, range-adaptive linkage, poses or mount
+  carc       the paper's preset (theta 30 Mid-360, 80 Avia; the sensor's FOV), all points clustered
+  euclidean  Euclidean single linkage at --distance of each window (PCL's definition)
+  frame      RANSAC removal of the dominant plane (points within --plane-distance: ground),
+             then the same Euclidean clustering, per window
+The peers (carc, euclidean, frame) see the sensor-frame points, without poses.
+Prints ARI on object points, strict objects correct / over- / under-segmented,
+object-point coverage, ground F1 (ceiling F1 when the scene has a ceiling) and
+the cycle cost (median, P99) of each method.
+
+scenario:
+  --sensor mid360|avia|mid40|mid70              (default mid360)
+  --scene office|forest|street|hills            (default office)
+  --mount ROLL,PITCH,YAW                        sensor mount [deg] (pitch > 0 tilts down; roll 180: upside down)
+  --height M                                    sensor above the ground (default 1.0; 2.5 upside down)
+  --speed M/S | --velocity M/S  --yaw-rate RAD/S   ego-motion (default 0: at rest)
+  --poses on|off                                on: the simulator's vehicle trajectory goes to the objects
+                                                engine (default); off: the mount only
+  --duration S | --seconds S (default 3)  --seed N (default 1)
+  --noise M (default 0.02)  --dropout P (default 0)  --max-range M (default 40)
+methods:
+  --method all|objects|carc|euclidean|frame[,...]  (default all)
+  --window-time T_B (default 0.5)  --rate HZ (default 20)
+  --distance M (default 0.3)        euclidean and frame linkage radius
+  --plane-distance M (default 0.2)  --ransac-iterations N (default 100)
+  --min-points N (default 10)       objects smaller than N points are not rated
+  --verify                          objects: at every retrieval, the partition must equal the batch
+                                    partition of its object points; exit 3 otherwise
+outputs:
+  --json FILE  --quiet, -q
+
+examples:
+  streamclust evaluate --objects --sensor mid360 --scene office
+  streamclust evaluate --objects --sensor avia --scene hills --mount 0,30,0 --speed 1.5 --yaw-rate 0.3
+  streamclust evaluate --objects --scene office --mount 180,0,0 --verify --json office_up.json
+)";
+}
+
+}  // namespace streamclust::cli
