@@ -9,6 +9,7 @@
 #
 #   JOBS=2              runs in parallel (default 2)
 #   BUILD_DIR=build/evaluation
+#   TOOL=path           use this streamclust binary (Release) instead of building one
 #   QUICK=1             a smoke run: Mid-360, office and hills, level and upside
 #                       down, 1.5 s streams; no doc rewrite
 #
@@ -24,11 +25,13 @@ JOBS=${JOBS:-2}
 BUILD_DIR=${BUILD_DIR:-build/evaluation}
 QUICK=${QUICK:-}
 OUT="$BUILD_DIR/results-objects"
-TOOL="$BUILD_DIR/tools/streamclust"
-
-cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
-  -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
-cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
+if [[ -z "${TOOL:-}" ]]; then
+  TOOL="$BUILD_DIR/tools/streamclust"
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
+    -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
+  cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
+fi
+TOOL=$(realpath "$TOOL")
 
 rm -rf "$OUT"
 mkdir -p "$OUT"

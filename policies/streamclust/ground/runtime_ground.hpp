@@ -13,7 +13,6 @@
 
 #include <chrono>
 #include <cstddef>
-#include <optional>
 
 namespace streamclust {
 
@@ -31,32 +30,34 @@ class RuntimeGround {
   };
   static constexpr bool enabled = true;
 
-  explicit RuntimeGround(const Params& params) : timed_(params.timed) {
-    if (params.use_height_map) model_.emplace(params.height_map);
-  }
+  explicit RuntimeGround(const Params& params)
+      : model_(params.use_height_map ? params.height_map : HeightMapGround::Params{}),
+        used_(params.use_height_map),
+        timed_(params.timed) {}
 
   SurfaceClass classify(const Eigen::Vector3f& world, const Eigen::Vector3f& ray) {
-    if (!model_) return SurfaceClass::object;
-    if (!timed_) return model_->classify(world, ray);
+    if (!used_) return SurfaceClass::object;
+    if (!timed_) return model_.classify(world, ray);
     const auto t0 = std::chrono::steady_clock::now();
-    const SurfaceClass c = model_->classify(world, ray);
+    const SurfaceClass c = model_.classify(world, ray);
     elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     return c;
   }
   void forget(const Eigen::Vector3f& world) {
-    if (!model_) return;
-    if (!timed_) return model_->forget(world);
+    if (!used_) return;
+    if (!timed_) return model_.forget(world);
     const auto t0 = std::chrono::steady_clock::now();
-    model_->forget(world);
+    model_.forget(world);
     elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
   /// Time spent in the model since construction [us] (with `timed`; else 0).
   double elapsed_us() const { return elapsed_us_; }
-  std::size_t heap_bytes() const { return model_ ? model_->heap_bytes() : 0; }
-  bool uses_height_map() const { return model_.has_value(); }
+  std::size_t heap_bytes() const { return used_ ? model_.heap_bytes() : 0; }
+  bool uses_height_map() const { return used_; }
 
  private:
-  std::optional<HeightMapGround> model_;
+  HeightMapGround model_;  // unused unless used_ (holds no heap until it counts a point)
+  bool used_ = false;
   bool timed_ = false;
   double elapsed_us_ = 0.0;
 };

@@ -12,7 +12,6 @@
 #include <Eigen/Core>
 
 #include <chrono>
-#include <optional>
 
 namespace streamclust {
 
@@ -30,29 +29,29 @@ class RuntimeMotion {
   };
   static constexpr bool identity = false;
 
-  explicit RuntimeMotion(const Params& params) : timed_(params.timed) {
-    if (params.enabled) posed_.emplace(params.posed);
-  }
+  explicit RuntimeMotion(const Params& params)
+      : posed_(params.enabled ? params.posed : PosedMotion::Params{}), enabled_(params.enabled), timed_(params.timed) {}
 
   RejectReason place(const Eigen::Vector3f& p, double time, PlacedPoint& placed) {
-    if (!posed_) {
+    if (!enabled_) {
       placed.world = p;
       placed.ray = p;
       return RejectReason::accepted;
     }
-    if (!timed_) return posed_->place(p, time, placed);
+    if (!timed_) return posed_.place(p, time, placed);
     const auto t0 = std::chrono::steady_clock::now();
-    const RejectReason r = posed_->place(p, time, placed);
+    const RejectReason r = posed_.place(p, time, placed);
     elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     return r;
   }
 
-  bool enabled() const { return posed_.has_value(); }
+  bool enabled() const { return enabled_; }
   /// Time spent placing points since construction [us] (with `timed`; else 0).
   double elapsed_us() const { return elapsed_us_; }
 
  private:
-  std::optional<PosedMotion> posed_;
+  PosedMotion posed_;  // unused unless enabled (a member, not an optional: no allocation either way)
+  bool enabled_ = false;
   bool timed_ = false;
   double elapsed_us_ = 0.0;
 };
