@@ -59,41 +59,21 @@ STREAMCLUST_DETAIL_SLOT(window)
 STREAMCLUST_DETAIL_SLOT(resolution)
 #undef STREAMCLUST_DETAIL_SLOT
 
-template <class C, class = void>
-struct slot_visitor {
-  using type = NullVisitor;
-};
-template <class C>
-struct slot_visitor<C, std::void_t<typename C::visitor>> {
-  using type = typename C::visitor;
-};
-
-template <class C, class = void>
-struct slot_connectivity {
-  using type = LazyBfsConnectivity;
-};
-template <class C>
-struct slot_connectivity<C, std::void_t<typename C::connectivity>> {
-  using type = typename C::connectivity;
-};
-
-template <class C, class = void>
-struct slot_motion {
-  using type = NoMotion;
-};
-template <class C>
-struct slot_motion<C, std::void_t<typename C::motion>> {
-  using type = typename C::motion;
-};
-
-template <class C, class = void>
-struct slot_ground {
-  using type = NoGround;
-};
-template <class C>
-struct slot_ground<C, std::void_t<typename C::ground>> {
-  using type = typename C::ground;
-};
+/// Optional slots: the configuration's type, else the default.
+#define STREAMCLUST_DETAIL_SLOT_OR(NAME, DEFAULT)                                      \
+  template <class C, class = void>                                                     \
+  struct slot_##NAME {                                                                 \
+    using type = DEFAULT;                                                              \
+  };                                                                                   \
+  template <class C>                                                                   \
+  struct slot_##NAME<C, std::void_t<typename C::NAME>> {                               \
+    using type = typename C::NAME;                                                     \
+  };
+STREAMCLUST_DETAIL_SLOT_OR(visitor, NullVisitor)
+STREAMCLUST_DETAIL_SLOT_OR(connectivity, LazyBfsConnectivity)
+STREAMCLUST_DETAIL_SLOT_OR(motion, NoMotion)
+STREAMCLUST_DETAIL_SLOT_OR(ground, NoGround)
+#undef STREAMCLUST_DETAIL_SLOT_OR
 
 template <class C, class = void>
 struct config_timed : std::false_type {};

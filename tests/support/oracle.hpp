@@ -15,6 +15,22 @@
 
 namespace streamclust::test {
 
+/// Clusters `window` (the points the engine labelled `continuous`, in
+/// order) with `batch` on the engine's grid and compares the partitions and
+/// the component count. Returns an empty string on agreement.
+template <class Config, class P>
+std::string compare_window_with_batch(const StreamClusterer<Config>& engine, BatchClusterer<Config>& batch,
+                                      const std::vector<P>& window, const std::vector<ComponentId>& continuous) {
+  batch.set_grid({engine.grid().rows, engine.grid().cols});
+  const BatchResult& reference = batch.cluster(window);
+  if (reference.rejections.rejected() != 0) return "batch rejected a point the engine accepted";
+  std::string mismatch = partition_mismatch(continuous, reference.labels);
+  if (!mismatch.empty()) return mismatch;
+  std::set<ComponentId> ids(continuous.begin(), continuous.end());
+  if (ids.size() != engine.last_result().components.size()) return "component summaries do not match the labels";
+  return {};
+}
+
 /// Compares the engine's last retrieval with a from-scratch batch run on the
 /// same window (same grid). Returns an empty string on agreement, else what
 /// differs. O(window) plus the batch run.
@@ -33,14 +49,7 @@ std::string compare_with_batch(const StreamClusterer<Config>& engine, BatchClust
     if (result.points[i].stream_index != indices[i]) return "stream index mismatch";
     continuous.push_back(result.points[i].label);
   }
-  batch.set_grid({engine.grid().rows, engine.grid().cols});
-  const BatchResult& reference = batch.cluster(window);
-  if (reference.rejections.rejected() != 0) return "batch rejected a point the engine accepted";
-  std::string mismatch = partition_mismatch(continuous, reference.labels);
-  if (!mismatch.empty()) return mismatch;
-  std::set<ComponentId> ids(continuous.begin(), continuous.end());
-  if (ids.size() != result.components.size()) return "component summaries do not match the labels";
-  return {};
+  return compare_window_with_batch(engine, batch, window, continuous);
 }
 
 }  // namespace streamclust::test

@@ -9,7 +9,7 @@
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/stream_clusterer.hpp>
 
-#include "partition.hpp"
+#include "oracle.hpp"
 
 #include <cstdint>
 #include <set>
@@ -46,14 +46,7 @@ std::string compare_with_batch_on_input(const StreamClusterer<Config>& engine, B
     if (s.surface == SurfaceClass::object) return "a structure point classed object";
   }
   if (window.empty()) return {};
-  batch.set_grid({engine.grid().rows, engine.grid().cols});
-  const BatchResult& reference = batch.cluster(window);
-  if (reference.rejections.rejected() != 0) return "batch rejected a point the engine accepted";
-  std::string mismatch = partition_mismatch(continuous, reference.labels);
-  if (!mismatch.empty()) return mismatch;
-  std::set<ComponentId> ids(continuous.begin(), continuous.end());
-  if (ids.size() != result.components.size()) return "component summaries do not match the labels";
-  return {};
+  return compare_window_with_batch(engine, batch, window, continuous);
 }
 
 }  // namespace streamclust::test

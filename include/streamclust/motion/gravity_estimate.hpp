@@ -45,6 +45,7 @@
 ///
 /// Thread safety: free functions without shared state.
 
+#include <streamclust/detail/split_mix.hpp>
 #include <streamclust/motion/pose.hpp>
 
 #include <Eigen/Core>
@@ -86,18 +87,6 @@ struct GroundEstimate {
 
 namespace detail {
 
-/// splitmix64: a small deterministic generator, the same on every platform.
-struct SplitMix64 {
-  std::uint64_t state;
-  std::uint64_t operator()() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, n) (n > 0; the modulo bias is below 2^-40 for n < 2^24).
-  std::size_t below(std::size_t n) { return static_cast<std::size_t>(((*this)() >> 11) % n); }
-};
 
 inline void check_mount_estimate_params(const MountEstimateParams& p) {
   const auto fail = [](const char* name, double value, const char* allowed) {

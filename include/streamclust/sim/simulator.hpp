@@ -36,6 +36,7 @@
 /// by copies since casting is const).
 
 #include <streamclust/motion/pose.hpp>
+#include <streamclust/detail/parameter_check.hpp>
 #include <streamclust/sim/ray.hpp>
 #include <streamclust/sim/scene.hpp>
 
@@ -65,14 +66,7 @@ struct is_sim_sensor<S, std::void_t<decltype(std::declval<S&>().next()), decltyp
                          std::is_convertible_v<decltype(std::declval<const S&>().point_rate()), double>> {};
 
 inline void require_param(bool ok, const char* name, double value, const char* allowed) {
-  if (ok) return;
-  std::string msg("Simulator::Params: ");
-  msg.append(name);
-  msg.append(" = ");
-  msg.append(std::to_string(value));
-  msg.append(" is invalid, expected ");
-  msg.append(allowed);
-  throw std::invalid_argument(msg);
+  streamclust::detail::require_parameter(ok, "Simulator::Params", name, value, allowed);
 }
 
 /// Reflectivity in [0.15, 0.85) hashed from the instance id; 0.35 for structure.

@@ -42,6 +42,7 @@
 /// solid): no hit, as for every solid of shapes.hpp. The rectangle has no
 /// side walls. Immutable after construction; all members thread-safe.
 
+#include <streamclust/detail/parameter_check.hpp>
 #include <streamclust/sim/shapes.hpp>
 
 #include <Eigen/Core>
@@ -247,14 +248,7 @@ class Terrain {
   }
 
   static void require(bool ok, const char* name, double value, const char* allowed) {
-    if (ok) return;
-    std::string msg("Terrain::Params: ");
-    msg.append(name);
-    msg.append(" = ");
-    msg.append(std::to_string(value));
-    msg.append(" is invalid, expected ");
-    msg.append(allowed);
-    throw std::invalid_argument(msg);
+    streamclust::detail::require_parameter(ok, "Terrain::Params", name, value, allowed);
   }
 
   void validate() const {

@@ -6,6 +6,7 @@
 /// of the sliding window; no scan lines, no per-frame refit.
 
 #include <streamclust/concepts/ground.hpp>
+#include <streamclust/detail/parameter_check.hpp>
 #include <streamclust/ground/cell_table.hpp>
 #include <streamclust/ground/height_column.hpp>
 #include <streamclust/surface_class.hpp>
@@ -194,9 +195,7 @@ class HeightMapGround {
   };
 
   static void check(bool ok, const char* name, float value, const char* allowed) {
-    if (ok) return;
-    throw std::invalid_argument(std::string("HeightMapGround: ") + name + " = " + std::to_string(value) +
-                                " is invalid, expected " + allowed);
+    detail::require_parameter(ok, "HeightMapGround", name, static_cast<double>(value), allowed);
   }
 
   Key key_of(const Eigen::Vector3f& p) const {
