@@ -128,9 +128,9 @@ struct ClustererParams {
   typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
   typename detail::params_of<typename config_traits<Config>::motion>::type motion{};
   typename detail::params_of<typename config_traits<Config>::ground>::type ground{};
-  /// Stream index of the first offered point (StreamClusterer only; the
-  /// batch clusterer numbers its input from 0): a clusterer that resumes a
-  /// stream continues its numbering.
+  /// Stream index of the first offered point (StreamClusterer and
+  /// FrameClusterer; the batch clusterer numbers its input from 0): a
+  /// clusterer that resumes a stream continues its numbering.
   std::uint64_t first_stream_index = 0;
 };
 
