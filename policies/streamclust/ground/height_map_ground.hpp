@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -156,7 +157,12 @@ class HeightMapGround {
     if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
       return SurfaceClass::ceiling;
     }
-    std::optional<float> bound = ground_bound(k);
+    // The bound is at most the cell's own layer and the slope's rise at most
+    // rise_per_cell_: a point well above its cell's layer is an object
+    // without looking at the neighbours (most object points).
+    Neighbourhood n = neighbourhood(k);
+    if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + rise_per_cell_) return SurfaceClass::object;
+    std::optional<float> bound = ground_bound(k, n);
     if (!bound) return SurfaceClass::object;
     if (params_.sensor_height > 0.0f) {
       const float sensor_z = world.z() - ray.z();
@@ -171,7 +177,7 @@ class HeightMapGround {
       // The cone from the ground under the sensor.
       bound = std::min(*bound, under_sensor + slope_ * distance);
     }
-    return world.z() <= *bound + params_.ground_tolerance + slope_rise(k) ? SurfaceClass::ground : SurfaceClass::object;
+    return world.z() <= *bound + params_.ground_tolerance + slope_rise(n) ? SurfaceClass::ground : SurfaceClass::object;
   }
 
   /// Uncounts a point `classify` counted. O(1) expected.
@@ -238,11 +244,35 @@ class HeightMapGround {
     return static_cast<float>(*column.mean_bin(densest, densest)) * params_.bin_height;
   }
 
-  /// The ground bound G at cell k, or nullopt when no layer is within reach.
-  std::optional<float> ground_bound(Key k) const {
-    std::optional<float> bound = lowest_layer(k.ix, k.iy);
-    for (std::int32_t ring = 1; ring <= std::max<std::int32_t>(1, search_rings_); ++ring) {
-      if (ring > 1 && bound) break;  // a ring beyond the first only for a cold neighbourhood
+  /// The lowest layers of cell k and its 8 neighbours (index 3 (dy + 1) +
+  /// (dx + 1); 4 is k), lazily: only the centre is looked up at first.
+  struct Neighbourhood {
+    std::array<std::optional<float>, 9> layer;
+  };
+  Neighbourhood neighbourhood(Key k) const {
+    Neighbourhood n;
+    n.layer[4] = lowest_layer(k.ix, k.iy);
+    return n;
+  }
+  /// Fills the 8 neighbours of `n` (cell k). 8 lookups.
+  void fill_ring(Key k, Neighbourhood& n) const {
+    for (std::int32_t dy = -1; dy <= 1; ++dy) {
+      for (std::int32_t dx = -1; dx <= 1; ++dx) {
+        if (dx != 0 || dy != 0) n.layer[static_cast<std::size_t>(3 * (dy + 1) + dx + 1)] = lowest_layer(k.ix + dx, k.iy + dy);
+      }
+    }
+  }
+
+  /// The ground bound G at cell k, or nullopt when no layer is within
+  /// reach; fills the ring of `n`.
+  std::optional<float> ground_bound(Key k, Neighbourhood& n) const {
+    fill_ring(k, n);
+    std::optional<float> bound = n.layer[4];
+    for (std::size_t i = 0; i < 9; ++i) {
+      if (i != 4 && n.layer[i] && (!bound || *n.layer[i] + rise_per_cell_ < *bound)) bound = *n.layer[i] + rise_per_cell_;
+    }
+    for (std::int32_t ring = 2; ring <= search_rings_; ++ring) {
+      if (bound) break;  // a ring beyond the first only for a cold neighbourhood
       const float allowance = rise_per_cell_ * static_cast<float>(ring);
       for (std::int32_t dy = -ring; dy <= ring; ++dy) {
         const bool edge_row = dy == -ring || dy == ring;
@@ -260,12 +290,12 @@ class HeightMapGround {
   /// the layers rise (or fall) monotonically through k, by the smaller of
   /// the two steps (an object's cell beside level ground is no slope). At
   /// most tan(max_slope) x cell_size. O(1).
-  float slope_rise(Key k) const {
-    const std::optional<float> centre = lowest_layer(k.ix, k.iy);
+  float slope_rise(const Neighbourhood& n) const {
+    const std::optional<float>& centre = n.layer[4];
     if (!centre) return 0.0f;
     auto gradient = [&](std::int32_t dx, std::int32_t dy) {
-      const std::optional<float> before = lowest_layer(k.ix - dx, k.iy - dy);
-      const std::optional<float> after = lowest_layer(k.ix + dx, k.iy + dy);
+      const std::optional<float>& before = n.layer[static_cast<std::size_t>(4 - 3 * dy - dx)];
+      const std::optional<float>& after = n.layer[static_cast<std::size_t>(4 + 3 * dy + dx)];
       if (!before || !after) return 0.0f;
       const float d1 = *centre - *before, d2 = *after - *centre;
       if (d1 * d2 <= 0.0f) return 0.0f;
@@ -286,17 +316,22 @@ class HeightMapGround {
     double below = 0.0;
     for (std::int32_t i = b - 2 - kPeakSpan; i < b - 2; ++i) below += column.count(i);
     if (peak / 2.0 < params_.ceiling_peak_ratio * below / kPeakSpan) return false;
+    // The 24 cells within two rings; stops once the outcome is certain.
+    constexpr int kCells = 24;
+    const float needed = params_.ceiling_min_agreement * static_cast<float>(kCells);
     int agreeing = 0;
-    int cells = 0;
+    int left = kCells;
     for (std::int32_t dy = -2; dy <= 2; ++dy) {
       for (std::int32_t dx = -2; dx <= 2; ++dx) {
         if (dx == 0 && dy == 0) continue;
-        ++cells;
+        --left;
         const std::optional<float> other = highest_layer(k.ix + dx, k.iy + dy);
         if (other && std::fabs(*other - *top) <= params_.ceiling_flatness) ++agreeing;
+        if (static_cast<float>(agreeing) >= needed) return true;
+        if (static_cast<float>(agreeing + left) < needed) return false;
       }
     }
-    return static_cast<float>(agreeing) >= params_.ceiling_min_agreement * static_cast<float>(cells);
+    return false;
   }
 
   /// Bins below a ceiling layer its peak is compared with.
