@@ -5,9 +5,9 @@
 /// The objects presets: a continuous clusterer whose clusters are objects.
 /// Structure removal (HeightMapGround: ground and ceiling out of the
 /// clustering), the range-adaptive linkage (holds on the Avia's dense
-/// centre and on sparse far objects), the spanning forest (the fastest exact
-/// connectivity), the sensor's poses or mount (PosedMotion) and its field of
-/// view in world orientation. Same exactness as every preset: the object
+/// centre and on sparse far objects), the capped grid and the spanning
+/// forest (the fastest exact connectivity), the sensor's poses or mount
+/// (PosedMotion) and its field of view in world orientation. Same exactness as every preset: the object
 /// partition equals the batch partition of the window's object points.
 ///
 /// | function                 | sensor FOV              | T_B   |
@@ -24,6 +24,7 @@
 /// \endcode
 
 #include <streamclust/connectivity/spanning_forest.hpp>
+#include <streamclust/index/capped_grid.hpp>
 #include <streamclust/ground/height_map_ground.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/motion/pose.hpp>
@@ -40,9 +41,11 @@
 
 namespace streamclust {
 
-/// C-ARC's projection, index, window and adaptive resolution with the
-/// objects policies.
-struct ObjectsConfig : CArcFastConfig {
+/// C-ARC's projection, window and adaptive resolution with the objects
+/// policies and the capped grid (at most K = 4 points a cell in the index:
+/// on the simulated Mid-360 and Avia offices the same quality as the bucket
+/// grid at about half the cycle cost, and no steady allocation).
+struct ObjectsConfig : CArcCappedFastConfig {
   using linkage = RangeAdaptiveLinkage;
   using ground = HeightMapGround;
   using motion = PosedMotion;

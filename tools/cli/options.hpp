@@ -131,6 +131,7 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     o.linkage = LinkageKind::range_adaptive;
     o.connectivity = ConnectivityKind::spanning_forest;
     o.window_seconds = 0.5;
+    o.index = IndexKind::capped;  // K = 4, ObjectsConfig's
     o.mask = 7;                  // kObjectsMaskSize
     o.max_multiplicity = 4.0f;   // kObjectsMaxMultiplicity
     if (name == "objects") return;  // any sensor: the full sphere
