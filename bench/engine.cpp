@@ -18,7 +18,10 @@
 //                                        (pending_share counter)
 //
 // One BENCHMARK_TEMPLATE line per configuration: a new preset gets a
-// benchmark by adding a line at the bottom.
+// benchmark by adding a line at the bottom. The objects preset
+// (ObjectsConfig: ground removal, range-adaptive linkage, spanning forest,
+// PosedMotion) gets the simulator's 100 Hz sensor poses and its sensor
+// height, so its placement and ground phases are in the insertion cost.
 //
 // Measure with (min_time in seconds, a plain number on Google Benchmark 1.7):
 //   build/perf/bench/bench_engine --benchmark_min_time=2
@@ -37,6 +40,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -57,16 +61,41 @@ double stream_seconds() {
 }
 
 template <class Sensor>
-std::vector<sim::SimPoint> simulate(Sensor sensor, sc::sim::Scene scene) {
+typename sim::Simulator<Sensor>::Params sim_params() {
   typename sim::Simulator<Sensor>::Params p;
   p.velocity = Eigen::Vector3f(0.5f, 0.0f, 0.0f);  // slow ego-motion, as a hand-held sensor
   p.seed = 7;
-  sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), p);
+  return p;
+}
+
+/// [m] the simulated sensor above the ground: its start height (the office
+/// floor and the forest ground pass through z = 0 at the origin).
+const float kSensorHeight = sim::Simulator<sim::Mid360Model>::Params{}.start_position.z();
+
+template <class Sensor>
+std::vector<sim::SimPoint> simulate(Sensor sensor, sc::sim::Scene scene) {
+  sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), sim_params<Sensor>());
   std::vector<sim::SimPoint> out;
   const double seconds = stream_seconds();
   out.reserve(static_cast<std::size_t>(seconds * 250000.0));
   while (simulator.time() < seconds) out.push_back(simulator.next());
   return out;
+}
+
+/// The sensor's poses over the stream of `simulate` (100 Hz, as odometry).
+template <class Sensor>
+std::shared_ptr<const sc::PoseTrajectory> poses(Sensor sensor, sc::sim::Scene scene) {
+  const sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), sim_params<Sensor>());
+  return std::make_shared<const sc::PoseTrajectory>(simulator.trajectory(0.0, stream_seconds() + 0.1, 100.0));
+}
+
+/// Objects parameters for a scenario's stream: its poses, its sensor height, T_B.
+sc::ObjectsSetup objects_setup(std::shared_ptr<const sc::PoseTrajectory> trajectory, double window_seconds) {
+  sc::ObjectsSetup setup;
+  setup.trajectory = std::move(trajectory);
+  setup.sensor_height = kSensorHeight;
+  setup.window_seconds = window_seconds;
+  return setup;
 }
 
 // ------------------------------------------------------------ scenarios
@@ -78,6 +107,10 @@ struct Mid360Office {
     return pts;
   }
   static sc::CArcParams carc() { return sc::carc_mid360_params(); }
+  static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
+    static const auto trajectory = poses(sim::Mid360Model{}, sim::office_scene(3));
+    return sc::objects_mid360_params(objects_setup(trajectory, window_seconds));
+  }
 };
 struct Mid360Forest {
   static const char* name() { return "mid360_forest"; }
@@ -86,6 +119,10 @@ struct Mid360Forest {
     return pts;
   }
   static sc::CArcParams carc() { return sc::carc_mid360_params(); }
+  static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
+    static const auto trajectory = poses(sim::Mid360Model{}, sim::forest_scene(3));
+    return sc::objects_mid360_params(objects_setup(trajectory, window_seconds));
+  }
 };
 struct AviaOffice {
   static const char* name() { return "avia_office"; }
@@ -94,6 +131,10 @@ struct AviaOffice {
     return pts;
   }
   static sc::CArcParams carc() { return sc::carc_avia_params(); }
+  static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
+    static const auto trajectory = poses(sim::AviaModel{}, sim::office_scene(3));
+    return sc::objects_avia_params(objects_setup(trajectory, window_seconds));
+  }
 };
 struct AviaForest {
   static const char* name() { return "avia_forest"; }
@@ -102,17 +143,24 @@ struct AviaForest {
     return pts;
   }
   static sc::CArcParams carc() { return sc::carc_avia_params(); }
+  static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
+    static const auto trajectory = poses(sim::AviaModel{}, sim::forest_scene(3));
+    return sc::objects_avia_params(objects_setup(trajectory, window_seconds));
+  }
 };
 
 /// Engine parameters of `Config` for a scenario: the paper's C-ARC values
 /// (w 5, T_M 2, theta 30 deg Mid-360 / 80 deg Avia), Euclidean 0.3 m for a
-/// Euclidean linkage, T_B = `window_ms`.
+/// Euclidean linkage, the objects preset of the sensor with the stream's
+/// poses for ObjectsConfig; T_B = `window_ms`.
 template <class Config, class Scenario>
 sc::ClustererParams<Config> params_for(long window_ms) {
   sc::CArcParams carc = Scenario::carc();
   carc.window_seconds = static_cast<double>(window_ms) / 1000.0;
   using Linkage = typename sc::config_traits<Config>::linkage;
-  if constexpr (std::is_same_v<Linkage, sc::AngularLinkage>) {
+  if constexpr (std::is_same_v<Config, sc::ObjectsConfig>) {
+    return Scenario::objects(carc.window_seconds);
+  } else if constexpr (std::is_same_v<Linkage, sc::AngularLinkage>) {
     return sc::to_clusterer_params<Config>(carc);
   } else {
     sc::ClustererParams<Config> p;
@@ -304,10 +352,11 @@ void BM_Retrieve(benchmark::State& state) {
 using sc::CArcCappedConfig;
 using sc::CArcCappedFastConfig;
 /// Insertion throughput in service: each iteration inserts one 50 ms slice
-/// (timed: insertion and the eviction it causes) and then retrieves
-/// (untimed), so the spanning forest folds at the retrieval as in a 20 Hz
-/// client instead of inside the insertion loop as in BM_Insert. Items:
-/// points inserted. Arg: T_B [ms].
+/// (timed: insertion and the eviction it causes; with ObjectsConfig also
+/// each point's placement by the poses and its ground decision) and then
+/// retrieves (untimed), so the spanning forest folds at the retrieval as in
+/// a 20 Hz client instead of inside the insertion loop as in BM_Insert.
+/// Items: points offered (structure points included). Arg: T_B [ms].
 /// With a second argument P > 0 the slice goes in through insert_batch in
 /// packets of P points.
 template <class Config, class Scenario>
@@ -332,6 +381,7 @@ using sc::CArcFastConfig;
 using sc::CArcRebuildConfig;
 using sc::EuclideanConfig;
 using sc::FrameBaselineConfig;
+using sc::ObjectsConfig;
 
 }  // namespace
 
@@ -355,6 +405,9 @@ SC_INSERT_CYCLE(CArcFastConfig, Mid360Forest);
 SC_INSERT_CYCLE(CArcRebuildConfig, Mid360Office);
 SC_INSERT_CYCLE(CArcConfig, Mid360Office);
 SC_INSERT_CYCLE(CArcCappedFastConfig, AviaOffice);
+SC_INSERT_CYCLE(ObjectsConfig, Mid360Office);
+SC_INSERT_CYCLE(ObjectsConfig, Mid360Forest);
+SC_INSERT_CYCLE(ObjectsConfig, AviaOffice);
 
 SC_INSERT(CArcConfig, Mid360Office);
 SC_INSERT(CArcFastConfig, Mid360Office);
@@ -372,6 +425,8 @@ SC_INSERT(CArcRebuildConfig, Mid360Office);
 SC_INSERT(CArcRebuildConfig, Mid360Forest);
 SC_INSERT(CArcCappedRebuildConfig, Mid360Office);
 SC_INSERT(CArcCappedRebuildConfig, AviaOffice);
+SC_INSERT(ObjectsConfig, Mid360Office);
+SC_INSERT(ObjectsConfig, AviaOffice);
 
 SC_CYCLE(CArcConfig, Mid360Office);
 SC_CYCLE(CArcFastConfig, Mid360Office);

@@ -32,9 +32,9 @@
 # processes share the memory bus and L3: set BENCH_LATENCY_JOBS=1 for a
 # strictly sequential record.
 #
-# Expected duration of the latency part with the defaults (78 scenarios,
+# Expected duration of the latency part with the defaults (86 scenarios,
 # 1000 cycles) on the 2-core reference VM: about 20-25 min with 2 jobs on a
-# quiet machine (19 min 26 s for the record in docs/performance.md), about
+# quiet machine (19 min 26 s for the 78 of the record in docs/performance.md), about
 # twice that with BENCH_LATENCY_JOBS=1, about 1 h 45 min at a load average of
 # 6; plus the build (a few minutes) and the microbenchmarks.
 # bench/latency/estimate_duration.py projects it from a short run. A faster

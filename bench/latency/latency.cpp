@@ -2,17 +2,24 @@
 // bench_latency: the paper's end-to-end metric, with peers in the same run.
 //
 // For each scenario (sensor x scene x configuration x T_B) a raw stream is
-// simulated on the fly (no ground removal, no downsampling) and drives the
-// continuous engine single-threaded, with a retrieval every 50 ms of stream
-// time (20 Hz). The cycle latency is the wall time around the inserts of
-// everything that arrived in the 50 ms slice plus the retrieve() (insertion
-// + eviction + validation + component update + labelling); the simulation of
-// the slice is not timed. On every k-th cycle the peers cluster the same
+// simulated on the fly (no downsampling; ground removal only by the objects
+// presets' own ground policy) and drives the continuous engine
+// single-threaded, with a retrieval every 50 ms of stream time (20 Hz). The
+// cycle latency is the wall time around the inserts of everything that
+// arrived in the 50 ms slice plus the retrieve() (placement + ground +
+// insertion + eviction + validation + component update + labelling); the
+// simulation of the slice is not timed. The objects scenarios run
+// ObjectsConfig (objects_mid360_params / objects_avia_params) with the
+// scene's sensor height, at rest or moving with the simulator's 100 Hz
+// sensor poses (the engine's PosedMotion places every point by them). On every k-th cycle the peers cluster the same
 // window (the engine's window at that cycle, read back from the engine):
 //   batch  BatchClusterer<Config> in insertion_order (from scratch, same grid)
 //   frame  the overwrite-grid frame baseline: FrameClusterer<Config with
 //          OverwriteGrid> (range_image mode) clustering the engine's window
 //          on the same grid
+//   (with a motion policy both get the window's points in the sensor frame
+//   and place them as the engine does; the engine's ground decisions are
+//   replayed: they cluster its object points)
 //   pcl    pcl::EuclideanClusterExtraction (kd-tree), tolerance = the
 //          Euclidean linkage distance; Euclidean configurations only, built
 //          only when PCL is found
@@ -135,6 +142,7 @@ struct ConfigEntry {
   bool avia;                ///< run on the Avia
   unsigned windows;         ///< bit i: run at kWindows[i]
   Runner run;
+  bool moving;              ///< the sensor moves (the engine gets its poses); false: at rest
 };
 
 constexpr unsigned kAllWindows = 0x1Fu;     // T_B = 0.1 ... 0.5 s
@@ -146,24 +154,30 @@ ScenarioResult run_scenario(const Scenario& s, const Options& o);
 
 // Adding a configuration (e.g. a new preset of the perf work) is one line:
 const ConfigEntry kConfigs[] = {
-    {"carc", "C-ARC preset (bucket grid, angular)", true, true, kAllWindows, &run_scenario<sc::CArcConfig>},
+    {"carc", "C-ARC preset (bucket grid, angular)", true, true, kAllWindows, &run_scenario<sc::CArcConfig>, false},
     {"capped", "CArcCappedConfig (capped grid K = 4, angular)", false, true, kAllWindows,
-     &run_scenario<sc::CArcCappedConfig>},
+     &run_scenario<sc::CArcCappedConfig>, false},
     {"fast", "CArcFastConfig (bucket grid, angular, spanning forest)", true, true, kAllWindows,
-     &run_scenario<sc::CArcFastConfig>},
+     &run_scenario<sc::CArcFastConfig>, false},
     {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, spanning forest)", false, true, kAllWindows,
-     &run_scenario<sc::CArcCappedFastConfig>},
+     &run_scenario<sc::CArcCappedFastConfig>, false},
     // The capped fast preset (target 6's memory figure) on the Mid-360 too, at the window ends only.
     {"capfast", "CArcCappedFastConfig (capped grid K = 4, angular, spanning forest)", true, false,
-     kShortestWindow | kLongestWindow, &run_scenario<sc::CArcCappedFastConfig>},
+     kShortestWindow | kLongestWindow, &run_scenario<sc::CArcCappedFastConfig>, false},
     {"rebuild", "CArcRebuildConfig (bucket grid, angular, union-find rebuild)", true, true, kLongestWindow,
-     &run_scenario<sc::CArcRebuildConfig>},
+     &run_scenario<sc::CArcRebuildConfig>, false},
     {"caprebuild", "CArcCappedRebuildConfig (capped grid K = 4, angular, union-find rebuild)", false, true,
-     kLongestWindow, &run_scenario<sc::CArcCappedRebuildConfig>},
+     kLongestWindow, &run_scenario<sc::CArcCappedRebuildConfig>, false},
     {"euclid", "EuclideanConfig (bucket grid, Euclidean 0.5 m)", true, true, kLongestWindow,
-     &run_scenario<sc::EuclideanConfig>},
+     &run_scenario<sc::EuclideanConfig>, false},
     {"euclidfast", "EuclideanConfig + spanning forest (bench-local)", true, true, kLongestWindow,
-     &run_scenario<EuclideanFastConfig>},
+     &run_scenario<EuclideanFastConfig>, false},
+    // The objects presets (objects_mid360_params / objects_avia_params with the scene's sensor height): ground and
+    // ceiling out, range-adaptive linkage, spanning forest, PosedMotion; at rest, and moving with the poses.
+    {"objects", "ObjectsConfig (height-map ground, range-adaptive, spanning forest, PosedMotion), at rest", true, true,
+     kLongestWindow, &run_scenario<sc::ObjectsConfig>, false},
+    {"objects-moving", "ObjectsConfig, moving (back and forth along x at 0.8 m/s, yawing +-0.4 rad/s; 100 Hz poses)",
+     true, true, kLongestWindow, &run_scenario<sc::ObjectsConfig>, true},
 };
 
 const double kWindows[] = {0.1, 0.2, 0.3, 0.4, 0.5};
@@ -227,9 +241,61 @@ long g_capacity = -1;
 /// construction (0: none, the default), to measure a pre-sized engine.
 std::size_t g_reserve = 0;
 
+sim::Scene make_scene(const std::string& name) {
+  return name == "forest" ? sim::forest_scene(1) : sim::office_scene(1);
+}
+
+/// The simulator's settings: the defaults (sensor level at 1 m above the
+/// origin, 2 cm range noise, seed 1), at rest; a moving scenario goes back
+/// and forth along x (+-1 m at 0.8 m/s, turning every 2.5 s) while yawing
+/// (+-0.5 rad at 0.4 rad/s), up to `seconds` of stream.
+template <class SensorModel>
+typename sim::Simulator<SensorModel>::Params sim_params(const Scenario& s, double seconds) {
+  typename sim::Simulator<SensorModel>::Params p;
+  if (!s.config->moving) return p;
+  constexpr float kSpeed = 0.8f;     // [m/s]
+  constexpr float kYawRate = 0.4f;   // [rad/s]
+  constexpr double kLeg = 2.5;       // [s] one leg: 2 m, 1 rad
+  p.velocity = Eigen::Vector3f(kSpeed, 0.0f, 0.0f);
+  p.yaw_rate = kYawRate;
+  float sign = -1.0f;
+  for (double t = 0.5 * kLeg; t < seconds; t += kLeg, sign = -sign) {
+    p.motion_profile.push_back(sim::MotionSegment{t, Eigen::Vector3f(sign * kSpeed, 0.0f, 0.0f), sign * kYawRate});
+  }
+  return p;
+}
+
+/// The sensor's height above the scene's ground under its start position
+/// [m] (the simulator's start height; floors and the forest's ground pass
+/// through z = 0 at the origin when the scene has no terrain).
+float scene_sensor_height(const Scenario& s) {
+  const Eigen::Vector3f start = sim::Simulator<sim::Mid360Model>::Params{}.start_position;
+  return start.z() - make_scene(s.scene).ground_height(start.x(), start.y()).value_or(0.0f);
+}
+
+/// The sensor's poses over the first `seconds` of a moving scenario (100 Hz,
+/// as odometry would give them), null at rest.
+template <class SensorModel>
+std::shared_ptr<const sc::PoseTrajectory> scenario_trajectory(const Scenario& s, const SensorModel& sensor,
+                                                              double seconds) {
+  if (!s.config->moving) return nullptr;
+  const sim::Simulator<SensorModel> simulator(sensor, make_scene(s.scene), sim_params<SensorModel>(s, seconds));
+  return std::make_shared<const sc::PoseTrajectory>(simulator.trajectory(0.0, seconds, 100.0));
+}
+
 template <class Config>
-sc::ClustererParams<Config> engine_params(const Scenario& s) {
-  auto params = sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
+sc::ClustererParams<Config> engine_params(const Scenario& s,
+                                          const std::shared_ptr<const sc::PoseTrajectory>& trajectory = nullptr) {
+  sc::ClustererParams<Config> params;
+  if constexpr (std::is_same_v<Config, sc::ObjectsConfig>) {
+    sc::ObjectsSetup setup;
+    setup.trajectory = trajectory;  // the simulator's sensor poses: the mount stays the identity
+    setup.sensor_height = scene_sensor_height(s);
+    setup.window_seconds = s.window;
+    params = s.sensor == Sensor::mid360 ? sc::objects_mid360_params(setup) : sc::objects_avia_params(setup);
+  } else {
+    params = sc::to_clusterer_params<Config>(sensor_params(s.sensor, s.window));
+  }
   if constexpr (std::is_same_v<typename sc::config_traits<Config>::connectivity, sc::SpanningForestConnectivity>) {
     if (g_prune_witnesses >= 0) params.connectivity.prune_witnesses = static_cast<std::uint32_t>(g_prune_witnesses);
   }
@@ -255,6 +321,8 @@ sc::ClustererParams<To> rebind_params(const sc::ClustererParams<From>& from) {
   if constexpr (std::is_same_v<decltype(to.spatial_index), decltype(from.spatial_index)>) {
     to.spatial_index = from.spatial_index;
   }
+  if constexpr (std::is_same_v<decltype(to.motion), decltype(from.motion)>) to.motion = from.motion;
+  if constexpr (std::is_same_v<decltype(to.ground), decltype(from.ground)>) to.ground = from.ground;
   return to;
 }
 
@@ -262,8 +330,8 @@ sc::ClustererParams<To> rebind_params(const sc::ClustererParams<From>& from) {
 template <class SensorModel>
 class SliceSource {
  public:
-  SliceSource(SensorModel sensor, sim::Scene scene)
-      : sim_(std::move(sensor), std::move(scene), typename sim::Simulator<SensorModel>::Params{}),
+  SliceSource(SensorModel sensor, sim::Scene scene, const typename sim::Simulator<SensorModel>::Params& params)
+      : sim_(std::move(sensor), std::move(scene), params),
         pending_(sim_.next()) {}
 
   void fill(double t_end, std::vector<sim::SimPoint>& out) {
@@ -278,10 +346,6 @@ class SliceSource {
   sim::Simulator<SensorModel> sim_;
   sim::SimPoint pending_;
 };
-
-sim::Scene make_scene(const std::string& name) {
-  return name == "forest" ? sim::forest_scene(1) : sim::office_scene(1);
-}
 
 // ------------------------------------------------------------------ results
 
@@ -298,14 +362,15 @@ struct ScenarioResult {
   std::vector<double> latency_us;
   std::vector<double> cpu_us;  ///< thread CPU time of the same cycles
   std::vector<std::uint32_t> inserted;
-  std::vector<std::uint32_t> window;
+  std::vector<std::uint32_t> window;     ///< window points: object points + structure points
+  std::vector<std::uint32_t> structure;  ///< of those, structure points (ground policy; 0 without one)
   std::vector<std::uint32_t> allocations;  ///< engine heap allocations of each cycle
   PeerResult batch, frame, pcl;
   std::vector<double> ari_engine, ari_frame;
   std::vector<double> bytes_per_point;       ///< memory_usage().total() / window points
   std::vector<double> heap_bytes_per_point;  ///< live engine heap (counting allocator) / window points
-  /// memory_usage() parts / window points: ring, edges, index, clusters, scratch, result.
-  std::vector<double> part_bytes_per_point[6];
+  /// memory_usage() parts / window points: ring, edges, index, clusters, scratch, result, structure.
+  std::vector<double> part_bytes_per_point[7];
   bool index_memory_known = true;
   std::uint64_t steady_allocations = 0;
   std::size_t cycles_with_allocations = 0;
@@ -324,7 +389,8 @@ struct ScenarioResult {
 };
 
 /// Names of MemoryUsage's parts, in ScenarioResult::part_bytes_per_point order.
-const char* const kMemoryParts[6] = {"point_ring", "edge_storage", "spatial_index", "clusters", "scratch", "result"};
+const char* const kMemoryParts[7] = {"point_ring", "edge_storage", "spatial_index", "clusters",
+                                     "scratch",    "result",       "structure"};
 
 double mean(const std::vector<double>& v) {
   if (v.empty()) return 0.0;
@@ -373,10 +439,12 @@ double thread_cpu_us() {
 
 std::size_t warmup_cycles(double window) { return static_cast<std::size_t>(std::ceil(2.0 * window / kCyclePeriod)) + 10; }
 
-/// Ground truth of the offered stream, by stream index (rejected points included).
-class TruthLog {
+/// Ground truth (or the raw points) of the offered stream, by stream index
+/// (rejected points included).
+template <class T>
+class StreamLog {
  public:
-  void push(int instance) { ids_.push_back(instance); }
+  void push(const T& value) { ids_.push_back(value); }
   /// Forget everything older than stream index `first_kept`.
   void trim(std::uint64_t first_kept) {
     while (base_ < first_kept && !ids_.empty()) {
@@ -384,10 +452,10 @@ class TruthLog {
       ++base_;
     }
   }
-  int at(std::uint64_t stream_index) const { return ids_.at(static_cast<std::size_t>(stream_index - base_)); }
+  const T& at(std::uint64_t stream_index) const { return ids_.at(static_cast<std::size_t>(stream_index - base_)); }
 
  private:
-  std::deque<int> ids_;
+  std::deque<T> ids_;
   std::uint64_t base_ = 0;
 };
 
@@ -409,11 +477,18 @@ void feed(Engine& engine, const std::vector<sim::SimPoint>& slice, std::size_t p
 /// Drives one configuration over one scenario's stream. The engine calibrates
 /// its grid on the first complete window (T_B), as in the paper; retrievals
 /// start once it has.
+///
+/// With a motion policy (the objects presets) the peers get the window's
+/// points as the sensor gave them (sensor frame, in stream order) and place
+/// them as the engine does; the ground policy is not applied: they cluster
+/// the engine's object points.
 template <class Config, class SensorModel>
-void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResult& r) {
+void drive(const Scenario& s, const Options& o, SensorModel sensor,
+           const std::shared_ptr<const sc::PoseTrajectory>& trajectory, double seconds, ScenarioResult& r) {
   using Engine = sc::StreamClusterer<Config>;
-  const auto params = engine_params<Config>(s);
-  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
+  constexpr bool placed = !Engine::motion_type::identity;
+  const auto params = engine_params<Config>(s, trajectory);
+  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene), sim_params<SensorModel>(s, seconds));
   std::optional<Engine> engine;
   // The counters are process-wide: the engine's live bytes are the growth
   // from here on (construction included).
@@ -428,8 +503,9 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
   sc::FrameClusterer<Frame> frame(rebind_params<Frame>(params), sc::BatchMode::range_image);
   constexpr bool euclidean = std::is_same_v<typename sc::config_traits<Config>::linkage, sc::EuclideanLinkage>;
 
-  TruthLog truth_log;
-  std::vector<sim::SimPoint> slice;
+  StreamLog<int> truth_log;
+  StreamLog<sim::SimPoint> raw_log;  // with a motion policy: the peers' input
+  std::vector<sim::SimPoint> slice, window_raw;
   std::vector<sc::Sample> window_samples;
   std::vector<std::int64_t> truth, predicted;
   std::vector<float> xyz;
@@ -442,6 +518,9 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
   for (std::size_t cycle = 0; cycle < total; ++cycle) {
     source.fill(static_cast<double>(cycle + 1) * kCyclePeriod, slice);
     for (const auto& p : slice) truth_log.push(p.instance);
+    if constexpr (placed) {
+      for (const auto& p : slice) raw_log.push(p);
+    }
     const bool measured = cycle >= warmup;
     if (o.trace_allocs && cycle == warmup) sc::bench::set_alloc_tracing(true);
     const sc::bench::AllocCounters before = sc::bench::alloc_counters();
@@ -467,20 +546,21 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     r.latency_us.push_back(us);
     r.cpu_us.push_back(cpu);
     r.inserted.push_back(static_cast<std::uint32_t>(slice.size()));
-    r.window.push_back(static_cast<std::uint32_t>(engine->size()));
+    r.window.push_back(static_cast<std::uint32_t>(engine->size() + engine->structure_size()));
+    r.structure.push_back(static_cast<std::uint32_t>(engine->structure_size()));
     const std::uint64_t allocs = after.allocations - before.allocations;
     r.steady_allocations += allocs;
     r.allocations.push_back(static_cast<std::uint32_t>(allocs));
     if (allocs > 0) ++r.cycles_with_allocations;
     if (engine->size() > 0) {
-      const auto n = static_cast<double>(engine->size());
+      const auto n = static_cast<double>(engine->size() + engine->structure_size());
       const sc::MemoryUsage mu = engine->memory_usage();
       r.index_memory_known = mu.spatial_index_known;
       r.bytes_per_point.push_back(static_cast<double>(mu.total()) / n);
       r.heap_bytes_per_point.push_back(static_cast<double>(after.live_bytes - live_base) / n);
-      const std::size_t parts[6] = {mu.point_ring, mu.edge_storage, mu.spatial_index,
-                                    mu.clusters,   mu.scratch,      mu.result};
-      for (std::size_t k = 0; k < 6; ++k) r.part_bytes_per_point[k].push_back(static_cast<double>(parts[k]) / n);
+      const std::size_t parts[7] = {mu.point_ring, mu.edge_storage, mu.spatial_index, mu.clusters,
+                                    mu.scratch,    mu.result,       mu.structure};
+      for (std::size_t k = 0; k < 7; ++k) r.part_bytes_per_point[k].push_back(static_cast<double>(parts[k]) / n);
     }
     if (m == 0) r.grid = sc::GridSize{engine->grid().rows, engine->grid().cols};
 
@@ -490,12 +570,28 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
 
     // The engine's window, oldest first, and its ground truth.
     window_samples.clear();
+    window_raw.clear();
     truth.clear();
     engine->for_each_point([&](const sc::Sample& sample, std::uint64_t stream_index) {
-      window_samples.push_back(sample);
+      if constexpr (placed) {
+        window_raw.push_back(raw_log.at(stream_index));
+      } else {
+        window_samples.push_back(sample);
+      }
       truth.push_back(truth_log.at(stream_index));
     });
-    if (!result->points.empty()) truth_log.trim(result->points.front().stream_index);
+    if (!result->points.empty()) {
+      truth_log.trim(result->points.front().stream_index);
+      raw_log.trim(result->points.front().stream_index);
+    }
+    // The peers' input: the window's points as stored (world), or as the sensor gave them.
+    auto peer_cluster = [&](auto& peer) -> const sc::BatchResult& {
+      if constexpr (placed) {
+        return peer.cluster(window_raw);
+      } else {
+        return peer.cluster(window_samples);
+      }
+    };
 
     if (peers) {
       predicted.clear();
@@ -504,15 +600,15 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
 
       batch.set_grid(r.grid);
       const auto b0 = Clock::now();
-      const sc::BatchResult& br = batch.cluster(window_samples);
+      const sc::BatchResult& br = peer_cluster(batch);
       const auto b1 = Clock::now();
       r.batch.us.push_back(micros(b0, b1));
       r.batch.engine_us.push_back(us);
-      if (br.components == 0 && !window_samples.empty()) throw std::runtime_error("batch peer labelled nothing");
+      if (br.components == 0 && !truth.empty()) throw std::runtime_error("batch peer labelled nothing");
 
       frame.set_grid(r.grid);
       const auto f0 = Clock::now();
-      const sc::BatchResult& fr = frame.cluster(window_samples);  // the engine's window, from scratch
+      const sc::BatchResult& fr = peer_cluster(frame);  // the engine's window, from scratch
       const auto f1 = Clock::now();
       r.frame.us.push_back(micros(f0, f1));
       r.frame.engine_us.push_back(us);
@@ -520,7 +616,7 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
     }
     if (pcl) {
       xyz.clear();
-      for (const sc::Sample& smp : window_samples) {
+      for (const sc::Sample& smp : window_samples) {  // (no motion policy: the Euclidean presets)
         xyz.push_back(smp.position.x());
         xyz.push_back(smp.position.y());
         xyz.push_back(smp.position.z());
@@ -544,10 +640,11 @@ void drive(const Scenario& s, const Options& o, SensorModel sensor, ScenarioResu
 
 /// The timed pass: phase split averaged over `cycles` cycles after warm-up.
 template <class Config, class SensorModel>
-void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, SensorModel sensor, ScenarioResult& r) {
+void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, SensorModel sensor,
+                 const std::shared_ptr<const sc::PoseTrajectory>& trajectory, double seconds, ScenarioResult& r) {
   using T = Timed<Config>;
-  sc::StreamClusterer<T> engine(rebind_params<T>(engine_params<Config>(s)));
-  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene));
+  sc::StreamClusterer<T> engine(rebind_params<T>(engine_params<Config>(s, trajectory)));
+  SliceSource<SensorModel> source(std::move(sensor), make_scene(s.scene), sim_params<SensorModel>(s, seconds));
   std::vector<sim::SimPoint> slice;
   std::vector<double> lat;
   sc::PhaseTimes sum{};
@@ -572,6 +669,8 @@ void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, Sens
     edges_folded += static_cast<double>(stats.edges_folded);
     edges_accepted += static_cast<double>(stats.edges_accepted);
     forest_edges += static_cast<double>(stats.forest_edges);
+    sum.placement += ph.placement;
+    sum.ground += ph.ground;
     sum.insertion += ph.insertion;
     sum.eviction += ph.eviction;
     sum.validation += ph.validation;
@@ -580,8 +679,13 @@ void drive_timed(const Scenario& s, std::size_t cycles, std::size_t packet, Sens
   }
   const auto n = static_cast<double>(cycles);
   r.timed_cycles = cycles;
-  r.phase_mean = sc::PhaseTimes{sum.insertion / n, sum.eviction / n, sum.validation / n, sum.component_update / n,
-                                sum.labelling / n};
+  r.phase_mean.placement = sum.placement / n;
+  r.phase_mean.ground = sum.ground / n;
+  r.phase_mean.insertion = sum.insertion / n;
+  r.phase_mean.eviction = sum.eviction / n;
+  r.phase_mean.validation = sum.validation / n;
+  r.phase_mean.component_update = sum.component_update / n;
+  r.phase_mean.labelling = sum.labelling / n;
   r.timed_median_us = summarize(lat).median;
   r.edges_found_mean = edges_found / n;
   r.edges_kept_mean = edges_kept / n;
@@ -628,9 +732,15 @@ ScenarioResult run_scenario(const Scenario& s, const Options& o) {
   const auto w0 = Clock::now();
   with_sensor(s, o, [&](auto sensor, const std::string& source) {
     r.sensor_source = source;
-    drive<Config>(s, o, sensor, r);
+    // Stream time of the longer pass, plus a slice of margin: the poses must cover every point.
+    const std::size_t longest = warmup_cycles(s.window) + std::max(o.cycles, o.timed_cycles) + 2;
+    const double seconds = static_cast<double>(longest) * kCyclePeriod;
+    const auto trajectory = scenario_trajectory(s, sensor, seconds);
+    drive<Config>(s, o, sensor, trajectory, seconds, r);
     r.peak_rss_mb = peak_rss_mb();
-    if (o.timed_cycles > 0 && (s.window > 0.45 || o.smoke)) drive_timed<Config>(s, o.timed_cycles, o.packet, sensor, r);
+    if (o.timed_cycles > 0 && (s.window > 0.45 || o.smoke)) {
+      drive_timed<Config>(s, o.timed_cycles, o.packet, sensor, trajectory, seconds, r);
+    }
   });
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - w0).count();
   return r;
@@ -713,7 +823,9 @@ void write_outputs(const Options& o, const Written& w) {
     json << ",\n    \"cpu_ms\": ";
     write_json_summary(json, summarize(r.cpu_us), 1e-3);
     json << ",\n    \"points_per_cycle_mean\": " << mean(std::vector<double>(r.inserted.begin(), r.inserted.end()))
-         << ", \"window_points_mean\": " << mean(std::vector<double>(r.window.begin(), r.window.end())) << ",\n";
+         << ", \"window_points_mean\": " << mean(std::vector<double>(r.window.begin(), r.window.end()))
+         << ", \"structure_points_mean\": " << mean(std::vector<double>(r.structure.begin(), r.structure.end()))
+         << ",\n";
     write_peer_json(json, "batch", r.batch, ls);
     json << ",\n";
     write_peer_json(json, "frame", r.frame, ls);
@@ -725,14 +837,15 @@ void write_outputs(const Options& o, const Written& w) {
     json << ",\n    \"heap_bytes_per_point\": ";
     write_json_summary(json, summarize(r.heap_bytes_per_point), 1.0);
     json << ",\n    \"memory_parts_bytes_per_point_median\": {";
-    for (std::size_t part = 0; part < 6; ++part) {
+    for (std::size_t part = 0; part < 7; ++part) {
       json << (part ? ", " : "") << '"' << kMemoryParts[part] << "\": " << summarize(r.part_bytes_per_point[part]).median;
     }
     json << "}, \"index_memory_known\": " << (r.index_memory_known ? "true" : "false");
     json << ",\n    \"steady_allocations\": " << r.steady_allocations
          << ", \"cycles_with_allocations\": " << r.cycles_with_allocations << ", \"peak_rss_mb\": " << r.peak_rss_mb
          << ", \"peak_rss_reset\": " << (r.rss_reset ? "true" : "false") << ",\n    \"timed_cycles\": " << r.timed_cycles
-         << ", \"phase_mean_ms\": {\"insertion\": " << r.phase_mean.insertion * 1e-3
+         << ", \"phase_mean_ms\": {\"placement\": " << r.phase_mean.placement * 1e-3
+         << ", \"ground\": " << r.phase_mean.ground * 1e-3 << ", \"insertion\": " << r.phase_mean.insertion * 1e-3
          << ", \"eviction\": " << r.phase_mean.eviction * 1e-3 << ", \"validation\": " << r.phase_mean.validation * 1e-3
          << ", \"component_update\": " << r.phase_mean.component_update * 1e-3
          << ", \"labelling\": " << r.phase_mean.labelling * 1e-3 << "}, \"new_edges_per_cycle\": " << r.edges_found_mean
@@ -756,9 +869,9 @@ void write_outputs(const Options& o, const Written& w) {
       return std::string("(not run)");
     }() << ".\n\n";
   md << "## Continuous engine: cycle latency [ms]\n\n";
-  md << "| scenario | grid | pts/cycle | window pts | P1 | Q1 | median | Q3 | P95 | P99 | P999 | P99 / 50 ms | CPU median "
-        "| CPU P99 |\n";
-  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| scenario | grid | pts/cycle | window pts | P1 | Q1 | median | Q3 | P95 | P99 | P999 | max | P99 / 50 ms | CPU "
+        "median | CPU P99 |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     const LatencySummary ls = summarize(r.latency_us);
     md << "| " << r.name << " | " << r.grid.rows << "x" << r.grid.cols << " | "
@@ -766,7 +879,7 @@ void write_outputs(const Options& o, const Written& w) {
        << fmt(mean(std::vector<double>(r.window.begin(), r.window.end())), 0) << " | " << fmt(ls.p1 * 1e-3) << " | "
        << fmt(ls.q1 * 1e-3) << " | " << fmt(ls.median * 1e-3) << " | " << fmt(ls.q3 * 1e-3) << " | "
        << fmt(ls.p95 * 1e-3) << " | " << fmt(ls.p99 * 1e-3) << " | " << fmt(ls.p999 * 1e-3) << " | "
-       << fmt(100.0 * ls.p99 * 1e-3 / 50.0, 0) << " % | " << fmt(summarize(r.cpu_us).median * 1e-3) << " | "
+       << fmt(ls.max * 1e-3) << " | " << fmt(100.0 * ls.p99 * 1e-3 / 50.0, 0) << " % | " << fmt(summarize(r.cpu_us).median * 1e-3) << " | "
        << fmt(summarize(r.cpu_us).p99 * 1e-3) << " |\n";
   }
   md << "\n## Peers on the same windows [ms] (ratio = peer / engine, engine over all measured cycles)\n\n";
@@ -786,7 +899,8 @@ void write_outputs(const Options& o, const Written& w) {
   }
   md << "\n## Quality and memory\n\n";
   md << "Bytes / window point = StreamClusterer::memory_usage().total() (heap capacities: point ring, edge "
-        "storage, spatial index, clusters and bridges, scratch, result) / points in the window, median over the "
+        "storage, spatial index, clusters and bridges, scratch, result, structure) / points in the window (object and "
+        "structure points), median over the "
         "measured cycles; live heap = the engine's live heap bytes counted by the allocator (malloc usable sizes, "
         "the same parts plus allocator rounding and policies' small buffers) / window points.\n\n";
   md << "| scenario | ARI engine | ARI frame baseline | bytes / window point (median) | live heap / window point "
@@ -800,21 +914,22 @@ void write_outputs(const Options& o, const Written& w) {
   }
   md << "\n## Engine memory by part [bytes per window point, median over the measured cycles]\n\n";
   md << "| scenario | window pts | point ring | edge storage | spatial index | clusters + bridges | scratch | result "
-        "| total |\n";
-  md << "|---|---|---|---|---|---|---|---|---|\n";
+        "| structure | total |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     md << "| " << r.name << " | " << fmt(mean(std::vector<double>(r.window.begin(), r.window.end())), 0);
     for (const auto& part : r.part_bytes_per_point) md << " | " << fmt(summarize(part).median, 1);
     md << " | " << fmt(summarize(r.bytes_per_point).median, 1) << " |\n";
   }
   md << "\n## Phase split (timed configuration, mean per cycle) [ms]\n\n";
-  md << "| scenario | cycles | insertion | eviction | validation | component update | labelling | timed median | new "
-        "edges / cycle (kept) | folded (accepted) | forest edges |\n";
-  md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| scenario | cycles | placement | ground | insertion | eviction | validation | component update | labelling "
+        "| timed median | new edges / cycle (kept) | folded (accepted) | forest edges |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [s, r] : w.all) {
     if (r.timed_cycles == 0) continue;
     const sc::PhaseTimes& ph = r.phase_mean;
-    md << "| " << r.name << " | " << r.timed_cycles << " | " << fmt(ph.insertion * 1e-3) << " | "
+    md << "| " << r.name << " | " << r.timed_cycles << " | " << fmt(ph.placement * 1e-3) << " | "
+       << fmt(ph.ground * 1e-3) << " | " << fmt(ph.insertion * 1e-3) << " | "
        << fmt(ph.eviction * 1e-3) << " | " << fmt(ph.validation * 1e-3) << " | " << fmt(ph.component_update * 1e-3)
        << " | " << fmt(ph.labelling * 1e-3) << " | " << fmt(r.timed_median_us * 1e-3) << " | "
        << fmt(r.edges_found_mean, 0) << " (" << fmt(r.edges_kept_mean, 0) << ") | " << fmt(r.edges_folded_mean, 0)
@@ -922,10 +1037,14 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     std::vector<Scenario> scenarios;
     if (o.smoke && o.filter.empty()) {
-      // Smoke: the Euclidean configuration (all three peers) at T_B = 0.1 s.
-      const auto euclid = std::find_if(std::begin(kConfigs), std::end(kConfigs),
-                                       [](const ConfigEntry& c) { return std::string(c.name) == "euclid"; });
-      scenarios.push_back(Scenario{Sensor::mid360, "office", euclid, 0.1});
+      // Smoke: the Euclidean configuration (all three peers) at T_B = 0.1 s, and the objects preset moving
+      // with poses (placement, ground, the peers on sensor-frame points) at T_B = 0.5 s.
+      auto entry = [](const char* name) {
+        return std::find_if(std::begin(kConfigs), std::end(kConfigs),
+                            [name](const ConfigEntry& c) { return std::string(c.name) == name; });
+      };
+      scenarios.push_back(Scenario{Sensor::mid360, "office", entry("euclid"), 0.1});
+      scenarios.push_back(Scenario{Sensor::avia, "office", entry("objects-moving"), 0.5});
     } else {
       for (const Scenario& s : all_scenarios()) {
         const std::string name = s.name();
@@ -950,7 +1069,7 @@ int main(int argc, char** argv) {
       const LatencySummary ls = summarize(r.latency_us);
       std::cout << std::left << std::setw(30) << r.name << " grid " << r.grid.rows << "x" << r.grid.cols << "  median "
                 << fmt(ls.median * 1e-3) << " ms  P99 " << fmt(ls.p99 * 1e-3) << " ms  P999 " << fmt(ls.p999 * 1e-3)
-                << " ms  batch " << fmt(r.batch.summary().median * 1e-3) << "  frame "
+                << " ms  max " << fmt(ls.max * 1e-3) << " ms  batch " << fmt(r.batch.summary().median * 1e-3) << "  frame "
                 << fmt(r.frame.summary().median * 1e-3) << "  pcl " << fmt(r.pcl.summary().median * 1e-3)
                 << "  ARI " << fmt(mean(r.ari_engine), 3) << "  allocs " << r.steady_allocations << "  ("
                 << fmt(r.wall_seconds, 0) << " s)  [" << r.sensor_source << "]" << std::endl;
