@@ -52,7 +52,7 @@ struct ObjectsConfig : CArcCappedFastConfig {
 };
 
 /// The objects presets' mask width w and adaptive target T_M.
-inline constexpr int kObjectsMaskSize = 7;
+inline constexpr int kObjectsMaskSize = 5;
 inline constexpr float kObjectsMaxMultiplicity = 4.0f;
 
 /// How the sensor is carried, for the objects presets.
@@ -94,9 +94,9 @@ inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, 
   const std::vector<Eigen::Quaterniond> rotations = sensor_rotations(setup.mount, setup.trajectory.get());
   p.projection = world_field_of_view(field_of_view_of(sensor), rotations);
   p.window.duration = setup.window_seconds;
-  // Wider neighbourhoods than C-ARC's (w 5, T_M 2): the linkage's radius
-  // (0.2 m and more) spans more cells of a T_B = 0.5 s grid than a 5 x 5
-  // mask reaches (docs/design-decisions.md).
+  // A coarser grid than C-ARC's (T_M 2): the linkage's radius (0.2 m and
+  // more) spans more cells of a T_B = 0.5 s grid than a 5 x 5 mask reaches
+  // (docs/design-decisions.md).
   p.mask_size = kObjectsMaskSize;
   p.resolution.max_multiplicity = kObjectsMaxMultiplicity;
   p.motion.mount = setup.mount;

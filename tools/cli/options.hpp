@@ -132,7 +132,7 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     o.connectivity = ConnectivityKind::spanning_forest;
     o.window_seconds = 0.5;
     o.index = IndexKind::capped;  // K = 4, ObjectsConfig's
-    o.mask = 7;                  // kObjectsMaskSize
+    o.mask = 5;                  // kObjectsMaskSize
     o.max_multiplicity = 4.0f;   // kObjectsMaxMultiplicity
     if (name == "objects") return;  // any sensor: the full sphere
     const SensorFacts& sensor = name == "objects-mid360" ? livox_mid360 : livox_avia;
