@@ -529,7 +529,7 @@ class StreamClusterer {
   /// (the window rule on the structure ring's own times and count).
   void evict_structure(double newest_time) {
     while (!structure_.empty() && window_.expired(structure_.oldest().time, newest_time, structure_.size())) {
-      ground_.forget(structure_.oldest().world);
+      ground_.forget(structure_.oldest().world, structure_.oldest().surface);
       structure_.pop();
       ++stats_.evicted;
     }
@@ -555,7 +555,7 @@ class StreamClusterer {
     index_.remove(ring_.record(h).cell, h);
     Context ctx = context();
     state_.on_evict(ctx, h);
-    if constexpr (removes_structure) ground_.forget(ring_.position(h));
+    if constexpr (removes_structure) ground_.forget(ring_.position(h), SurfaceClass::object);
     ring_.pop_oldest();
   }
 

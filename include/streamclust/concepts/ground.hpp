@@ -13,14 +13,14 @@
 /// | `G g{params}`             |                          | construct; throws std::invalid_argument if bad                 |            |
 /// | `G::enabled`              | `static constexpr bool`  | false: the engine skips the stage (NoGround)                   |            |
 /// | `g.classify(world, ray)`  | `SurfaceClass`           | counts the point in the model, then classes it: `object`, `ground` or `ceiling` | amortised O(1) |
-/// | `g.forget(world)`         | void                     | uncounts a point `classify` counted (it left the window)       | O(1)       |
+/// | `g.forget(world, class)`  | void                     | uncounts a point `classify` counted and classed `class` (it left the window) | O(1) |
 /// | `g.heap_bytes()`          | `std::size_t`            | heap held by the model [bytes]                                 | O(1)       |
 ///
 /// `world` is the point in the world frame (+z up, against gravity) and
 /// `ray` the vector from the sensor to it (PlacedPoint, concepts/motion.hpp);
 /// the sensor is at `world - ray`. Every point `classify` counted is
-/// forgotten exactly once, with the same `world`, when it leaves the window
-/// (object and structure points alike). The decision for a point depends
+/// forgotten exactly once, with the same `world` and the class it was given,
+/// when it leaves the window (object and structure points alike). The decision for a point depends
 /// only on the points counted before it and itself, so a replay of the same
 /// accepted stream with the same evictions makes the same decisions.
 /// Not thread-safe unless documented.
@@ -42,7 +42,7 @@ struct is_ground_policy<
     G, std::void_t<typename G::Params, decltype(G{std::declval<const typename G::Params&>()}), decltype(G::enabled),
                    decltype(std::declval<G&>().classify(std::declval<const Eigen::Vector3f&>(),
                                                         std::declval<const Eigen::Vector3f&>())),
-                   decltype(std::declval<G&>().forget(std::declval<const Eigen::Vector3f&>())),
+                   decltype(std::declval<G&>().forget(std::declval<const Eigen::Vector3f&>(), SurfaceClass::object)),
                    decltype(std::declval<const G&>().heap_bytes())>>
     : std::bool_constant<std::is_same_v<decltype(std::declval<G&>().classify(std::declval<const Eigen::Vector3f&>(),
                                                                              std::declval<const Eigen::Vector3f&>())),
@@ -63,5 +63,5 @@ concept GroundPolicy = is_ground_policy_v<G>;
   static_assert(::streamclust::is_ground_policy_v<G>,                                                            \
                 "STREAMCLUST_GROUND_POLICY_INVALID: the ground slot needs a nested Params aggregate, a constructor " \
                 "from Params, `static constexpr bool enabled`, `SurfaceClass classify(const Eigen::Vector3f& world, " \
-                "const Eigen::Vector3f& ray)`, `void forget(const Eigen::Vector3f&)` and `std::size_t heap_bytes() " \
+                "const Eigen::Vector3f& ray)`, `void forget(const Eigen::Vector3f&, SurfaceClass)` and `std::size_t heap_bytes() " \
                 "const` (see concepts/ground.hpp)")

@@ -26,9 +26,8 @@ namespace streamclust {
 /// The window's points in a horizontal grid of `cell_size` cells (world x,
 /// y; gravity along -z), each cell a histogram of heights (HeightColumn,
 /// bins of `bin_height`). The model holds every window point, objects
-/// included: a point's decision never feeds the model, so a mistake cannot
-/// reinforce itself; the model follows the window (points are counted at
-/// insertion and uncounted at eviction).
+/// included, and per cell how many of them were classed ground; it follows
+/// the window (points are counted at insertion and uncounted at eviction).
 ///
 /// Ground. The ground surface under a cell is its lowest supported layer:
 /// the lowest bin that holds, with the bin above, `support` points or more;
@@ -40,10 +39,11 @@ namespace streamclust {
 ///     G = min(layer(c), min over the 8 neighbours j of layer(j) + tan(max_slope) cell_size)
 ///
 /// (the neighbours catch a cell covered by an object, whose lowest layer is
-/// the object's underside: the ground next to it bounds it). When neither c
-/// nor a neighbour has a layer, the nearest ring of cells out to
-/// `search_radius` that has one gives G = min of layer(j) + tan(max_slope)
-/// ring distance. With `sensor_height` known, G is also at most the ground
+/// the object's underside: the ground next to it bounds it). When no
+/// neighbour has a layer (a cold cell, or the top of an object seen over the
+/// shadow of another), the nearest ring of cells out to `search_radius`
+/// that has one bounds it too: G = min(layer(c), min of layer(j) +
+/// tan(max_slope) ring distance). With `sensor_height` known, G is also at most the ground
 /// under the sensor plus tan(max_slope) times the horizontal distance from
 /// it (a cone): near a sensor that cannot see the ground (a level Mid-360
 /// sees the floor from 8 m on), the lowest layer of a cell is an object's
@@ -55,7 +55,12 @@ namespace streamclust {
 /// z <= G + ground_tolerance + the rise of the local slope across a cell
 /// (from the neighbours' layers where they rise monotonically through
 /// the cell); with no layer within reach it is an object (a cold start costs
-/// coverage of the ground, never objects). The tolerance is what an object
+/// coverage of the ground, never objects). Where the lowest ray passes above
+/// level ground (a level Mid-360 out to 8 m), ground in view must have risen
+/// into view: the straight rise from the sensor's foot to the point is out
+/// of view one cell nearer the sensor, or that nearer cell holds points
+/// classed ground (a desk top there has empty cells in front of it; a ramp
+/// is ground from the row where it comes into view outwards). The tolerance is what an object
 /// on level ground loses at its foot: 5 cm covers the range noise of a
 /// surface seen at a slant (2 cm along the ray); kerbs and steps up to one
 /// cell's slope allowance (tan(max_slope) x cell_size = 0.13 m) join the
@@ -73,8 +78,9 @@ namespace streamclust {
 /// slope rises: both fail this; a ceiling passes).
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
-/// ceiling candidate), a ring search only in cold cells. Memory: 528 bytes
-/// per live cell plus the table. Thread safety: none.
+/// ceiling candidate, at most 2 for a ground candidate out of view of level
+/// ground), a ring search only in cells without a neighbouring layer.
+/// Memory: about 1 KiB per live cell plus the table. Thread safety: none.
 ///
 /// \code
 /// struct ObjectsConfig : streamclust::CArcFastConfig {
@@ -153,41 +159,22 @@ class HeightMapGround {
   SurfaceClass classify(const Eigen::Vector3f& world, const Eigen::Vector3f& ray) {
     const Key k = key_of(world);
     const Height h = height_of(world.z());
-    cells_[cells_.find_or_create(k.ix, k.iy)].add(h.bin, h.fraction);
-    if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
-      return SurfaceClass::ceiling;
-    }
-    // The bound is at most the cell's own layer and the slope's rise at most
-    // rise_per_cell_: a point well above its cell's layer is an object
-    // without looking at the neighbours (most object points).
-    Neighbourhood n = neighbourhood(k);
-    if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + rise_per_cell_) return SurfaceClass::object;
-    std::optional<float> bound = ground_bound(k, n);
-    if (!bound) return SurfaceClass::object;
-    if (params_.sensor_height > 0.0f) {
-      const float sensor_z = world.z() - ray.z();
-      const float under_sensor = sensor_z - params_.sensor_height;
-      const float distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
-      // A layer no higher than the lowest ray reaches here is where the
-      // field of view cuts an object off, not a surface: the ground is
-      // hidden below it, taken as level with the ground under the sensor.
-      if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) {
-        bound = std::min(*bound, under_sensor);
-      }
-      // The cone from the ground under the sensor.
-      bound = std::min(*bound, under_sensor + slope_ * distance);
-    }
-    return world.z() <= *bound + params_.ground_tolerance + slope_rise(n) ? SurfaceClass::ground : SurfaceClass::object;
+    const std::uint32_t c = cells_.find_or_create(k.ix, k.iy);
+    cells_[c].heights.add(h.bin, h.fraction);
+    const SurfaceClass surface = decide(k, world, ray);
+    if (surface == SurfaceClass::ground) ++cells_[c].ground_points;
+    return surface;
   }
 
-  /// Uncounts a point `classify` counted. O(1) expected.
-  void forget(const Eigen::Vector3f& world) {
+  /// Uncounts a point `classify` counted and classed `surface`. O(1) expected.
+  void forget(const Eigen::Vector3f& world, SurfaceClass surface) {
     const Key k = key_of(world);
     const std::uint32_t c = cells_.find(k.ix, k.iy);
-    HeightColumn& column = cells_[c];
+    Cell& cell = cells_[c];
     const Height h = height_of(world.z());
-    column.remove(h.bin, h.fraction);
-    if (column.points() == 0) cells_.release(k.ix, k.iy);
+    cell.heights.remove(h.bin, h.fraction);
+    if (surface == SurfaceClass::ground) --cell.ground_points;
+    if (cell.heights.points() == 0) cells_.release(k.ix, k.iy);
   }
 
   std::size_t heap_bytes() const { return cells_.heap_bytes(); }
@@ -219,14 +206,68 @@ class HeightMapGround {
     return Height{static_cast<std::int32_t>(bin), std::clamp(fraction, 0, HeightColumn::kFractionUnits - 1)};
   }
 
+  /// The class of a point already counted in cell k.
+  SurfaceClass decide(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray) const {
+    if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
+      return SurfaceClass::ceiling;
+    }
+    // The bound is at most the cell's own layer and the slope's rise at most
+    // rise_per_cell_: a point well above its cell's layer is an object
+    // without looking at the neighbours (most object points).
+    Neighbourhood n = neighbourhood(k);
+    if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + rise_per_cell_) return SurfaceClass::object;
+    std::optional<float> bound = ground_bound(k, n);
+    if (!bound) return SurfaceClass::object;
+    if (params_.sensor_height <= 0.0f) {
+      return world.z() <= *bound + params_.ground_tolerance + slope_rise(n) ? SurfaceClass::ground : SurfaceClass::object;
+    }
+    const float sensor_z = world.z() - ray.z();
+    const float foot = sensor_z - params_.sensor_height;
+    const float distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
+    // A layer no higher than the lowest ray reaches here is where the field
+    // of view cuts an object off, not a surface: the ground is hidden below
+    // it, taken as level with the ground under the sensor.
+    if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(*bound, foot);
+    // The cone from the ground under the sensor.
+    bound = std::min(*bound, foot + slope_ * distance);
+    if (world.z() > *bound + params_.ground_tolerance + slope_rise(n)) return SurfaceClass::object;
+    return joins_ground_toward_sensor(k, world, ray, sensor_z, distance) ? SurfaceClass::ground : SurfaceClass::object;
+  }
+
+  /// Where level ground would be out of view (the lowest ray passes above
+  /// it), ground in view must rise from the sensor's foot, and in view it
+  /// rises on from where it came into view: a ground point there lies where
+  /// the straight rise from the foot would still be out of view one cell
+  /// nearer the sensor, or the cell one step nearer holds ground points
+  /// (a desk top in the blind zone of a level Mid-360 has empty cells in
+  /// front of it). Elsewhere always true. At most 2 lookups.
+  bool joins_ground_toward_sensor(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray, float sensor_z,
+                                  float distance) const {
+    const float foot = sensor_z - params_.sensor_height;
+    if (foot >= sensor_z + lowest_ray_slope_ * distance) return true;  // level ground in view here
+    const float nearer = distance - params_.cell_size;
+    if (nearer <= 0.0f) return true;
+    const float rise_line = foot + (world.z() - foot) * nearer / distance;
+    if (rise_line <= sensor_z + lowest_ray_slope_ * nearer) return true;  // where ground comes into view
+    // The cell one step towards the sensor (a diagonal step can stay in k).
+    for (const float steps : {1.0f, 1.5f}) {
+      const float scale = steps * params_.cell_size / distance;
+      const Key in = key_of(Eigen::Vector3f(world.x() - ray.x() * scale, world.y() - ray.y() * scale, world.z()));
+      if (in.ix == k.ix && in.iy == k.iy) continue;
+      const std::uint32_t c = cells_.find(in.ix, in.iy);
+      return c != CellTable<Cell>::kNone && cells_[c].ground_points > 0;
+    }
+    return false;
+  }
+
   /// Height of the lowest supported layer of cell (ix, iy) [m]: the mean
   /// height of the densest bin within `layer_thickness` of its lowest
   /// supported bin (a level surface piles its points into a bin or two; an
   /// object standing on it spreads its points over many).
   std::optional<float> lowest_layer(std::int32_t ix, std::int32_t iy) const {
     const std::uint32_t c = cells_.find(ix, iy);
-    if (c == CellTable<HeightColumn>::kNone) return std::nullopt;
-    const HeightColumn& column = cells_[c];
+    if (c == CellTable<Cell>::kNone) return std::nullopt;
+    const HeightColumn& column = cells_[c].heights;
     const std::optional<std::int32_t> b = column.lowest_supported(params_.support);
     if (!b) return std::nullopt;
     const std::int32_t densest = column.densest(*b, *b + layer_bins_ - 1);
@@ -236,8 +277,8 @@ class HeightMapGround {
   /// highest supported bin down.
   std::optional<float> highest_layer(std::int32_t ix, std::int32_t iy) const {
     const std::uint32_t c = cells_.find(ix, iy);
-    if (c == CellTable<HeightColumn>::kNone) return std::nullopt;
-    const HeightColumn& column = cells_[c];
+    if (c == CellTable<Cell>::kNone) return std::nullopt;
+    const HeightColumn& column = cells_[c].heights;
     const std::optional<std::int32_t> b = column.highest_supported(params_.support);
     if (!b) return std::nullopt;
     const std::int32_t densest = column.densest(*b - layer_bins_ + 1, *b);
@@ -268,17 +309,24 @@ class HeightMapGround {
   std::optional<float> ground_bound(Key k, Neighbourhood& n) const {
     fill_ring(k, n);
     std::optional<float> bound = n.layer[4];
+    bool neighbour = false;
     for (std::size_t i = 0; i < 9; ++i) {
-      if (i != 4 && n.layer[i] && (!bound || *n.layer[i] + rise_per_cell_ < *bound)) bound = *n.layer[i] + rise_per_cell_;
+      if (i == 4 || !n.layer[i]) continue;
+      neighbour = true;
+      if (!bound || *n.layer[i] + rise_per_cell_ < *bound) bound = *n.layer[i] + rise_per_cell_;
     }
-    for (std::int32_t ring = 2; ring <= search_rings_; ++ring) {
-      if (bound) break;  // a ring beyond the first only for a cold neighbourhood
+    // Rings beyond the first only while none held a layer: around a cell
+    // with no neighbours (cold, or an object's top seen over a shadow) the
+    // nearest layers bound it.
+    for (std::int32_t ring = 2; ring <= search_rings_ && !neighbour; ++ring) {
       const float allowance = rise_per_cell_ * static_cast<float>(ring);
       for (std::int32_t dy = -ring; dy <= ring; ++dy) {
         const bool edge_row = dy == -ring || dy == ring;
         for (std::int32_t dx = -ring; dx <= ring; dx += edge_row ? 1 : 2 * ring) {
           const std::optional<float> layer = lowest_layer(k.ix + dx, k.iy + dy);
-          if (layer && (!bound || *layer + allowance < *bound)) bound = *layer + allowance;
+          if (!layer) continue;
+          neighbour = true;
+          if (!bound || *layer + allowance < *bound) bound = *layer + allowance;
         }
       }
     }
@@ -310,7 +358,7 @@ class HeightMapGround {
     if (!top || z < *top - params_.ceiling_tolerance) return false;
     // A surface seen from below piles its points into its bins; the top of a
     // tall object's side does not (its points spread evenly over heights).
-    const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)];
+    const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)].heights;
     const std::int32_t b = *column.highest_supported(params_.support);
     const double peak = static_cast<double>(column.count(b)) + column.count(b - 1);
     double below = 0.0;
@@ -337,8 +385,14 @@ class HeightMapGround {
   /// Bins below a ceiling layer its peak is compared with.
   static constexpr std::int32_t kPeakSpan = 10;
 
+  /// A cell's heights and how many of its points were classed ground.
+  struct Cell {
+    HeightColumn heights;
+    std::uint32_t ground_points = 0;
+  };
+
   Params params_;
-  CellTable<HeightColumn> cells_;
+  CellTable<Cell> cells_;
   float inverse_cell_ = 2.0f;
   float inverse_bin_ = 20.0f;
   float slope_ = 0.27f;

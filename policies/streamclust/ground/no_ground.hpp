@@ -22,7 +22,7 @@ class NoGround {
   static constexpr bool enabled = false;
 
   SurfaceClass classify(const Eigen::Vector3f& /*world*/, const Eigen::Vector3f& /*ray*/) { return SurfaceClass::object; }
-  void forget(const Eigen::Vector3f& /*world*/) {}
+  void forget(const Eigen::Vector3f& /*world*/, SurfaceClass /*surface*/) {}
   std::size_t heap_bytes() const { return 0; }
 };
 

@@ -43,11 +43,11 @@ class RuntimeGround {
     elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     return c;
   }
-  void forget(const Eigen::Vector3f& world) {
+  void forget(const Eigen::Vector3f& world, SurfaceClass surface) {
     if (!used_) return;
-    if (!timed_) return model_.forget(world);
+    if (!timed_) return model_.forget(world, surface);
     const auto t0 = std::chrono::steady_clock::now();
-    model_.forget(world);
+    model_.forget(world, surface);
     elapsed_us_ += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
   /// Time spent in the model since construction [us] (with `timed`; else 0).
