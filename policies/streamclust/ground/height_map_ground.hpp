@@ -108,7 +108,7 @@ class HeightMapGround {
     float ceiling_clearance = 0.1f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
     float ceiling_tolerance = 0.2f;    ///< [m] below the cell's highest layer still ceiling, [0, 2]
     float ceiling_flatness = 0.1f;     ///< [m] a neighbour's highest layer this close agrees, [0, 2]
-    float ceiling_min_agreement = 0.6f;  ///< fraction of the cells within two rings that agree, (0, 1]
+    float ceiling_min_agreement = 0.75f;  ///< fraction of the cells within two rings that agree, (0, 1]
     float ceiling_peak_ratio = 3.0f;   ///< points per bin of the layer over those of the 0.5 m below it, [0, 100]
   };
 
