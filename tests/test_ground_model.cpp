@@ -101,11 +101,36 @@ class BruteGround {
         bound = std::min(*bound, sensor_z - p_.sensor_height);
       }
       bound = std::min(*bound, sensor_z - p_.sensor_height + std::tan(p_.max_slope_deg * 0.01745329252f) * d);
-      if (world.z() > *bound + p_.ground_tolerance + slope_rise(ix, iy)) return sc::SurfaceClass::object;
+      if (world.z() > top(ix, iy, *bound) + p_.ground_tolerance) return sc::SurfaceClass::object;
       return rises_from_view(world, ray, sensor_z, d) ? sc::SurfaceClass::ground : sc::SurfaceClass::object;
     }
-    return world.z() <= *bound + p_.ground_tolerance + slope_rise(ix, iy) ? sc::SurfaceClass::ground
+    return world.z() <= top(ix, iy, *bound) + p_.ground_tolerance ? sc::SurfaceClass::ground
                                                                             : sc::SurfaceClass::object;
+  }
+  /// The highest ground of cell (ix, iy) for ground bound `bound`: the slope's
+  /// rise, or a neighbouring surface up to step_height above the bound.
+  float top(int ix, int iy, float bound) const {
+    float t = bound + slope_rise(ix, iy);
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const std::optional<float> layer = lowest(ix + dx, iy + dy);
+        if (layer && *layer > t && *layer <= bound + p_.step_height && surface(ix + dx, iy + dy)) t = *layer;
+      }
+    }
+    return t;
+  }
+  /// The step rule's peak test on the lowest supported bin.
+  bool surface(int ix, int iy) const {
+    const auto all = bins(ix, iy);
+    const auto b = lowest_brute(all, p_.support);
+    auto count = [&all](std::int32_t bin) {
+      const auto it = all.find(bin);
+      return it == all.end() ? 0.0 : static_cast<double>(it->second);
+    };
+    double above = 0.0;
+    for (std::int32_t i = *b + 2; i < *b + 12; ++i) above += count(i);
+    return (count(*b) + count(*b + 1)) / 2.0 >= p_.step_peak_ratio * above / 10.0;
   }
   /// Height the lowest ray reaches at horizontal distance d [m].
   float reach(float sensor_z, float d) const {
@@ -362,6 +387,10 @@ TEST_CASE("HeightMapGround decides as its rule computed from the live points (a 
     p.sensor_height = round % 2 == 0 ? 0.0f : 1.0f;
     p.layer_thickness = round % 3 == 2 ? 0.05f : 0.15f;
     p.lowest_ray_elevation_deg = round % 4 == 1 ? -7.0f : -90.0f;
+    p.step_height = round % 4 == 3 ? 0.0f : 0.2f;
+    p.step_peak_ratio = round % 3 == 1 ? 0.5f : 2.0f;
+    // Even rounds: the floor has a kerb 0.12 m high at x = 0.3.
+    const float kerb = round % 2 == 0 ? 0.12f : 0.0f;
     sc::HeightMapGround model(p);
     BruteGround brute(p);
     std::deque<std::pair<Eigen::Vector3f, sc::SurfaceClass>> window;
@@ -375,9 +404,17 @@ TEST_CASE("HeightMapGround decides as its rule computed from the live points (a 
       // With the field of view's cut-off the floor shows on one side only:
       // points beyond it find no ground nearer the sensor.
       if (round % 4 == 1 && kind >= 2) x = -std::fabs(x);
-      const float z = kind == 0 ? 1.5f : kind == 1 ? -1.0f + 2.0f * std::uniform_real_distribution<float>(0, 1)(rng)
-                                                   : -1.0f + 0.02f * std::uniform_real_distribution<float>(-1, 1)(rng);
-      const Eigen::Vector3f w(x, y, z);
+      const float floor = x > 0.3f ? -1.0f + kerb : -1.0f;
+      const float unit = std::uniform_real_distribution<float>(0, 1)(rng);
+      float z = kind == 0   ? 1.5f
+                : kind == 1 ? -1.0f + 2.0f * unit
+                            : floor + 0.02f * std::uniform_real_distribution<float>(-1, 1)(rng);
+      Eigen::Vector3f w(x, y, z);
+      if (kind == 1 && step % 2 == 0) {
+        // A post on a 0.1 m plinth: its lowest layer is no surface.
+        const float px = step % 4 == 0 ? 0.9f : -0.7f;
+        w = Eigen::Vector3f(px + 0.1f * unit, 0.4f + 0.1f * (1.0f - unit), floor + 0.1f + 1.4f * unit);
+      }
       const Eigen::Vector3f sensor(0.5f, -0.25f, 0.0f);
       const sc::SurfaceClass expected = brute.classify(w, w - sensor);
       const sc::SurfaceClass got = model.classify(w, w - sensor);
@@ -455,8 +492,8 @@ std::pair<double, double> rates(const Scene& s, const std::vector<sc::SurfaceCla
 
 TEST_CASE("HeightMapGround on a flat floor, a 15 degree slope and a kerb: ground stays ground, posts stay objects") {
   const float slope = std::tan(15.0f * 0.01745329252f);
-  // Fractions after a warm-up of 2,000 points; measured: flat 1.00 / 0.97,
-  // slope 0.95 / 0.87, kerb 1.00 / 0.97 (ground / posts).
+  // Fractions after a warm-up of 2,000 points; measured: flat 1.00 / 0.96,
+  // slope 0.99 / 0.86, kerb 1.00 / 0.96 (ground / posts).
   auto run = [](auto height, const std::string& name, double min_ground) {
     sc::HeightMapGround model;
     const Scene s = surface_with_posts(height, 3);
@@ -466,8 +503,8 @@ TEST_CASE("HeightMapGround on a flat floor, a 15 degree slope and a kerb: ground
     const std::string what = name + ": ground " + std::to_string(ground_rate) + ", posts " + std::to_string(object_rate);
     INFO(what);
     CHECK(ground_rate > min_ground);
-    // A post loses at most its bottom (tolerance + slope allowance) of 1.5 m.
-    CHECK(object_rate > 0.85);
+    // A post loses at most its bottom (tolerance + slope allowance or step) of 1.5 m.
+    CHECK(object_rate > 0.83);
   };
   run([](float, float) { return -1.0f; }, "flat", 0.98);
   run([slope](float x, float) { return -1.0f + slope * x; }, "slope 15 degrees", 0.94);

@@ -51,20 +51,21 @@ namespace streamclust {
 /// too, a bound no higher than `blind_margin` above where the lowest ray
 /// reaches (sensor z + tan(lowest elevation) x distance) is where the field
 /// of view cuts an object off: the ground is hidden, taken level with the
-/// ground under the sensor. A point is ground iff
-/// z <= G + ground_tolerance + the rise of the local slope across a cell
-/// (from the neighbours' layers where they rise monotonically through
-/// the cell); with no layer within reach it is an object (a cold start costs
+/// ground under the sensor. A point is ground iff z <= top +
+/// ground_tolerance, top the higher of G + the rise of the local slope across
+/// a cell (from the neighbours' layers where they rise monotonically through
+/// the cell) and the highest neighbouring layer at most `step_height` above
+/// G that is a surface (peaked like a ceiling, `step_peak_ratio`: a kerb's
+/// face or a step's riser joins the ground, an object's bottom does not);
+/// with no layer within reach it is an object (a cold start costs
 /// coverage of the ground, never objects). Where the lowest ray passes above
 /// level ground (a level Mid-360 out to 8 m), ground in view must have risen
 /// into view: the straight rise from the sensor's foot to the point is out
 /// of view one cell nearer the sensor, or that nearer cell holds points
 /// classed ground (a desk top there has empty cells in front of it; a ramp
-/// is ground from the row where it comes into view outwards). The tolerance is what an object
-/// on level ground loses at its foot: 5 cm covers the range noise of a
-/// surface seen at a slant (2 cm along the ray); kerbs and steps up to one
-/// cell's slope allowance (tan(max_slope) x cell_size = 0.13 m) join the
-/// ground through their neighbours.
+/// is ground from the row where it comes into view outwards). The tolerance
+/// is what an object on level ground loses at its foot: 5 cm covers the
+/// range noise of a surface seen at a slant (2 cm along the ray).
 ///
 /// Ceiling (`detect_ceiling`, decided before the ground: near a sensor that
 /// sees the ceiling but not the floor, the ceiling is a cell's only layer).
@@ -104,6 +105,8 @@ class HeightMapGround {
     /// level Mid-360: -7), [-90, 90]; -90: off. Needs sensor_height.
     float lowest_ray_elevation_deg = -90.0f;
     float blind_margin = 0.15f;        ///< [m] a layer this close above the lowest ray's reach is a cut-off, [0, 2]
+    float step_height = 0.16f;         ///< [m] a neighbouring surface this far above the bound lifts it (kerbs), [0, 1]
+    float step_peak_ratio = 2.0f;      ///< such a surface's two bins hold this times the points per bin above, [0, 100]
     bool detect_ceiling = true;        ///< class level layers overhead as ceiling
     float ceiling_clearance = 0.1f;    ///< [m] a ceiling point is at least this far above the sensor, [0, 100]
     float ceiling_tolerance = 0.2f;    ///< [m] below the cell's highest layer still ceiling, [0, 2]
@@ -136,6 +139,9 @@ class HeightMapGround {
           params.ceiling_flatness, "[0, 2] m");
     check(params.lowest_ray_elevation_deg >= -90.0f && params.lowest_ray_elevation_deg <= 90.0f,
           "lowest_ray_elevation_deg", params.lowest_ray_elevation_deg, "[-90, 90] degrees");
+    check(params.step_height >= 0.0f && params.step_height <= 1.0f, "step_height", params.step_height, "[0, 1] m");
+    check(params.step_peak_ratio >= 0.0f && params.step_peak_ratio <= 100.0f, "step_peak_ratio", params.step_peak_ratio,
+          "[0, 100]");
     check(params.blind_margin >= 0.0f && params.blind_margin <= 2.0f, "blind_margin", params.blind_margin, "[0, 2] m");
     check(params.sensor_height >= 0.0f && params.sensor_height <= 100.0f, "sensor_height", params.sensor_height,
           "[0, 100] m (0: unknown)");
@@ -151,6 +157,7 @@ class HeightMapGround {
                             ? -1e30f
                             : std::tan(params.lowest_ray_elevation_deg * 0.01745329252f);
     rise_per_cell_ = slope_ * params.cell_size;
+    early_margin_ = std::max(rise_per_cell_, params.step_height);
     layer_bins_ = std::max<std::int32_t>(1, static_cast<std::int32_t>(std::lround(params.layer_thickness * inverse_bin_)));
     search_rings_ = static_cast<std::int32_t>(std::ceil(params.search_radius * inverse_cell_));
   }
@@ -211,15 +218,16 @@ class HeightMapGround {
     if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
       return SurfaceClass::ceiling;
     }
-    // The bound is at most the cell's own layer and the slope's rise at most
-    // rise_per_cell_: a point well above its cell's layer is an object
-    // without looking at the neighbours (most object points).
+    // The bound is at most the cell's own layer and the top at most
+    // max(rise_per_cell_, step_height) above it: a point well above its
+    // cell's layer is an object without looking at the neighbours (most
+    // object points).
     Neighbourhood n = neighbourhood(k);
-    if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + rise_per_cell_) return SurfaceClass::object;
+    if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + early_margin_) return SurfaceClass::object;
     std::optional<float> bound = ground_bound(k, n);
     if (!bound) return SurfaceClass::object;
     if (params_.sensor_height <= 0.0f) {
-      return world.z() <= *bound + params_.ground_tolerance + slope_rise(n) ? SurfaceClass::ground : SurfaceClass::object;
+      return world.z() <= surface_top(k, *bound, n) + params_.ground_tolerance ? SurfaceClass::ground : SurfaceClass::object;
     }
     const float sensor_z = world.z() - ray.z();
     const float foot = sensor_z - params_.sensor_height;
@@ -230,7 +238,7 @@ class HeightMapGround {
     if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(*bound, foot);
     // The cone from the ground under the sensor.
     bound = std::min(*bound, foot + slope_ * distance);
-    if (world.z() > *bound + params_.ground_tolerance + slope_rise(n)) return SurfaceClass::object;
+    if (world.z() > surface_top(k, *bound, n) + params_.ground_tolerance) return SurfaceClass::object;
     return joins_ground_toward_sensor(k, world, ray, sensor_z, distance) ? SurfaceClass::ground : SurfaceClass::object;
   }
 
@@ -333,6 +341,32 @@ class HeightMapGround {
     return bound;
   }
 
+  /// The highest ground in cell k whose ground bound is `bound` [m]: the
+  /// bound plus the local slope's rise, or a neighbour's layer up to
+  /// `step_height` above the bound when that layer is a surface (a kerb's
+  /// face, a step's riser; not an object's bottom). O(1).
+  float surface_top(Key k, float bound, const Neighbourhood& n) const {
+    float top = bound + slope_rise(n);
+    for (std::size_t i = 0; i < 9; ++i) {
+      if (i == 4 || !n.layer[i] || *n.layer[i] <= top || *n.layer[i] > bound + params_.step_height) continue;
+      const std::int32_t dx = static_cast<std::int32_t>(i % 3) - 1, dy = static_cast<std::int32_t>(i / 3) - 1;
+      if (is_surface(k.ix + dx, k.iy + dy)) top = *n.layer[i];
+    }
+    return top;
+  }
+
+  /// True when the lowest layer of cell (ix, iy) is a surface seen from
+  /// above: its two bins hold `step_peak_ratio` times the points per bin of
+  /// the 0.5 m above them (an object's bottom spreads its points upwards).
+  bool is_surface(std::int32_t ix, std::int32_t iy) const {
+    const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
+    const std::int32_t b = *column.lowest_supported(params_.support);
+    const double peak = static_cast<double>(column.count(b)) + column.count(b + 1);
+    double above = 0.0;
+    for (std::int32_t j = b + 2; j < b + 2 + kPeakSpan; ++j) above += column.count(j);
+    return peak / 2.0 >= params_.step_peak_ratio * above / kPeakSpan;
+  }
+
   /// How much a slope through cell k rises across a cell [m], from the
   /// layers of its four neighbours; an axis counts only where
   /// the layers rise (or fall) monotonically through k, by the smaller of
@@ -398,6 +432,7 @@ class HeightMapGround {
   float slope_ = 0.27f;
   float lowest_ray_slope_ = -1e30f;
   float rise_per_cell_ = 0.13f;
+  float early_margin_ = 0.16f;
   std::int32_t search_rings_ = 4;
   std::int32_t layer_bins_ = 3;
 };
