@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/detail/sampled_timer.hpp>
+#include <streamclust/ground/runtime_ground.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/resolution/runtime_resolution.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
@@ -146,4 +148,38 @@ TEST_CASE("a timed configuration measures its phases; an untimed one reports zer
   CHECK(z.insertion == 0.0);
   CHECK(z.eviction == 0.0);
   CHECK(z.labelling == 0.0);
+}
+
+TEST_CASE("SampledTimer times one call in 16, passes results through, and RuntimeGround forwards while timed") {
+  sc::detail::SampledTimer timer;
+  auto busy = [] {
+    volatile double x = 0.0;
+    for (int i = 0; i < 20000; ++i) x = x + 1.0;
+    return static_cast<int>(x);
+  };
+  for (std::uint32_t i = 1; i < sc::detail::SampledTimer::kEvery; ++i) CHECK(timer.run(busy) == 20000);
+  CHECK(timer.elapsed_us() == 0.0);  // no call timed yet
+  int calls = 0;
+  timer.run([&calls] { ++calls; });  // the 16th call: timed, void
+  CHECK(calls == 1);
+  const double after_sixteen = timer.elapsed_us();
+  CHECK(after_sixteen > 0.0);
+  for (std::uint32_t i = 1; i < sc::detail::SampledTimer::kEvery; ++i) timer.run(busy);
+  CHECK(timer.elapsed_us() == after_sixteen);
+  timer.run(busy);
+  CHECK(timer.elapsed_us() > after_sixteen);
+
+  // Timed or not, RuntimeGround decides as HeightMapGround does.
+  sc::RuntimeGround::Params timed_params;
+  timed_params.use_height_map = true;
+  timed_params.timed = true;
+  sc::RuntimeGround timed(timed_params);
+  sc::HeightMapGround plain;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3f p(u(rng), u(rng), i % 3 == 0 ? 0.3f * u(rng) : -1.0f);
+    REQUIRE(timed.classify(p, p) == plain.classify(p, p));
+  }
+  CHECK(timed.elapsed_us() > 0.0);
 }
