@@ -5,6 +5,7 @@
 /// AngularLinkage: the Bogoslavskyi & Stachniss angle criterion on actual rays.
 
 #include <streamclust/concepts/linkage.hpp>
+#include <streamclust/detail/blocks_of_four.hpp>
 #include <streamclust/detail/hints.hpp>
 #include <streamclust/detail/rounded.hpp>
 #include <streamclust/types.hpp>
@@ -157,16 +158,9 @@ class AngularLinkage {
                  std::uint8_t* linked) const {
 #if defined(__SSE2__)
     const Lanes lanes(a, *this);
-    std::size_t k = 0;
-    for (; k + 4 <= count; k += 4) link_four(lanes, ring, slots + k, linked + k);
-    if (k < count) {
-      const std::size_t rest = count - k;  // 1 to 3
-      const std::uint32_t padded[4] = {slots[k], slots[k + (rest > 1 ? 1 : 0)], slots[k + (rest > 2 ? 2 : 0)],
-                                       slots[k]};
-      std::uint8_t decided[4];
-      link_four(lanes, ring, padded, decided);
-      for (std::size_t i = 0; i < rest; ++i) linked[k + i] = decided[i];
-    }
+    detail::in_blocks_of_four(slots, count, linked, [&](const std::uint32_t* four, std::uint8_t* out) {
+      link_four(lanes, ring, four, out);
+    });
 #else
     for (std::size_t k = 0; k < count; ++k) linked[k] = (*this)(a, ring[slots[k]]) ? 1u : 0u;
 #endif
