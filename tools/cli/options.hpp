@@ -76,7 +76,7 @@ struct ClusterOptions {
   // structure removal (HeightMapGround)
   bool ground = false;                 ///< --ground: class ground and ceiling points out of the clustering
   std::optional<float> sensor_height;  ///< --sensor-height [m]; empty: estimated from the first window
-  float ground_tolerance = 0.05f;      ///< --ground-tolerance [m]
+  float ground_tolerance = 0.03f;      ///< --ground-tolerance [m]
   float ground_cell = 0.5f;            ///< --ground-cell [m]
   float max_slope_deg = 15.0f;         ///< --max-slope [deg]
   bool ceiling = true;                 ///< false: --no-ceiling

@@ -64,8 +64,9 @@ namespace streamclust {
 /// of view one cell nearer the sensor, or that nearer cell holds points
 /// classed ground (a desk top there has empty cells in front of it; a ramp
 /// is ground from the row where it comes into view outwards). The tolerance
-/// is what an object on level ground loses at its foot: 5 cm covers the
-/// range noise of a surface seen at a slant (2 cm along the ray).
+/// is what an object on level ground loses at its foot: 3 cm covers twice
+/// the height noise of ground 2 cm noisy along the ray and seen at up to 45
+/// degrees of incidence; rough ground (grass, gravel) wants 5-10 cm.
 ///
 /// Ceiling (`detect_ceiling`, decided before the ground: near a sensor that
 /// sees the ceiling but not the floor, the ceiling is a cell's only layer).
@@ -95,7 +96,7 @@ class HeightMapGround {
   struct Params {
     float cell_size = 0.5f;            ///< [m] horizontal cell edge, (0.05, 10]
     float bin_height = 0.05f;          ///< [m] height bin, (0.005, 1]
-    float ground_tolerance = 0.05f;    ///< [m] above the ground bound still ground, [0, 2]
+    float ground_tolerance = 0.03f;    ///< [m] above the ground bound still ground, [0, 2]
     float max_slope_deg = 15.0f;       ///< [deg] steepest ground between neighbouring cells, [0, 60]
     float search_radius = 2.0f;        ///< [m] how far a cold cell looks for ground, [0, 50]
     std::uint32_t support = 2;         ///< points that make a layer, [1, 1000]
