@@ -227,20 +227,21 @@ class HeightMapGround {
     if (n.layer[4] && world.z() > *n.layer[4] + params_.ground_tolerance + early_margin_) return SurfaceClass::object;
     std::optional<float> bound = ground_bound(k, n);
     if (!bound) return SurfaceClass::object;
-    if (params_.sensor_height <= 0.0f) {
-      return world.z() <= surface_top(k, *bound, n) + params_.ground_tolerance ? SurfaceClass::ground : SurfaceClass::object;
+    const bool sensor_known = params_.sensor_height > 0.0f;
+    float sensor_z = 0.0f, distance = 0.0f;
+    if (sensor_known) {
+      sensor_z = world.z() - ray.z();
+      distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
+      const float foot = sensor_z - params_.sensor_height;
+      // A layer no higher than the lowest ray reaches here is where the field
+      // of view cuts an object off, not a surface: the ground is hidden below
+      // it, taken as level with the ground under the sensor.
+      if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(*bound, foot);
+      // The cone from the ground under the sensor.
+      bound = std::min(*bound, foot + slope_ * distance);
     }
-    const float sensor_z = world.z() - ray.z();
-    const float foot = sensor_z - params_.sensor_height;
-    const float distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
-    // A layer no higher than the lowest ray reaches here is where the field
-    // of view cuts an object off, not a surface: the ground is hidden below
-    // it, taken as level with the ground under the sensor.
-    if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(*bound, foot);
-    // The cone from the ground under the sensor.
-    bound = std::min(*bound, foot + slope_ * distance);
     if (world.z() > surface_top(k, *bound, n) + params_.ground_tolerance) return SurfaceClass::object;
-    return joins_ground_toward_sensor(k, world, ray, sensor_z, distance) ? SurfaceClass::ground : SurfaceClass::object;
+    return !sensor_known || rises_into_view(k, world, ray, sensor_z, distance) ? SurfaceClass::ground : SurfaceClass::object;
   }
 
   /// Where level ground would be out of view (the lowest ray passes above
@@ -250,8 +251,8 @@ class HeightMapGround {
   /// nearer the sensor, or the cell one step nearer holds ground points
   /// (a desk top in the blind zone of a level Mid-360 has empty cells in
   /// front of it). Elsewhere always true. At most 2 lookups.
-  bool joins_ground_toward_sensor(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray, float sensor_z,
-                                  float distance) const {
+  bool rises_into_view(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray, float sensor_z,
+                       float distance) const {
     const float foot = sensor_z - params_.sensor_height;
     if (foot >= sensor_z + lowest_ray_slope_ * distance) return true;  // level ground in view here
     const float nearer = distance - params_.cell_size;
@@ -362,10 +363,17 @@ class HeightMapGround {
   bool is_surface(std::int32_t ix, std::int32_t iy) const {
     const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
     const std::int32_t b = *column.lowest_supported(params_.support);
-    const double peak = static_cast<double>(column.count(b)) + column.count(b + 1);
-    double above = 0.0;
-    for (std::int32_t j = b + 2; j < b + 2 + kPeakSpan; ++j) above += column.count(j);
-    return peak / 2.0 >= params_.step_peak_ratio * above / kPeakSpan;
+    return peaked(column, b, b + 1, b + 2, params_.step_peak_ratio);
+  }
+
+  /// True when bins `b` and `next` hold `ratio` times the points per bin of
+  /// the kPeakSpan bins from `span_first` up (a surface's layer against the
+  /// side of what stands on it or hangs from it). O(kPeakSpan).
+  static bool peaked(const HeightColumn& column, std::int32_t b, std::int32_t next, std::int32_t span_first, float ratio) {
+    const double peak = static_cast<double>(column.count(b)) + column.count(next);
+    double span = 0.0;
+    for (std::int32_t i = span_first; i < span_first + kPeakSpan; ++i) span += column.count(i);
+    return peak / 2.0 >= ratio * span / kPeakSpan;
   }
 
   /// How much a slope through cell k rises across a cell [m], from the
@@ -395,10 +403,7 @@ class HeightMapGround {
     // tall object's side does not (its points spread evenly over heights).
     const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)].heights;
     const std::int32_t b = *column.highest_supported(params_.support);
-    const double peak = static_cast<double>(column.count(b)) + column.count(b - 1);
-    double below = 0.0;
-    for (std::int32_t i = b - 2 - kPeakSpan; i < b - 2; ++i) below += column.count(i);
-    if (peak / 2.0 < params_.ceiling_peak_ratio * below / kPeakSpan) return false;
+    if (!peaked(column, b, b - 1, b - 2 - kPeakSpan, params_.ceiling_peak_ratio)) return false;
     // The 24 cells within two rings; stops once the outcome is certain.
     constexpr int kCells = 24;
     const float needed = params_.ceiling_min_agreement * static_cast<float>(kCells);
