@@ -99,14 +99,18 @@ TEST_CASE("CSV: named columns in any order, extra columns ignored, whitespace, t
 TEST_CASE("CSV: time field preference t > time > timestamp > offset_time, units") {
   ReaderTempDir tmp("csv_time");
   const auto p = tmp.file("a.csv", "offset_time,x,y,z,timestamp\n1000,1,2,3,5\n");
-  auto v = read_all(p);
+  auto first = io::open_reader(p);
+  auto v = read_all(*first);
   REQUIRE(v.size() == 1);
-  CHECK(v[0].t == 5.0);  // timestamp wins over offset_time; seconds by default
+  // timestamp wins over offset_time; seconds by default; counted from the whole second
+  CHECK(first->time_origin() == io::TimeOrigin{5});
+  CHECK(v[0].t == 0.0);
   const auto q = tmp.file("b.csv", "offset_time,x,y,z\n1500000000,1,2,3\n");
   auto r = io::open_reader(q);
   CHECK(r->info().time_unit == io::TimeUnit::ns);
   v = read_all(*r);
-  CHECK(v[0].t == doctest::Approx(1.5));
+  CHECK(r->time_origin() == io::TimeOrigin{1});
+  CHECK(v[0].t == doctest::Approx(0.5));
   io::ReadOptions o;
   o.time_unit = io::TimeUnit::ms;
   v = read_all(p, o);
@@ -126,7 +130,8 @@ TEST_CASE("CSV: Livox Viewer export (Timestamp in ns, X Y Z Reflectivity)") {
   REQUIRE(v.size() == 1);
   CHECK(v[0].x == doctest::Approx(4.971));
   CHECK(v[0].intensity == 51.f);
-  CHECK(v[0].t == doctest::Approx(2444.124311890));
+  CHECK(r->time_origin() == io::TimeOrigin{2444});
+  CHECK(v[0].t == doctest::Approx(0.124311890));
 }
 
 TEST_CASE("CSV: headerless x,y,z[,intensity] with a point rate; whitespace-separated text") {
@@ -247,7 +252,8 @@ TEST_CASE("PLY ascii: elements before the vertex, list property skipped, comment
   CHECK(v[0].x == 1.f);
   CHECK(v[0].y == 2.f);
   CHECK(v[0].z == 3.f);
-  CHECK(v[0].t == 10.0);
+  CHECK(r->time_origin() == io::TimeOrigin{10});
+  CHECK(v[0].t == 0.0);
   CHECK(v[0].label == 4);
   CHECK(v[1].z == 7.f);
   CHECK(v[1].label == -1);

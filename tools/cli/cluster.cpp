@@ -5,6 +5,8 @@
 #include "cli/cluster.hpp"
 #include "cli/run_setup.hpp"
 
+#include <streamclust/io/reader.hpp>
+
 #include <memory>
 #include <stdexcept>
 
@@ -12,6 +14,9 @@ namespace streamclust::cli {
 
 int run_cluster(const ClusterOptions& options, std::ostream& out, std::ostream& err) {
   ClusterOptions o = options;
+  // One time base for the first-window estimate, the run and the poses
+  // (epoch times keep their nanoseconds: io/stream_time.hpp).
+  if (!o.read.time_origin) o.read.time_origin = io::find_time_origin(o.input, o.read);
   if (o.mode == Mode::continuous && !o.setup) {
     try {
       o.setup = std::make_shared<const RunSetup>(make_run_setup(o, !o.report_path.empty(), err));

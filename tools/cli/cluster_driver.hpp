@@ -116,7 +116,6 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     labels_file.open(o.labels_path);
     if (!labels_file) throw UsageError("--labels: cannot write '" + o.labels_path + "'");
     labels_file << "cycle,time,index,label\n";
-    labels_file.precision(9);
   }
   Report report;
   report.input = o.input;
@@ -243,7 +242,8 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
           const auto& reference = batch->cluster(verify_input);
           if (const auto m = first_partition_mismatch(label, reference.labels)) {
             const std::size_t i = std::min(m->position, index.empty() ? 0 : index.size() - 1);
-            err << "streamclust: verify: cycle " << cycle << " (t = " << cycle_time << " s): point "
+            err << "streamclust: verify: cycle " << cycle << " (t = " << io::format_time(reader->time_origin(), cycle_time)
+                << " s): point "
                 << (index.empty() ? 0 : index[i]) << " has continuous label " << (label.empty() ? -1 : label[i])
                 << " but the batch clusterer puts it with a different set of points (batch component "
                 << (m->position < reference.labels.size() ? reference.labels[m->position] : -1) << ")\n";
@@ -303,7 +303,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     report.cycles.push_back(c);
     if (selection.selected(cycle) || selection.last_only()) {
       have_selected = true;
-      if (labels_file.is_open() && !selection.last_only()) write_label_rows(labels_file, window_out);
+      if (labels_file.is_open() && !selection.last_only()) write_label_rows(labels_file, window_out, reader->time_origin());
       kept = window_out;
     }
     ++cycle;
@@ -382,15 +382,18 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   report.trace = engine->resolution().trace();
   report.stop = engine->resolution().stop_reason();
   report.records = records;
+  report.time_origin = reader->time_origin();  // found with the first timed record unless the options fix it
   report.rejections = rejected_by_reason;
-  if (labels_file.is_open() && selection.last_only()) write_label_rows(labels_file, kept);
+  if (labels_file.is_open() && selection.last_only()) write_label_rows(labels_file, kept, report.time_origin);
   if (labels_file.is_open()) {
     labels_file.flush();
     if (!labels_file) throw UsageError("--labels: writing '" + o.labels_path + "' failed");
   }
   if (!o.report_path.empty()) write_report_file(o.report_path, report);
-  if (have_selected && !o.ply_path.empty()) io::write_ply(o.ply_path, kept.points, kept.point_labels, true);
-  if (have_selected && !o.pcd_path.empty()) io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary");
+  if (have_selected && !o.ply_path.empty())
+    io::write_ply(o.ply_path, kept.points, kept.point_labels, true, report.time_origin);
+  if (have_selected && !o.pcd_path.empty())
+    io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary", report.time_origin);
   if (!o.quiet) out << summary_line(report) << "\n";
   return kOk;
 }

@@ -65,7 +65,9 @@ inline int run_info(const InfoOptions& o, std::ostream& out) {
     out << "time:      no time field (cluster needs --point-rate)";
   }
   if ((info.has_time || o.read.point_rate) && count > 0 && t1 >= t0) {
-    out << ", " << t0 << " s to " << t1 << " s (span " << t1 - t0 << " s)";
+    const io::TimeOrigin origin = reader->time_origin();
+    out << ", " << io::format_time(origin, t0) << " s to " << io::format_time(origin, t1) << " s (span " << t1 - t0
+        << " s)";
   }
   out << "\n";
   if (finite > 0) {

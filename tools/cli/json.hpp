@@ -12,14 +12,27 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <fstream>
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace streamclust::cli {
 
 using Json = nlohmann::ordered_json;
+
+/// The binary subtype that marks a number held as its decimal text.
+inline constexpr std::uint8_t kNumberTextSubtype = 0x74;
+
+/// A number written verbatim as `text` (a valid JSON number): a stream time
+/// with nanoseconds (io::format_time), which a double cannot hold at epoch
+/// scale. Held as a binary value of subtype kNumberTextSubtype; only this
+/// writer knows it.
+inline Json number_text(const std::string& text) {
+  return Json::binary(std::vector<std::uint8_t>(text.begin(), text.end()), kNumberTextSubtype);
+}
 
 namespace detail {
 
@@ -56,6 +69,9 @@ inline void write_inline(std::ostream& out, const Json& j) {
       first = false;
     }
     out << ']';
+  } else if (j.is_binary() && j.get_binary().has_subtype() && j.get_binary().subtype() == kNumberTextSubtype) {
+    const auto& bytes = j.get_binary();
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   } else {
     out << j.dump();
   }

@@ -119,6 +119,7 @@ inline const char* simulate_help() {
                             [--speed M/S] [--yaw-rate RAD/S] [--noise M] [--dropout P] [--max-range M]
                             [--burst START:LENGTH --burst-speed M/S --burst-yaw-rate RAD/S]
                             [--mount ROLL,PITCH,YAW] [--trajectory FILE] [--class-column]
+                            [--start-time S]
 
 Writes a simulated point stream with its ground truth to FILE (.csv: columns
 x,y,z,intensity,t,label; .pcd: binary with a label field). label is the
@@ -140,6 +141,8 @@ Deterministic for a given seed.
   --mount ROLL,PITCH,YAW                        the sensor's mount [deg] (pitch > 0 tilts it down,
                                                 roll 180 is upside down; default 0,0,0)
   --class-column                                CSV: a class column (0 object, 1 ground, 2 wall, 3 ceiling)
+  --start-time S                                whole seconds added to every time written, points
+                                                and trajectory (e.g. Unix time 1700000000; default 0)
 
 examples:
   streamclust simulate --sensor mid360 --scene office --seconds 2 --out office.csv

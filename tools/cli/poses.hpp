@@ -24,8 +24,10 @@ inline bool has_motion_options(const ClusterOptions& o) { return !o.poses_path.e
 
 /// PosedMotion::Params of the options: the mount from `--mount` (identity
 /// without it) and the trajectory read from the `--poses` TUM file (none
-/// without it). A malformed file throws io::InputError naming the file and
-/// the line (the tool's exit code 4). O(poses).
+/// without it), its times counted from the input's time origin
+/// (`o.read.time_origin`, zero when unset). A malformed file throws
+/// io::InputError naming the file and the line (the tool's exit code 4).
+/// O(poses).
 inline PosedMotion::Params load_motion_params(const ClusterOptions& o) {
   PosedMotion::Params params;
   if (o.mount_deg) {
@@ -34,7 +36,7 @@ inline PosedMotion::Params load_motion_params(const ClusterOptions& o) {
   }
   // read_tum checks all PoseTrajectory checks (finite, strictly increasing times, quaternion norm >= 1e-6).
   if (!o.poses_path.empty()) {
-    params.trajectory = std::make_shared<const PoseTrajectory>(to_stamped_poses(io::read_tum(o.poses_path)));
+    params.trajectory = std::make_shared<const PoseTrajectory>(to_stamped_poses(io::read_tum(o.poses_path, o.read.time_origin.value_or(io::TimeOrigin{}))));
   }
   return params;
 }

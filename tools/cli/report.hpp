@@ -7,6 +7,7 @@
 
 #include "cli/json.hpp"
 
+#include <streamclust/io/stream_time.hpp>
 #include <streamclust/percentiles.hpp>
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/stream_clusterer.hpp>
@@ -41,6 +42,7 @@ struct CycleReport {
 
 struct Report {
   std::string input, format, mode;
+  io::TimeOrigin time_origin;  ///< the input's (stream_time.hpp): cycle times are written as origin + time
   std::string connectivity;  ///< continuous mode: "lazy-bfs" or "forest"; empty in frame mode
   std::uint32_t grid_rows = 0, grid_cols = 0;
   bool grid_wraps = false;
@@ -65,10 +67,13 @@ inline std::vector<double> cycle_latencies_us(const Report& r) {
   return v;
 }
 
+/// The rows `cycle,time,index,label` of one labelled window; the time as
+/// origin + w.time with nanoseconds (io::format_time).
 template <class Rows>
-void write_label_rows(std::ostream& out, const Rows& w) {
+void write_label_rows(std::ostream& out, const Rows& w, io::TimeOrigin origin) {
+  const std::string time = io::format_time(origin, w.time);
   for (std::size_t i = 0; i < w.index.size(); ++i) {
-    out << w.cycle << ',' << w.time << ',' << w.index[i] << ',' << w.label[i] << '\n';
+    out << w.cycle << ',' << time << ',' << w.index[i] << ',' << w.label[i] << '\n';
   }
 }
 
@@ -103,7 +108,7 @@ inline Json report_json(const Report& r) {
     if (r.ground) latency["ground"] = c.ground_us;
     if (r.motion) latency["placement"] = c.placement_us;
     Json cycle = {{"cycle", c.cycle},
-                  {"time", c.time},
+                  {"time", number_text(io::format_time(r.time_origin, c.time))},
                   {"window_size", c.window},
                   {"inserted", c.inserted},
                   {"evicted", c.evicted},

@@ -61,6 +61,9 @@ struct SimulateOptions {
   std::string out;
   std::string trajectory;        ///< TUM output; "" = `out` without its extension + ".tum"
   bool class_column = false;     ///< CSV: a `class` column (SurfaceClass number)
+  /// --start-time S: whole seconds added to every written time (a recording's
+  /// epoch times); the stream itself is simulated from 0.
+  io::TimeOrigin start_time;
   bool quiet = false;
 };
 
@@ -161,6 +164,12 @@ inline SimulateOptions parse_simulate_options(const std::vector<std::string>& ar
       o.trajectory = c.value();
     } else if (a == "--class-column") {
       o.class_column = true;
+    } else if (a == "--start-time") {
+      const std::string v = c.value();
+      std::int64_t seconds = 0;
+      if (!io::detail::parse_int64(v, seconds) || seconds < 0 || seconds > 4000000000)
+        throw UsageError("--start-time: expected whole seconds in [0, 4e9] (Unix time), got '" + v + "'");
+      o.start_time = io::TimeOrigin{seconds};
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;
     } else {
@@ -277,12 +286,12 @@ inline std::vector<io::Record> simulate_records(const SimulateOptions& o) { retu
 /// CSV `x,y,z,intensity,t,label,class`: the io writer's columns and number
 /// format plus the SurfaceClass number of each record.
 inline void write_csv_with_classes(const std::string& path, const std::vector<io::Record>& records,
-                                   const std::vector<SurfaceClass>& classes) {
+                                   const std::vector<SurfaceClass>& classes, io::TimeOrigin origin) {
   if (classes.size() != records.size()) throw std::invalid_argument(path + ": one class per record expected");
   io::detail::OutFile file(path);
   std::string s = "x,y,z,intensity,t,label,class\n";
   for (std::size_t i = 0; i < records.size(); ++i) {
-    io::detail::append_point_fields(s, records[i], ',');
+    io::detail::append_point_fields(s, records[i], ',', origin);
     s += std::to_string(records[i].label);
     s += ',';
     s += std::to_string(static_cast<int>(classes[i]));
@@ -296,9 +305,9 @@ inline void write_csv_with_classes(const std::string& path, const std::vector<io
   file.close();
 }
 
-/// Writes `poses` as a TUM trajectory file (throws std::runtime_error naming
-/// the file when it cannot be written).
-inline void write_trajectory(const std::string& path, const std::vector<StampedPose>& poses) {
+/// Writes `poses` as a TUM trajectory file, times from `origin` (throws
+/// std::runtime_error naming the file when it cannot be written).
+inline void write_trajectory(const std::string& path, const std::vector<StampedPose>& poses, io::TimeOrigin origin) {
   std::vector<io::TumRecord> rows;
   rows.reserve(poses.size());
   for (const StampedPose& p : poses) {
@@ -308,7 +317,7 @@ inline void write_trajectory(const std::string& path, const std::vector<StampedP
   }
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   if (!file) throw std::runtime_error(path + ": cannot open for writing");
-  io::write_tum(file, rows);
+  io::write_tum(file, rows, origin);
   file.close();
   if (!file) throw std::runtime_error(path + ": write failed (disk full?)");
 }
@@ -317,13 +326,13 @@ inline int run_simulate(const SimulateOptions& o, std::ostream& out) {
   const SimulatedStream stream = simulate_stream(o);
   const bool pcd = o.out.size() >= 4 && o.out.compare(o.out.size() - 4, 4, ".pcd") == 0;
   if (pcd) {
-    io::write_pcd(o.out, stream.records, {}, "binary");
+    io::write_pcd(o.out, stream.records, {}, "binary", o.start_time);
   } else if (o.class_column) {
-    write_csv_with_classes(o.out, stream.records, stream.classes);
+    write_csv_with_classes(o.out, stream.records, stream.classes, o.start_time);
   } else {
-    io::write_csv_points(o.out, stream.records);
+    io::write_csv_points(o.out, stream.records, {}, o.start_time);
   }
-  write_trajectory(o.trajectory, stream.trajectory);
+  write_trajectory(o.trajectory, stream.trajectory, o.start_time);
   if (!o.quiet) {
     out << "streamclust: simulated " << stream.records.size() << " points (" << o.seconds << " s, sensor "
         << o.sensor << ", scene " << o.scene << ", seed " << o.seed << ") -> " << o.out << ", trajectory -> "

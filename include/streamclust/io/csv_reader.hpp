@@ -110,7 +110,7 @@ class CsvReader final : public PointReader {
       r.y = real<float>(cy_);
       r.z = real<float>(cz_);
       if (ci_) r.intensity = real<float>(*ci_);
-      const double raw = ct_ ? real<double>(*ct_) : 0.0;
+
       if (cl_) {
         const std::string_view s = detail::trim(fields_[*cl_]);
         std::int64_t v = 0;
@@ -120,7 +120,7 @@ class CsvReader final : public PointReader {
         }
         r.label = v;
       }
-      r.t = next_time(raw);
+      r.t = ct_ ? next_time_text(detail::trim(fields_[*ct_]), real<double>(*ct_)) : next_time();
       out.push_back(r);
       ++n;
     }

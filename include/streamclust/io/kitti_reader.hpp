@@ -60,7 +60,7 @@ class KittiReader final : public PointReader {
         r.y = detail::load_le<float>(p + 4);
         r.z = detail::load_le<float>(p + 8);
         r.intensity = detail::load_le<float>(p + 12);
-        r.t = next_time(0.0);
+        r.t = next_time();
         out.push_back(r);
       }
       n += whole;

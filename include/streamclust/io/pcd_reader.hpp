@@ -353,8 +353,7 @@ class PcdReader final : public PointReader {
     r.z = detail::scalar_to_float(fields_[iz_].scalar, p + fields_[iz_].offset);
     if (ii_) r.intensity = detail::scalar_to_float(fields_[*ii_].scalar, p + fields_[*ii_].offset);
     if (il_) r.label = detail::scalar_to_label(fields_[*il_].scalar, p + fields_[*il_].offset);
-    const double raw = it_ ? detail::scalar_to_double(fields_[*it_].scalar, p + fields_[*it_].offset) : 0.0;
-    r.t = next_time(raw);
+    r.t = it_ ? next_time_scalar(fields_[*it_].scalar, p + fields_[*it_].offset) : next_time();
     return r;
   }
 
@@ -370,8 +369,7 @@ class PcdReader final : public PointReader {
     r.z = detail::scalar_to_float(fields_[iz_].scalar, soa_at(iz_, i));
     if (ii_) r.intensity = detail::scalar_to_float(fields_[*ii_].scalar, soa_at(*ii_, i));
     if (il_) r.label = detail::scalar_to_label(fields_[*il_].scalar, soa_at(*il_, i));
-    const double raw = it_ ? detail::scalar_to_double(fields_[*it_].scalar, soa_at(*it_, i)) : 0.0;
-    r.t = next_time(raw);
+    r.t = it_ ? next_time_scalar(fields_[*it_].scalar, soa_at(*it_, i)) : next_time();
     return r;
   }
 
@@ -421,8 +419,7 @@ class PcdReader final : public PointReader {
                          "expected an integer label, found " + detail::quoted(tok_[f.first_value]));
       r.label = v;
     }
-    const double raw = it_ ? ascii_value<double>(*it_) : 0.0;
-    r.t = next_time(raw);
+    r.t = it_ ? next_time_text(tok_[fields_[*it_].first_value], ascii_value<double>(*it_)) : next_time();
     out.push_back(r);
     ++done_;
   }

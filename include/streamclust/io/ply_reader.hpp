@@ -21,8 +21,10 @@
 #include <streamclust/io/record.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <string>
@@ -269,7 +271,13 @@ class PlyReader final : public PointReader {
     r.z = detail::to_float(values_[iz_]);
     if (ii_) r.intensity = detail::to_float(values_[*ii_]);
     if (il_) r.label = label_value_;
-    r.t = next_time(it_ ? values_[*it_] : 0.0);
+    if (!it_) {
+      r.t = next_time();
+    } else if (binary_) {
+      r.t = next_time_scalar(props_[*it_].scalar, time_bytes_.data());
+    } else {
+      r.t = next_time_text(time_text_, values_[*it_]);
+    }
     return r;
   }
 
@@ -307,6 +315,7 @@ class PlyReader final : public PointReader {
     const Property& prop = props_[i];
     values_[i] = detail::scalar_to_double(prop.scalar, p);
     if (il_ && i == *il_) label_value_ = detail::scalar_to_label(prop.scalar, p);
+    if (it_ && i == *it_) std::memcpy(time_bytes_.data(), p, detail::scalar_size(prop.scalar));
   }
 
   Record read_ascii_record() {
@@ -340,6 +349,7 @@ class PlyReader final : public PointReader {
         throw InputError(path_, detail::where_column(line_no_, k + 1, p.name),
                          "expected a number, found " + detail::quoted(tok_[k]));
       values_[i] = v;
+      if (it_ && i == *it_) time_text_ = tok_[k];
       if (il_ && i == *il_) {
         std::int64_t l = 0;
         if (!detail::parse_int64(tok_[k], l))
@@ -379,6 +389,8 @@ class PlyReader final : public PointReader {
   std::vector<unsigned char> record_;
   std::vector<double> values_;
   std::int64_t label_value_ = -1;
+  std::array<unsigned char, 8> time_bytes_{};  ///< the time property's bytes (binary)
+  std::string_view time_text_;                 ///< the time property's token (ascii)
 };
 
 }  // namespace streamclust::io

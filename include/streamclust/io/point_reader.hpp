@@ -5,7 +5,9 @@
 /// The streaming reader interface every format implements.
 
 #include <streamclust/io/error.hpp>
+#include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/record.hpp>
+#include <streamclust/io/time_decoder.hpp>
 
 #include <cmath>
 #include <cstddef>
@@ -51,6 +53,15 @@ class PointReader {
   const std::string& path() const noexcept { return path_; }
   /// Records returned so far (every record counts, NaN ones included).
   std::uint64_t records_read() const noexcept { return index_; }
+  /// The whole seconds the records' times count from (stream_time.hpp):
+  /// `ReadOptions::time_origin` when given, else the first finite time's
+  /// whole seconds once a record with one is read (zero before, and for a
+  /// stream of times below 1 s or without a time field). Absolute time =
+  /// origin + Record::t.
+  TimeOrigin time_origin() const noexcept { return time_.origin(); }
+  /// True when the origin was given or found (false until a record with a
+  /// finite time is read).
+  bool time_origin_found() const noexcept { return time_.origin_found(); }
 
   /// Appends up to `max_records` records to `out` in file order and returns
   /// how many; 0 means end of input (or max_records == 0).
@@ -67,9 +78,10 @@ class PointReader {
   void setup_time(const ReadOptions& options, TimeUnit default_unit) {
     if (info_.has_time) {
       info_.time_unit = options.time_unit.value_or(default_unit);
-      scale_ = seconds_per(info_.time_unit);
+      time_ = TimeDecoder(info_.time_unit, options.time_origin);
       return;
     }
+    if (options.time_origin) time_ = TimeDecoder(TimeUnit::s, options.time_origin);
     if (!options.point_rate) {
       throw InputError(path_, "header",
                        "no time field (t, time, timestamp or offset_time); pass a point rate (--point-rate HZ) "
@@ -82,10 +94,36 @@ class PointReader {
     }
   }
 
-  /// Stream time of the next record from its raw time value (ignored without
-  /// a time field: then index / point rate); advances the record index.
-  double next_time(double raw) noexcept {
-    const double t = info_.has_time ? raw * scale_ : static_cast<double>(index_) / rate_;
+  /// Stream time of the next record from its time value written as decimal
+  /// text, `parsed` its value (both ignored without a time field: then
+  /// index / point rate); advances the record index.
+  double next_time_text(std::string_view text, double parsed) {
+    const double t = info_.has_time ? time_.from_text(text, parsed) : time_from_rate();
+    ++index_;
+    return t;
+  }
+
+  /// The same for a time value stored as the binary scalar at `p`.
+  double next_time_scalar(detail::Scalar scalar, const unsigned char* p) noexcept {
+    double t = 0.0;
+    if (!info_.has_time) {
+      t = time_from_rate();
+    } else if (scalar == detail::Scalar::u64) {
+      t = time_.from_unsigned(detail::load_le<std::uint64_t>(p));
+    } else if (scalar == detail::Scalar::i64) {
+      t = time_.from_integer(detail::load_le<std::int64_t>(p));
+    } else if (detail::scalar_is_float(scalar)) {
+      t = time_.from_real(detail::scalar_to_double(scalar, p));
+    } else {
+      t = time_.from_integer(static_cast<std::int64_t>(detail::scalar_to_double(scalar, p)));  // exact below 64 bits
+    }
+    ++index_;
+    return t;
+  }
+
+  /// The same for a record without a time value (no time field).
+  double next_time() noexcept {
+    const double t = time_from_rate();
     ++index_;
     return t;
   }
@@ -94,7 +132,9 @@ class PointReader {
   std::string path_;
 
  private:
-  double scale_ = 1.0;
+  double time_from_rate() const noexcept { return static_cast<double>(index_) / rate_; }
+
+  TimeDecoder time_;
   double rate_ = 1.0;
   std::uint64_t index_ = 0;
 };

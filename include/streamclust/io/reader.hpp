@@ -79,4 +79,21 @@ inline std::unique_ptr<PointReader> open_reader(const std::string& path, const R
   throw InputError(path, "header", "unknown format");
 }
 
+/// The time origin the reader of `path` finds (PointReader::time_origin):
+/// reads records until the first with a finite time, so several readers of
+/// one input, and its trajectory, can share it through
+/// `ReadOptions::time_origin`. Zero for an input without such a record.
+/// Throws as open_reader and PointReader::read do. O(records up to it).
+inline TimeOrigin find_time_origin(const std::string& path, const ReadOptions& options = {}) {
+  if (options.time_origin) return *options.time_origin;
+  auto reader = open_reader(path, options);
+  if (!reader->info().has_time) return TimeOrigin{};
+  std::vector<Record> chunk;
+  while (!reader->time_origin_found()) {
+    chunk.clear();
+    if (reader->read(chunk, 4096) == 0) break;
+  }
+  return reader->time_origin();
+}
+
 }  // namespace streamclust::io

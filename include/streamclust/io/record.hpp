@@ -5,6 +5,8 @@
 /// The vocabulary of the I/O module: the record every reader returns, the
 /// formats, time units, read options and what a reader learnt about its input.
 
+#include <streamclust/io/stream_time.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -25,7 +27,7 @@ struct Record {
   float y = 0;          ///< [m]
   float z = 0;          ///< [m]
   float intensity = 0;  ///< intensity / reflectivity / reflectance; 0 when the file has none
-  double t = 0;         ///< stream time [s]
+  double t = 0;         ///< stream time [s] since the reader's time origin (`PointReader::time_origin`)
   /// Ground truth / label from a field named `label`, `gt`, `instance` or
   /// `object` (first found in this order); -1 when the file has none.
   std::int64_t label = -1;
@@ -46,6 +48,10 @@ struct ReadOptions {
   /// Points per second [Hz]: when the input has no time field, record i gets
   /// t = i / point_rate (i counts every record). Ignored when the input has a time field.
   std::optional<double> point_rate;
+  /// The whole seconds times are counted from (stream_time.hpp); default:
+  /// the first finite time's whole seconds (`PointReader::time_origin`).
+  /// Give it to read several inputs, or one input twice, on one time base.
+  std::optional<TimeOrigin> time_origin;
 };
 
 /// What a reader found in the header of its input.

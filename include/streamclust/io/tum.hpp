@@ -16,6 +16,7 @@
 
 #include <streamclust/io/error.hpp>
 #include <streamclust/io/input_stream.hpp>
+#include <streamclust/io/stream_time.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -33,20 +34,20 @@ namespace streamclust::io {
 
 /// One line of a TUM trajectory.
 struct TumRecord {
-  double t = 0.0;                     ///< [s]
+  double t = 0.0;                     ///< [s] since the time origin the file was read or written with
   double tx = 0.0, ty = 0.0, tz = 0.0;  ///< position [m]
   double qx = 0.0, qy = 0.0, qz = 0.0, qw = 1.0;  ///< rotation, unit quaternion (x, y, z, w)
 };
 
-/// Writes `records` as a TUM trajectory with a `#` header line: times with
-/// nanosecond resolution (%.9f, exact at epoch scale within a double's
-/// precision), positions and quaternions with 9 decimals. O(records).
-inline void write_tum(std::ostream& out, const std::vector<TumRecord>& records) {
+/// Writes `records` as a TUM trajectory with a `#` header line: times as
+/// origin + t with nanosecond resolution (`format_time`, exact at any
+/// origin), positions and quaternions with 9 decimals. O(records).
+inline void write_tum(std::ostream& out, const std::vector<TumRecord>& records, TimeOrigin origin = {}) {
   out << "# t tx ty tz qx qy qz qw\n";
   char line[256];
   for (const TumRecord& r : records) {
-    std::snprintf(line, sizeof line, "%.9f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", r.t, r.tx, r.ty, r.tz, r.qx, r.qy,
-                  r.qz, r.qw);
+    std::snprintf(line, sizeof line, "%s %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", format_time(origin, r.t).c_str(), r.tx,
+                  r.ty, r.tz, r.qx, r.qy, r.qz, r.qw);
     out << line;
   }
 }
@@ -59,11 +60,12 @@ inline constexpr double tum_min_quaternion_norm = 1e-6;
 /// 8 numbers separated by spaces or tabs; each is finite, the times strictly
 /// increase, the quaternion's norm is >= 1e-6 (not normalised here); at
 /// least one pose. Otherwise io::InputError "NAME: line N[, column K (name)]:
-/// expected ..., found ...". Numbers are parsed correctly rounded, so a file
-/// written by write_tum reads back the same doubles where a double resolves
-/// nanoseconds less finely (times from 2^23 s, about 97 days, on: epoch times)
-/// and within 0.5 ns otherwise. O(lines); memory: the records.
-inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name) {
+/// expected ..., found ...". Times are returned as seconds since `origin`
+/// (the stream's time origin, stream_time.hpp), shifted exactly as the
+/// point readers shift theirs; numbers are parsed correctly rounded, so a
+/// file written by write_tum with the same origin reads back within 0.5 ns.
+/// O(lines); memory: the records.
+inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name, TimeOrigin origin = {}) {
   static constexpr const char* columns[8] = {"t", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
   std::vector<TumRecord> out;
   std::string line;
@@ -92,7 +94,8 @@ inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name
                          "expected a finite number, found " + detail::quoted(fields[k]));
       }
     }
-    const TumRecord r{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+    const double t = relative_seconds_of_text(fields[0], v[0], 1.0, 1, origin);
+    const TumRecord r{t, v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
     const double norm = std::sqrt(r.qx * r.qx + r.qy * r.qy + r.qz * r.qz + r.qw * r.qw);
     if (!(norm >= tum_min_quaternion_norm)) {
       char buf[64];
@@ -102,8 +105,9 @@ inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name
     }
     if (!out.empty() && !(r.t > out.back().t)) {
       char buf[160];
-      std::snprintf(buf, sizeof buf, "expected a time later than line %llu's %.9f, found %.9f",
-                    static_cast<unsigned long long>(previous_line), out.back().t, r.t);
+      std::snprintf(buf, sizeof buf, "expected a time later than line %llu's %s, found %s",
+                    static_cast<unsigned long long>(previous_line), format_time(origin, out.back().t).c_str(),
+                    format_time(origin, r.t).c_str());
       throw InputError(name, detail::where_column(line_no, 1, "t"), buf);
     }
     out.push_back(r);
@@ -119,12 +123,12 @@ inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name
 
 /// Reads the TUM trajectory file at `path` (see the stream overload);
 /// io::InputError "cannot open" when it cannot be opened.
-inline std::vector<TumRecord> read_tum(const std::string& path) {
+inline std::vector<TumRecord> read_tum(const std::string& path, TimeOrigin origin = {}) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "byte 0", "cannot open: is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "byte 0", "cannot open: no such file or not readable");
-  return read_tum(in, path);
+  return read_tum(in, path, origin);
 }
 
 }  // namespace streamclust::io

@@ -12,6 +12,7 @@
 
 #include <streamclust/io/lzf.hpp>
 #include <streamclust/io/record.hpp>
+#include <streamclust/io/stream_time.hpp>
 
 #include <array>
 #include <charconv>
@@ -59,9 +60,10 @@ class OutFile {
 template <class T>
 void append_number(std::string& s, T v);
 
-/// Appends "x<sep>y<sep>z<sep>intensity<sep>t<sep>" of a record (text formats).
+/// Appends "x<sep>y<sep>z<sep>intensity<sep>t<sep>" of a record (text
+/// formats), t as the absolute time origin + r.t.
 template <class Record>
-void append_point_fields(std::string& s, const Record& r, char sep) {
+void append_point_fields(std::string& s, const Record& r, char sep, TimeOrigin origin) {
   append_number(s, r.x);
   s += sep;
   append_number(s, r.y);
@@ -70,7 +72,7 @@ void append_point_fields(std::string& s, const Record& r, char sep) {
   s += sep;
   append_number(s, r.intensity);
   s += sep;
-  append_number(s, r.t);
+  append_time(s, origin, r.t);
   s += sep;
 }
 
@@ -131,16 +133,17 @@ inline std::array<std::uint8_t, 3> label_color(std::int64_t label) noexcept {
   }
 }
 
-/// CSV with the header `x,y,z,intensity,t,label` (t in seconds). `labels`:
+/// CSV with the header `x,y,z,intensity,t,label` (t in seconds: origin +
+/// the record's t, as the shortest text that reads back to it). `labels`:
 /// one per record, or empty (the default) to write each record's own label.
 inline void write_csv_points(const std::string& path, const std::vector<Record>& records,
-                             const std::vector<std::int64_t>& labels) {
+                             const std::vector<std::int64_t>& labels, TimeOrigin origin = {}) {
   detail::check_labels(path, records, labels);
   detail::OutFile out(path);
   std::string s = "x,y,z,intensity,t,label\n";
   for (std::size_t i = 0; i < records.size(); ++i) {
     const Record& r = records[i];
-    detail::append_point_fields(s, r, ',');
+    detail::append_point_fields(s, r, ',', origin);
     s += std::to_string(detail::label_of(records, labels, i));
     s += '\n';
     if (s.size() > (1u << 16)) {
@@ -161,8 +164,10 @@ inline void write_csv_points(const std::string& path, const std::vector<Record>&
 /// = POINTS = records.size(), HEIGHT 1. `encoding`: "ascii", "binary" or
 /// "binary_compressed". `labels`: one per record, or empty to write each
 /// record's own label. Labels must fit int32 (std::invalid_argument otherwise).
+/// t is the absolute time origin + the record's t (ascii: exact text;
+/// binary: a double, 0.24 us at epoch scale).
 inline void write_pcd(const std::string& path, const std::vector<Record>& records,
-                      const std::vector<std::int64_t>& labels, std::string_view encoding) {
+                      const std::vector<std::int64_t>& labels, std::string_view encoding, TimeOrigin origin = {}) {
   detail::check_labels(path, records, labels);
   if (encoding != "ascii" && encoding != "binary" && encoding != "binary_compressed")
     throw std::invalid_argument(path + ": PCD encoding \"" + std::string(encoding) +
@@ -179,7 +184,7 @@ inline void write_pcd(const std::string& path, const std::vector<Record>& record
   if (encoding == "ascii") {
     for (std::size_t i = 0; i < n; ++i) {
       const Record& r = records[i];
-      detail::append_point_fields(s, r, ' ');
+      detail::append_point_fields(s, r, ' ', origin);
       s += std::to_string(detail::label32(path, detail::label_of(records, labels, i)));
       s += '\n';
       if (s.size() > (1u << 16)) {
@@ -202,7 +207,8 @@ inline void write_pcd(const std::string& path, const std::vector<Record>& record
       put(&r.y, 4);
       put(&r.z, 4);
       put(&r.intensity, 4);
-      put(&r.t, 8);
+      const double t = absolute_seconds(origin, r.t);
+      put(&t, 8);
       put(&l, 4);
       if (buf.size() >= 4096 * point_size) {
         out.write(buf.data(), buf.size());
@@ -221,7 +227,11 @@ inline void write_pcd(const std::string& path, const std::vector<Record>& record
     for (const Record& r : records) std::memcpy(p, &r.y, 4), p += 4;
     for (const Record& r : records) std::memcpy(p, &r.z, 4), p += 4;
     for (const Record& r : records) std::memcpy(p, &r.intensity, 4), p += 4;
-    for (const Record& r : records) std::memcpy(p, &r.t, 8), p += 8;
+    for (const Record& r : records) {
+      const double t = absolute_seconds(origin, r.t);
+      std::memcpy(p, &t, 8);
+      p += 8;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const std::int32_t l = detail::label32(path, detail::label_of(records, labels, i));
       std::memcpy(p, &l, 4);
@@ -238,9 +248,9 @@ inline void write_pcd(const std::string& path, const std::vector<Record>& record
 /// PLY (ascii, or binary_little_endian when `binary`) with vertex properties
 /// `float x y z intensity`, `double t`, `int label`, `uchar red green blue`
 /// (colour from `label_color`). `labels`: one per record, or empty to use
-/// the records' labels. Labels must fit int32.
+/// the records' labels. Labels must fit int32. t as in write_pcd.
 inline void write_ply(const std::string& path, const std::vector<Record>& records,
-                      const std::vector<std::int64_t>& labels, bool binary) {
+                      const std::vector<std::int64_t>& labels, bool binary, TimeOrigin origin = {}) {
   detail::check_labels(path, records, labels);
   detail::OutFile out(path);
   const std::size_t n = records.size();
@@ -259,11 +269,12 @@ inline void write_ply(const std::string& path, const std::vector<Record>& record
       put(&r.y, 4);
       put(&r.z, 4);
       put(&r.intensity, 4);
-      put(&r.t, 8);
+      const double t = absolute_seconds(origin, r.t);
+      put(&t, 8);
       put(&l, 4);
       put(c.data(), 3);
     } else {
-      detail::append_point_fields(s, r, ' ');
+      detail::append_point_fields(s, r, ' ', origin);
       s += std::to_string(l) + ' ' + std::to_string(c[0]) + ' ' + std::to_string(c[1]) + ' ' + std::to_string(c[2]) +
            '\n';
     }
