@@ -252,6 +252,53 @@ TEST_CASE("exit codes: help 0, usage 2, input 4") {
   CHECK(bad.err.find("line 3") != std::string::npos);
 }
 
+TEST_CASE("one absurd time in a CSV costs that record, not the rest of the stream; no usable time is exit 4") {
+  const sc::test::TempDir tmp("cli", "absurd_time");
+  const fs::path& dir = tmp.dir;
+  const auto points = write_stream_csv(dir / "clean.csv", 0.35);
+  {
+    std::ifstream in(dir / "clean.csv");
+    std::ofstream out(dir / "spiked.csv");
+    std::string line;
+    for (std::size_t row = 0; std::getline(in, line); ++row) {
+      if (row == 2001) line = line.substr(0, line.rfind(',') + 1) + "1e300";  // record 2000
+      out << line << '\n';
+    }
+  }
+  auto run = [&](const char* name) {
+    const auto r = run_cli({"cluster", (dir / name).string(), "--labels", (dir / (std::string(name) + ".labels")).string(),
+                            "--cycles", "all", "--report", (dir / (std::string(name) + ".json")).string(), "--quiet"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    return nlohmann::json::parse(slurp(dir / (std::string(name) + ".json")));
+  };
+  const auto clean = run("clean.csv");
+  const auto spiked = run("spiked.csv");
+  const auto& rejected = spiked.at("totals").at("rejected");
+  CHECK(rejected.at("time_jump").get<int>() == 1);
+  CHECK(rejected.at("time_backwards").get<int>() == 0);
+  CHECK(spiked.at("totals").at("inserted").get<int>() == clean.at("totals").at("inserted").get<int>() - 1);
+  CHECK(spiked.at("cycles").size() == clean.at("cycles").size());
+  const auto rows = read_labels(dir / "spiked.csv.labels");
+  std::size_t spike_rows = 0;
+  for (const auto& r : rows) {
+    if (r.index != 2000) continue;
+    ++spike_rows;
+    CHECK(r.label == -1);
+  }
+  CHECK(spike_rows > 0);
+  CHECK(points.size() > 2000);
+
+  {
+    std::ofstream f(dir / "no_time.csv");
+    f << "x,y,z,t\n1,2,3,nan\n4,5,6,1e300\n7,8,9,inf\n";
+  }
+  const auto none = run_cli({"cluster", (dir / "no_time.csv").string()});
+  CHECK(none.code == 4);
+  CHECK(none.err.find("no_time.csv") != std::string::npos);
+  CHECK(none.err.find("no record has a usable time") != std::string::npos);
+}
+
 TEST_CASE("info describes an input without a time field, and times it with --point-rate") {
   const sc::test::TempDir tmp("cli", "info_untimed");
   const fs::path& dir = tmp.dir;

@@ -23,6 +23,7 @@
 /// \endcode
 /// Presets are such structs; derive from one and override a slot.
 
+#include <streamclust/acceptance.hpp>
 #include <streamclust/concepts.hpp>
 #include <streamclust/concepts/connectivity.hpp>
 #include <streamclust/concepts/ground.hpp>
@@ -128,6 +129,9 @@ struct ClustererParams {
   typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
   typename detail::params_of<typename config_traits<Config>::motion>::type motion{};
   typename detail::params_of<typename config_traits<Config>::ground>::type ground{};
+  /// The time order's jump guard (acceptance.hpp; StreamClusterer and
+  /// FrameClusterer).
+  StreamTimeOrder::Params time_order{};
   /// Stream index of the first offered point (StreamClusterer and
   /// FrameClusterer; the batch clusterer numbers its input from 0): a
   /// clusterer that resumes a stream continues its numbering.

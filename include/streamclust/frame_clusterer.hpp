@@ -64,7 +64,8 @@ class FrameClusterer {
         window_(params.window),
         resolution_(params.resolution),
         batch_(params, mode),
-        first_stream_index_(params.first_stream_index) {
+        first_stream_index_(params.first_stream_index),
+        time_order_(params.time_order) {
     if (!resolution_.needs_calibration()) set_grid(resolution_.grid());
   }
 
@@ -90,10 +91,9 @@ class FrameClusterer {
     const std::uint64_t stream_index = first_stream_index_ + offered_++;
     const Eigen::Vector3f pos = position(p);
     const Projected pr = projection_.project(pos);
-    const RejectReason verdict = time_order_.judge(pr, time);  // the engine's rule (acceptance.hpp)
+    const RejectReason verdict = time_order_.admit(pr, time);  // the engine's rule (acceptance.hpp)
     ++rejections_[verdict];
     if (verdict != RejectReason::accepted) return verdict;
-    time_order_.accept(time);
     if (calibrating_) {
       // As the engine: the point that completes the first window is not part
       // of the calibration; nothing expires before it.
@@ -130,7 +130,7 @@ class FrameClusterer {
   /// earlier time than the newest point's is ignored (as the engine).
   void advance_to(double time) {
     if (!time_order_.may_advance_to(time)) return;
-    time_order_.accept(time);
+    time_order_.advance(time);
     if (calibrating_) {
       if (!points_.empty() && window_.complete(points_.front().sample.time, time, points_.size())) {
         finish_calibration();

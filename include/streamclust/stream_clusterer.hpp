@@ -160,7 +160,8 @@ class StreamClusterer {
         motion_(params.motion),
         ground_(params.ground),
         search_(detail::checked_mask_half_width(params.mask_size), connectivity_prune_witnesses(connectivity_)),
-        state_(connectivity_) {
+        state_(connectivity_),
+        time_order_(params.time_order) {
     if (!resolution_.needs_calibration()) set_grid(choose_grid(resolution_, projection_, {}));
   }
 
@@ -228,7 +229,7 @@ class StreamClusterer {
   /// a running calibration.
   void advance_to(double time) {
     if (!time_order_.may_advance_to(time)) return;
-    time_order_.accept(time);
+    time_order_.advance(time);
     if constexpr (removes_structure) evict_structure(time);
     if (calibrating_) {
       if (size() > 0 && window_.complete(ring_.time(ring_.oldest()), time, size())) finish_calibration();
@@ -466,10 +467,9 @@ class StreamClusterer {
     const std::uint64_t stream_index = params_.first_stream_index + offered_++;
     const double time = a.time;
     const Projected& pr = a.projected;
-    const RejectReason verdict = time_order_.judge(pr, time);
+    const RejectReason verdict = time_order_.admit(pr, time);
     ++rejections_[verdict];
     if (verdict != RejectReason::accepted) return verdict;
-    time_order_.accept(time);
     if constexpr (removes_structure) {
       if (classify_structure(a, stream_index)) return RejectReason::accepted;
     }

@@ -73,8 +73,9 @@ enum class RejectReason : std::uint8_t {
   outside_fov,     ///< direction outside the projection's field of view
   time_backwards,  ///< timestamp earlier than the previous accepted point's
   no_pose,         ///< time outside the span of the sensor poses given (motion compensation)
+  time_jump,       ///< timestamp too far ahead of the previous valid point's, or absurd (StreamTimeOrder)
 };
-inline constexpr std::size_t kRejectReasonCount = 6;
+inline constexpr std::size_t kRejectReasonCount = 7;
 
 inline const char* to_string(RejectReason r) {
   switch (r) {
@@ -84,6 +85,7 @@ inline const char* to_string(RejectReason r) {
     case RejectReason::outside_fov: return "outside_fov";
     case RejectReason::time_backwards: return "time_backwards";
     case RejectReason::no_pose: return "no_pose";
+    case RejectReason::time_jump: return "time_jump";
   }
   return "unknown";
 }

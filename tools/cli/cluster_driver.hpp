@@ -145,6 +145,10 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   std::uint64_t cycle = 0;
   double first_time = 0.0, last_time = 0.0;
   RetrievalSchedule schedule(o.rate_hz);
+  // The clusterer's time order, judged ahead of it: records whose time it
+  // will reject (non-finite, backwards, a jump) do not move the schedule.
+  StreamTimeOrder record_times(engine_time_order_params(o));
+  std::uint64_t valid_times = 0;
   std::uint64_t inserted_since = 0;
   CycleClock clock;
   const bool progress = !o.quiet && stderr_is_terminal();
@@ -338,6 +342,8 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     if (reader->read(chunk, 65536) == 0) break;
     std::size_t offered = 0;  // chunk[0, offered) went to the clusterer
     for (std::size_t i = 0; i < chunk.size(); ++i) {
+      if (record_times.admit_time(chunk[i].t) != RejectReason::accepted) continue;
+      ++valid_times;
       const bool started = schedule.started();
       const std::optional<double> due = schedule.on_record(chunk[i].t);
       if (!started && schedule.started()) first_time = schedule.first_time();
@@ -367,6 +373,10 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   }
   if (progress) err << "\r" << std::string(60, ' ') << "\r";
   if (records == 0) throw io::InputError(o.input, "header", "no points: the input is empty");
+  if (valid_times == 0) {
+    throw io::InputError(o.input, "record 0", "no record has a usable time: expected finite times within +-9e9 s of "
+                                              "the stream's origin (" + std::to_string(records) + " records read)");
+  }
   // The final cycle covers the points after the last scheduled retrieval
   // (and, for an input shorter than one window, ends the calibration).
   clock.time([&] { engine->complete_calibration(); });

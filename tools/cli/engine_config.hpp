@@ -54,6 +54,14 @@ struct CliConfig {
   static constexpr bool timed = false;
 };
 
+/// The time order's parameters of the options (the clusterer's and the
+/// driver's copy are the same).
+inline StreamTimeOrder::Params engine_time_order_params(const ClusterOptions& o) {
+  StreamTimeOrder::Params p;
+  p.max_jump = o.max_time_jump;
+  return p;
+}
+
 /// The parameters of `Config` from the options. Throws UsageError for a
 /// value a policy rejects.
 template <class Config>
@@ -88,6 +96,7 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
   if (o.grid) p.resolution.fixed = {o.grid->first, o.grid->second};
   p.resolution.adaptive_loop.max_multiplicity = o.max_multiplicity;
   p.mask_size = o.mask;
+  p.time_order = engine_time_order_params(o);
   if (o.setup) {
     p.motion = o.setup->motion;
     p.ground = o.setup->ground;

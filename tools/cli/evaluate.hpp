@@ -206,8 +206,7 @@ inline GridChoice choose_grid(const EvaluateOptions& o, const std::vector<io::Re
   StreamTimeOrder order;
   for (const io::Record& r : records) {
     const Projected pr = projection.project(Eigen::Vector3f(r.x, r.y, r.z));
-    if (order.judge(pr, r.t) != RejectReason::accepted) continue;
-    order.accept(r.t);
+    if (order.admit(pr, r.t) != RejectReason::accepted) continue;
     if (first_window.offer(pr, r.t)) break;
   }
   if (!first_window.complete()) {

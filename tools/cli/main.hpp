@@ -61,6 +61,8 @@ policies (a preset first, then every option below overrides it):
         baseline     overwrite grid in frame mode, w 3, theta 10 (the frame-based method)
   --window-time SECONDS | --window-count N   sliding window (default 0.1 s)
   --rate HZ                         retrievals per second of stream time (default 20)
+  --max-time-jump S                 a point more than S ahead of the stream is rejected as a
+                                    time_jump until 256 agree (a pause); default 60
   --linkage angular|euclidean|range-adaptive
   --theta DEG (default 10)          angular threshold
   --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)

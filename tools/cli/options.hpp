@@ -60,6 +60,7 @@ struct ClusterOptions {
   double window_seconds = 0.1;
   std::size_t window_count = 20000;
   double rate_hz = 20.0;
+  double max_time_jump = 60.0;  ///< [s] a point further ahead of the stream is a time_jump (acceptance.hpp)
   std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
   float max_multiplicity = 2.0f;
   ConnectivityKind connectivity = ConnectivityKind::spanning_forest;
@@ -209,6 +210,8 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
     if (!(o.window_seconds >= 0.0) || o.window_seconds > 1e6) throw UsageError(a + ": expected seconds >= 0");
   } else if (a == "--rate") {
     o.rate_hz = parse_positive(a, c.value());
+  } else if (a == "--max-time-jump") {
+    o.max_time_jump = parse_positive(a, c.value());
   } else if (a == "--linkage") {
     const std::string v = c.choice({"angular", "euclidean", "range-adaptive"});
     o.linkage = v == "angular" ? LinkageKind::angular
