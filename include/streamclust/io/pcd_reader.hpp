@@ -123,6 +123,7 @@ class PcdReader final : public PointReader {
     std::vector<std::string> sizes, types, counts;  // copies: line_ is reused
     bool have_data = false;
     std::optional<std::uint64_t> width, height, points;
+    std::map<std::string, std::uint64_t> keyword_lines;  // keyword (lower case) -> its line
     bool first = true;
     for (std::size_t lines = 0; !have_data; ++lines) {
       const auto st = src_.read_line(line_, detail::max_header_line_bytes);
@@ -157,7 +158,7 @@ class PcdReader final : public PointReader {
           canonical != "version" && canonical != "viewpoint")
         line_error("unknown PCD header keyword " + detail::quoted(tok[0]) +
                    ": expected VERSION, FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, VIEWPOINT, POINTS or DATA");
-      std::uint64_t& keyword_line = header_lines_[canonical];
+      std::uint64_t& keyword_line = keyword_lines[canonical];
       if (keyword_line != 0)
         line_error("second " + std::string(tok[0]) + " line (the first is line " + std::to_string(keyword_line) +
                    "): expected each header keyword once");
@@ -200,9 +201,9 @@ class PcdReader final : public PointReader {
       }
     }
     const std::uint64_t data_line = line_no_;
-    const std::uint64_t fields_line = header_lines_["fields"], size_line = header_lines_["size"],
-                        type_line = header_lines_["type"], count_line = header_lines_["count"],
-                        points_line = header_lines_["points"];
+    const std::uint64_t fields_line = keyword_lines["fields"], size_line = keyword_lines["size"],
+                        type_line = keyword_lines["type"], count_line = keyword_lines["count"],
+                        points_line = keyword_lines["points"];
     const bool have_count = count_line != 0;
 
     // Fields, sizes, types, counts.
@@ -284,7 +285,7 @@ class PcdReader final : public PointReader {
 
     // Point count.
     if (width && height && *width != 0 && *height != 0) {
-      const std::uint64_t wh_line = std::max(header_lines_["width"], header_lines_["height"]);
+      const std::uint64_t wh_line = std::max(keyword_lines["width"], keyword_lines["height"]);
       if (*width > std::numeric_limits<std::uint64_t>::max() / *height)
         header_error(wh_line, "WIDTH x HEIGHT overflows");
       if (points && *points != *width * *height)
@@ -484,9 +485,8 @@ class PcdReader final : public PointReader {
   detail::ByteSource src_;
   std::string line_;
   std::uint64_t line_no_ = 0;
-  std::map<std::string, std::uint64_t> header_lines_;  ///< keyword (lower case) -> its line
-  std::uint64_t points_line_ = 0;                     ///< the line that gave the point count
-  bool ended_ = false;                                ///< what follows the data was checked
+  std::uint64_t points_line_ = 0;  ///< the line that gave the point count
+  bool ended_ = false;             ///< what follows the data was checked
   std::vector<std::string_view> tok_;
   std::vector<Field> fields_;
   std::size_t point_size_ = 0;
