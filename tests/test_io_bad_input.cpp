@@ -190,7 +190,6 @@ TEST_CASE("PLY binary: every element up to its last byte, nothing after it") {
   const std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                         "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
   std::string s = h;
-  const std::size_t start = s.size();
   for (int i = 0; i < 6; ++i) append_bytes(s, 1.0f);
   const std::size_t faces = s.size();
   std::string face;
@@ -229,7 +228,6 @@ TEST_CASE("PLY binary: every element up to its last byte, nothing after it") {
   const auto records = read_all(tmp.file("list_before.ply", lb));
   REQUIRE(records.size() == 2);
   CHECK(records[1].z == 2.0f);
-  (void)start;
 }
 
 TEST_CASE("PLY: an element or a property given twice is an error on its line") {
