@@ -147,21 +147,21 @@ TEST_CASE("PCD header errors") {
                "file ends inside the header: expected a DATA line");
   expect_error(tmp.file("sizes.pcd",
                         "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n" + tail),
-               "header", "SIZE has 3 entries, expected 4 (one per field in FIELDS)");
+               "line 3", "SIZE has 3 entries, expected 4 (one per field in FIELDS, line 2)");
   expect_error(tmp.file("types.pcd",
                         "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F\nCOUNT 1 1 1 1\n" + tail),
-               "header", "TYPE has 3 entries, expected 4");
+               "line 4", "TYPE has 3 entries, expected 4");
   expect_error(tmp.file("badtype.pcd",
                         "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 2\nTYPE F F F F\nCOUNT 1 1 1 1\n" + tail),
-               "header", "field intensity has TYPE \"F\" and SIZE 2");
+               "line 4", "field intensity has TYPE \"F\" and SIZE 2");
   expect_error(tmp.file("noxyz.pcd",
                         "VERSION 0.7\nFIELDS x y intensity\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n" + tail),
-               "header", "expected fields x, y and z with COUNT 1, found FIELDS x y intensity");
+               "line 2", "expected fields x, y and z with COUNT 1, found FIELDS x y intensity");
   expect_error(tmp.file("points.pcd", std::string(pcd_header_xyz) +
                                           "WIDTH 1\nHEIGHT 1\nPOINTS lots\nDATA ascii\n1 2 3 4\n"),
                "line 9", "expected POINTS followed by one non-negative integer, found \"lots\"");
   expect_error(tmp.file("wh.pcd", std::string(pcd_header_xyz) + "WIDTH 10\nHEIGHT 2\nPOINTS 30\nDATA ascii\n"),
-               "header", "WIDTH 10 x HEIGHT 2 = 20 does not match POINTS 30");
+               "line 9", "WIDTH 10 x HEIGHT 2 = 20 does not match POINTS 30");
   expect_error(tmp.file("enc.pcd", std::string(pcd_header_xyz) + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA lzma\n"), "line 10",
                "expected DATA ascii, binary or binary_compressed, found \"lzma\"");
   expect_error(tmp.file("kw.pcd", std::string(pcd_header_xyz) + "COLOUR 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"),
@@ -179,7 +179,7 @@ TEST_CASE("PCD ascii data errors") {
                "truncated ascii data: expected 3 points, file ends after 2 points");
   const std::string absurd =
       std::string(pcd_header_xyz) + "WIDTH 0\nHEIGHT 0\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3000000000\nDATA ascii\n1 2 3 4\n";
-  expect_error(tmp.file("absurd.pcd", absurd), "header", "POINTS 3000000000 cannot fit in the 8 bytes of ascii data");
+  expect_error(tmp.file("absurd.pcd", absurd), "line 10", "POINTS 3000000000 cannot fit in the 8 bytes of ascii data");
 }
 
 TEST_CASE("PCD binary data errors: truncation and absurd POINTS, checked against the file size") {
@@ -230,7 +230,7 @@ TEST_CASE("PCD binary_compressed errors: sizes, truncation, corrupt LZF, absurd 
   append_bytes(absurd, std::uint32_t{10});
   append_bytes(absurd, std::uint32_t{0});
   absurd += std::string(10, '\0');
-  expect_error(tmp.file("absurd.pcd", absurd), "header", "exceeds the 4 GiB limit of a binary_compressed block");
+  expect_error(tmp.file("absurd.pcd", absurd), "line 9", "exceeds the 4 GiB limit of a binary_compressed block");
   std::string lying = std::string(pcd_header_xyz) + "POINTS 200000000\nDATA binary_compressed\n";
   const std::size_t lying_data = lying.size();
   append_bytes(lying, std::uint32_t{10});
@@ -252,15 +252,15 @@ TEST_CASE("PLY errors") {
   expect_error(tmp.file("magic.ply", "plx\nformat ascii 1.0\n" + h3), "line 1", "expected the PLY magic line \"ply\"");
   expect_error(tmp.file("be.ply", "ply\nformat binary_big_endian 1.0\n" + h3), "line 2",
                "unsupported PLY format binary_big_endian");
-  expect_error(tmp.file("nofmt.ply", "ply\n" + h3 + "1 2 3 4\n"), "header", "missing format line");
+  expect_error(tmp.file("nofmt.ply", "ply\n" + h3 + "1 2 3 4\n"), "line 7", "the header ends without a format line");
   expect_error(tmp.file("noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"), "line 4",
                "file ends inside the header: expected end_header");
   expect_error(tmp.file("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n"),
                "line 4", "unknown property type \"float128\"");
   expect_error(tmp.file("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float t\nend_header\n1 2\n"),
-               "header", "expected vertex properties x, y and z, found: x t");
+               "line 3", "expected vertex properties x, y and z, found: x t");
   expect_error(tmp.file("novertex.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty float x\nend_header\n1\n"),
-               "header", "no \"element vertex N\"");
+               "line 5", "the header ends without \"element vertex N\"");
   expect_error(tmp.file("count.ply", "ply\nformat ascii 1.0\n" + h3 + "1 2 3 4\n1 2 3\n1 2 3 4\n"), "line 10",
                "expected 4 vertex properties (x y z t), found 3 values");
   expect_error(tmp.file("count2.ply", "ply\nformat ascii 1.0\n" + h3 + "1 2 3 4 5\n"), "line 9",
@@ -273,7 +273,7 @@ TEST_CASE("PLY errors") {
                "expected \"element NAME COUNT\"");
   expect_error(tmp.file("absurd.ply", "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\n"
                                       "property float y\nproperty float z\nproperty double t\nend_header\n1 2 3 4\n"),
-               "header", "element vertex 4000000000 cannot fit");
+               "line 3", "element vertex 4000000000 cannot fit");
   // binary
   std::string b = "ply\nformat binary_little_endian 1.0\n" + h3;
   const std::size_t start = b.size();

@@ -3,6 +3,7 @@
 // options' projection and linkage.
 
 #include "cli/cluster.hpp"
+#include "cli/memory_context.hpp"
 #include "cli/run_setup.hpp"
 
 #include <streamclust/io/reader.hpp>
@@ -12,7 +13,9 @@
 
 namespace streamclust::cli {
 
-int run_cluster(const ClusterOptions& options, std::ostream& out, std::ostream& err) {
+namespace {
+
+int run_cluster_setup(const ClusterOptions& options, std::ostream& out, std::ostream& err) {
   ClusterOptions o = options;
   // One time base for the first-window estimate, the run and the poses
   // (epoch times keep their nanoseconds: io/stream_time.hpp).
@@ -34,6 +37,13 @@ int run_cluster(const ClusterOptions& options, std::ostream& out, std::ostream& 
     case LinkageKind::angular: break;
   }
   return spherical ? run_cluster_spherical_angular(o, out, err) : run_cluster_cylindrical_angular(o, out, err);
+}
+
+}  // namespace
+
+int run_cluster(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+  // The setup reads (the time origin, the first window); the driver names its own stages.
+  return with_memory_context("cluster", o.input, [&](Stage&) { return run_cluster_setup(o, out, err); });
 }
 
 }  // namespace streamclust::cli

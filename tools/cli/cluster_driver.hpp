@@ -10,6 +10,7 @@
 
 #include "cli/cluster.hpp"
 #include "cli/engine_config.hpp"
+#include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/report.hpp"
 
@@ -92,12 +93,10 @@ class CycleClock {
   double us_ = 0.0;
 };
 
-/// Runs `streamclust cluster` on the compiled configuration `Config`,
-/// continuously (StreamClusterer) or, with `Frame`, re-clustering each
-/// window from scratch (FrameClusterer). Returns the exit code; throws
-/// io::InputError (exit 4) and UsageError (exit 2).
+/// run_cluster_with's work; `stage` follows it (reading, clustering, writing).
 template <class Config, bool Frame>
-int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream& err, Stage& stage) {
+  stage = Stage::clustering;
   using Engine = std::conditional_t<Frame, FrameClusterer<Config>, StreamClusterer<Config>>;
   std::unique_ptr<Engine> engine;
   std::unique_ptr<BatchClusterer<Config>> batch;  // --verify
@@ -109,6 +108,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     throw UsageError(e.what());
   }
 
+  stage = Stage::reading;
   auto reader = io::open_reader(o.input, o.read);
   const CycleSelection selection(o);
   std::ofstream labels_file;
@@ -307,7 +307,11 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     report.cycles.push_back(c);
     if (selection.selected(cycle) || selection.last_only()) {
       have_selected = true;
-      if (labels_file.is_open() && !selection.last_only()) write_label_rows(labels_file, window_out, reader->time_origin());
+      if (labels_file.is_open() && !selection.last_only()) {
+        stage = Stage::writing;
+        write_label_rows(labels_file, window_out, reader->time_origin());
+        stage = Stage::clustering;
+      }
       kept = window_out;
     }
     ++cycle;
@@ -339,7 +343,9 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   };
   for (;;) {
     chunk.clear();
+    stage = Stage::reading;
     if (reader->read(chunk, 65536) == 0) break;
+    stage = Stage::clustering;
     std::size_t offered = 0;  // chunk[0, offered) went to the clusterer
     for (std::size_t i = 0; i < chunk.size(); ++i) {
       if (record_times.admit_time(chunk[i].t) != RejectReason::accepted) continue;
@@ -372,11 +378,13 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     }
   }
   if (progress) err << "\r" << std::string(60, ' ') << "\r";
-  if (records == 0) throw io::InputError(o.input, "header", "no points: the input is empty");
+  if (records == 0)
+    throw io::InputError(o.input, "header", "no points: nothing to cluster (info describes such an input)");
   if (valid_times == 0) {
     throw io::InputError(o.input, "record 0", "no record has a usable time: expected finite times within +-9e9 s of "
                                               "the stream's origin (" + std::to_string(records) + " records read)");
   }
+  stage = Stage::clustering;
   // The final cycle covers the points after the last scheduled retrieval
   // (and, for an input shorter than one window, ends the calibration).
   clock.time([&] { engine->complete_calibration(); });
@@ -394,6 +402,7 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
   report.records = records;
   report.time_origin = reader->time_origin();  // found with the first timed record unless the options fix it
   report.rejections = rejected_by_reason;
+  stage = Stage::writing;
   if (labels_file.is_open() && selection.last_only()) write_label_rows(labels_file, kept, report.time_origin);
   if (labels_file.is_open()) {
     labels_file.flush();
@@ -406,6 +415,17 @@ int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& e
     io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary", report.time_origin);
   if (!o.quiet) out << summary_line(report) << "\n";
   return kOk;
+}
+
+/// Runs `streamclust cluster` on the compiled configuration `Config`,
+/// continuously (StreamClusterer) or, with `Frame`, re-clustering each
+/// window from scratch (FrameClusterer). Returns the exit code; throws
+/// io::InputError (exit 4), UsageError (exit 2) and OutOfMemory (exit 5,
+/// naming the stage).
+template <class Config, bool Frame>
+int run_cluster_with(const ClusterOptions& o, std::ostream& out, std::ostream& err) {
+  return with_memory_context("cluster", o.input,
+                             [&](Stage& stage) { return run_cluster_stages<Config, Frame>(o, out, err, stage); });
 }
 
 /// Dispatches on index, window, mode and connectivity for one projection

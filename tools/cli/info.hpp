@@ -4,8 +4,11 @@
 /// \file
 /// `streamclust info`: format, fields, point count, bounds and time span of
 /// any readable input, read in one streaming pass; an input without a time
-/// field is described too (its records get times only from --point-rate).
+/// field is described too (its records get times only from --point-rate),
+/// and so is one with a header and no points ("points: 0", exit 0; cluster
+/// exits 4 on it). Running out of memory: OutOfMemory (memory_context.hpp).
 
+#include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 
 #include <streamclust/io/reader.hpp>
@@ -18,7 +21,7 @@
 
 namespace streamclust::cli {
 
-inline int run_info(const InfoOptions& o, std::ostream& out) {
+inline int run_info_reading(const InfoOptions& o, std::ostream& out) {
   // The readers need a point rate to open an input without a time field;
   // without --point-rate, any rate does: no time is reported then.
   io::ReadOptions read = o.read;
@@ -75,6 +78,10 @@ inline int run_info(const InfoOptions& o, std::ostream& out) {
         << hi[2] << "] m\n";
   }
   return kOk;
+}
+
+inline int run_info(const InfoOptions& o, std::ostream& out) {
+  return with_memory_context("info", o.input, [&](Stage&) { return run_info_reading(o, out); });
 }
 
 }  // namespace streamclust::cli

@@ -4,12 +4,13 @@
 /// \file
 /// The `streamclust` command: subcommand dispatch, help texts and the
 /// mapping of errors to exit codes (0 ok, 2 usage, 3 verification mismatch,
-/// 4 input error). Callable from tests without spawning a process.
+/// 4 input error, 5 out of memory). Callable from tests without spawning a process.
 
 #include "cli/cluster.hpp"
 #include "cli/evaluate.hpp"
 #include "cli/evaluate_objects.hpp"
 #include "cli/info.hpp"
+#include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
 
@@ -17,6 +18,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <new>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -38,7 +40,8 @@ commands:
                   RANSAC + Euclidean frame pipeline: are the clusters objects?
 
 Run 'streamclust <command> --help' for the options of a command.
-Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error.
+Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error,
+5 out of memory.
 )";
 }
 
@@ -208,14 +211,37 @@ examples:
 )";
 }
 
+/// The message on `err` and the exit code of the exception being handled
+/// by `command` (call it only inside a catch block).
+inline int report_exception(const std::string& command, std::ostream& err) {
+  try {
+    throw;
+  } catch (const UsageError& e) {
+    err << "streamclust: " << e.what() << "\n";
+    return kUsage;
+  } catch (const io::InputError& e) {
+    err << "streamclust: input error: " << e.what() << "\n";
+    return kInputError;
+  } catch (const OutOfMemory& e) {
+    err << "streamclust: " << e.what() << "\n";
+    return kOutOfMemory;
+  } catch (const std::bad_alloc&) {
+    err << "streamclust: " << (command.empty() ? std::string("streamclust") : command) << ": out of memory\n";
+    return kOutOfMemory;
+  } catch (const std::exception& e) {
+    err << "streamclust: error: " << e.what() << "\n";
+    return kInputError;
+  }
+}
+
 /// Runs the command line; returns the process exit code.
 inline int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const std::string command = args.empty() ? std::string() : args[0];
   try {
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
       (args.empty() ? err : out) << main_help();
       return args.empty() ? kUsage : kOk;
     }
-    const std::string& command = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
@@ -258,15 +284,8 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       return run_evaluate(parse_evaluate_options(rest), out);
     }
     throw UsageError("unknown command '" + command + "' (expected cluster, info, simulate or evaluate)");
-  } catch (const UsageError& e) {
-    err << "streamclust: " << e.what() << "\n";
-    return kUsage;
-  } catch (const io::InputError& e) {
-    err << "streamclust: input error: " << e.what() << "\n";
-    return kInputError;
-  } catch (const std::exception& e) {
-    err << "streamclust: error: " << e.what() << "\n";
-    return kInputError;
+  } catch (...) {
+    return report_exception(command, err);
   }
 }
 

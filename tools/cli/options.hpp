@@ -23,7 +23,7 @@
 namespace streamclust::cli {
 
 /// Exit codes, part of the tool's documented contract (docs/cli.md).
-enum ExitCode : int { kOk = 0, kUsage = 2, kMismatch = 3, kInputError = 4 };
+enum ExitCode : int { kOk = 0, kUsage = 2, kMismatch = 3, kInputError = 4, kOutOfMemory = 5 };
 
 /// A usage error: bad option, value or combination. Exit code 2.
 struct UsageError : std::runtime_error {

@@ -15,10 +15,16 @@
 ///   A trailing separator (Livox exports end lines with a comma) is allowed.
 /// - Every row must have as many fields as the first line; empty lines and
 ///   lines starting with '#' are skipped; lines over 1 MiB are an error.
+/// - A UTF-8 byte-order mark before the first line is skipped. A column
+///   name that plays a role (x, y, z, an intensity, time or label name)
+///   given twice (case-insensitive) is an error naming the header line.
+/// - Messages quote header names and values through detail::printable:
+///   control and non-ASCII bytes appear as \xNN.
 /// - Livox Viewer exports (a `Timestamp Type` column next to `Timestamp`):
 ///   `Timestamp` defaults to nanoseconds.
 
 #include <streamclust/io/error.hpp>
+#include <streamclust/io/field_names.hpp>
 #include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/point_reader.hpp>
 #include <streamclust/io/record.hpp>
@@ -66,12 +72,18 @@ class CsvReader final : public PointReader {
         lowered.push_back(detail::lower(name));
       }
       info_.fields = names_;
+      if (const auto d = detail::find_duplicate(lowered, detail::is_role_name)) {
+        throw InputError(path_, detail::where_line(line_no_),
+                         "column " + detail::quoted(names_[d->second]) + " appears twice (columns " +
+                             std::to_string(d->first + 1) + " and " + std::to_string(d->second + 1) +
+                             "): expected each of x, y, z and the intensity, time and label columns once");
+      }
       const auto x = detail::find_field(lowered, {"x"});
       const auto y = detail::find_field(lowered, {"y"});
       const auto z = detail::find_field(lowered, {"z"});
       if (!x || !y || !z) {
         std::string found;
-        for (const auto& n : names_) found += (found.empty() ? "" : ", ") + n;
+        for (const auto& n : names_) found += (found.empty() ? "" : ", ") + detail::quoted(n);
         throw InputError(path_, detail::where_line(line_no_),
                          "expected a header with columns named x, y and z (case-insensitive), found: " + found);
       }
@@ -145,6 +157,7 @@ class CsvReader final : public PointReader {
       const auto st = src_.read_line(line_, detail::max_line_bytes);
       if (st == detail::ByteSource::LineStatus::eof) return false;
       ++line_no_;
+      if (line_no_ == 1 && line_.compare(0, 3, "\xEF\xBB\xBF") == 0) line_.erase(0, 3);  // UTF-8 byte-order mark
       if (st == detail::ByteSource::LineStatus::too_long) {
         throw InputError(path_, detail::where_line(line_no_),
                          "line longer than " + std::to_string(detail::max_line_bytes) +

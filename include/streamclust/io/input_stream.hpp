@@ -35,28 +35,33 @@ inline constexpr std::size_t max_header_lines = 10000;
 
 inline std::string where_line(std::uint64_t line) { return "line " + std::to_string(line); }
 inline std::string where_byte(std::uint64_t byte) { return "byte " + std::to_string(byte); }
-inline std::string where_column(std::uint64_t line, std::size_t column, std::string_view name) {
-  return "line " + std::to_string(line) + ", column " + std::to_string(column) + " (" + std::string(name) + ")";
-}
 
-/// A short, printable, quoted excerpt of `s` for error messages.
-inline std::string quoted(std::string_view s) {
-  std::string r = "\"";
-  const std::size_t limit = 40;
+/// `s` with every byte outside printable ASCII (control bytes, DEL, non-ASCII,
+/// also '"' and '\\') written as \xNN, cut after `limit` bytes ("..."): file
+/// content is quoted in messages only through this. O(min(|s|, limit)).
+inline std::string printable(std::string_view s, std::size_t limit = 40) {
+  static const char* hex = "0123456789abcdef";
+  std::string r;
   for (std::size_t i = 0; i < s.size() && i < limit; ++i) {
     const auto c = static_cast<unsigned char>(s[i]);
     if (c >= 32 && c < 127 && c != '"' && c != '\\') {
       r += static_cast<char>(c);
     } else {
-      static const char* hex = "0123456789abcdef";
       r += "\\x";
       r += hex[c >> 4];
       r += hex[c & 15];
     }
   }
   if (s.size() > limit) r += "...";
-  r += '"';
   return r;
+}
+
+/// A short, printable, quoted excerpt of `s` for error messages.
+inline std::string quoted(std::string_view s) { return '"' + printable(s) + '"'; }
+
+/// "line N, column K (name)", the name from the file made printable.
+inline std::string where_column(std::uint64_t line, std::size_t column, std::string_view name) {
+  return "line " + std::to_string(line) + ", column " + std::to_string(column) + " (" + printable(name) + ")";
 }
 
 inline bool is_space(char c) noexcept { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -198,23 +203,6 @@ inline std::int64_t scalar_to_label(Scalar s, const unsigned char* p) noexcept {
   }
 }
 
-/// Index of the first name of `candidates` (in their order) among the
-/// lower-cased `names`; nullopt when none is present.
-template <std::size_t N>
-std::optional<std::size_t> find_field(const std::vector<std::string>& lowered_names,
-                                      const char* const (&candidates)[N]) {
-  for (const char* c : candidates) {
-    const auto it = std::find(lowered_names.begin(), lowered_names.end(), c);
-    if (it != lowered_names.end()) return static_cast<std::size_t>(it - lowered_names.begin());
-  }
-  return std::nullopt;
-}
-
-/// Field names the readers recognise (case-insensitive), in order of preference.
-inline constexpr const char* intensity_names[] = {"intensity", "reflectivity", "reflectance"};
-inline constexpr const char* time_names[] = {"t", "time", "timestamp", "offset_time"};
-inline constexpr const char* label_names[] = {"label", "gt", "instance", "object"};
-
 /// A file read through a fixed buffer (64 KiB), tracking the absolute offset
 /// of the next unread byte. Memory is bounded by the buffer plus one line.
 class ByteSource {
@@ -305,6 +293,9 @@ class ByteSource {
     }
     return done;
   }
+
+  /// True when no byte is left (reads ahead to know).
+  bool at_end() { return pos_ == end_ && !fill(); }
 
   /// Peeks at up to n bytes at the current position without consuming them
   /// (only valid right after opening).

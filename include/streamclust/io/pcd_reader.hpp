@@ -9,7 +9,8 @@
 ///   (1, 2, 4, 8). Fields read: x y z (required, COUNT 1), intensity
 ///   (reflectivity, reflectance), time (t, time, timestamp, offset_time),
 ///   label (label, gt, instance, object); others (and any COUNT > 1 field)
-///   are skipped.
+///   are skipped. A field name given twice (case-insensitive; `_` padding
+///   may repeat) and a keyword given twice are errors.
 /// - POINTS is authoritative. WIDTH 0 HEIGHT 0 with a correct POINTS (a
 ///   real-world quirk) is accepted; WIDTH x HEIGHT != POINTS with neither 0 is an error.
 /// - binary: read block by block. binary_compressed: u32 compressed size, u32
@@ -17,8 +18,14 @@
 ///   (structure of arrays). It is decompressed once, after checking the sizes
 ///   against the file size, POINTS x point size and the LZF expansion limit.
 /// - Absurd POINTS values are rejected against the file size before any allocation.
+/// - After the POINTS records: blank lines (ascii) or nothing (binary, and
+///   after the LZF block); anything else is an error (data_end.hpp).
+/// - Header errors name their line: a keyword's own line, or the DATA line
+///   for what is missing when the header ends.
 
+#include <streamclust/io/data_end.hpp>
 #include <streamclust/io/error.hpp>
+#include <streamclust/io/field_names.hpp>
 #include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/lzf.hpp>
 #include <streamclust/io/point_reader.hpp>
@@ -28,6 +35,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,6 +79,13 @@ class PcdReader final : public PointReader {
       }
       if (done_ == points_) std::vector<unsigned char>().swap(soa_);  // release the block
     }
+    if (done_ == points_ && !ended_) {
+      ended_ = true;
+      if (encoding_ == Encoding::ascii)
+        detail::expect_text_end(src_, line_, line_no_, "the " + std::to_string(points_) + " points POINTS declares");
+      else if (encoding_ == Encoding::binary)
+        detail::expect_binary_end(src_, declared_binary());
+    }
     return n;
   }
 
@@ -87,7 +102,9 @@ class PcdReader final : public PointReader {
     std::uint64_t soa_base = 0;   // byte offset of its array in the binary_compressed block
   };
 
-  [[noreturn]] void header_error(const std::string& what) const { throw InputError(path_, "header", what); }
+  [[noreturn]] void header_error(std::uint64_t line, const std::string& what) const {
+    throw InputError(path_, detail::where_line(line), what);
+  }
   [[noreturn]] void line_error(const std::string& what) const {
     throw InputError(path_, detail::where_line(line_no_), what);
   }
@@ -104,8 +121,9 @@ class PcdReader final : public PointReader {
   void parse_header() {
     std::vector<std::string_view> tok;
     std::vector<std::string> sizes, types, counts;  // copies: line_ is reused
-    bool have_fields = false, have_size = false, have_type = false, have_count = false, have_data = false;
+    bool have_data = false;
     std::optional<std::uint64_t> width, height, points;
+    std::map<std::string, std::uint64_t> keyword_lines;  // keyword (lower case) -> its line
     bool first = true;
     for (std::size_t lines = 0; !have_data; ++lines) {
       const auto st = src_.read_line(line_, detail::max_header_line_bytes);
@@ -134,6 +152,17 @@ class PcdReader final : public PointReader {
       if (first && key != "version" && key != "fields")
         line_error("expected a PCD header (\"# .PCD v0.7\", VERSION or FIELDS), found " + detail::quoted(t));
       first = false;
+      const std::string canonical = key == "columns" ? "fields" : key;
+      if (canonical != "fields" && canonical != "size" && canonical != "type" && canonical != "count" &&
+          canonical != "width" && canonical != "height" && canonical != "points" && canonical != "data" &&
+          canonical != "version" && canonical != "viewpoint")
+        line_error("unknown PCD header keyword " + detail::quoted(tok[0]) +
+                   ": expected VERSION, FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, VIEWPOINT, POINTS or DATA");
+      std::uint64_t& keyword_line = keyword_lines[canonical];
+      if (keyword_line != 0)
+        line_error("second " + std::string(tok[0]) + " line (the first is line " + std::to_string(keyword_line) +
+                   "): expected each header keyword once");
+      keyword_line = line_no_;
       if (key == "version" || key == "viewpoint") {
         continue;
       } else if (key == "fields" || key == "columns") {
@@ -143,16 +172,13 @@ class PcdReader final : public PointReader {
           fields_.push_back(f);
           info_.fields.push_back(f.name);
         }
-        have_fields = true;
+        check_distinct_fields();
       } else if (key == "size") {
         sizes.assign(tok.begin() + 1, tok.end());
-        have_size = true;
       } else if (key == "type") {
         types.assign(tok.begin() + 1, tok.end());
-        have_type = true;
       } else if (key == "count") {
         counts.assign(tok.begin() + 1, tok.end());
-        have_count = true;
       } else if (key == "width" || key == "height" || key == "points") {
         std::uint64_t v = 0;
         if (tok.size() != 2 || !detail::parse_uint64(tok[1], v))
@@ -172,36 +198,40 @@ class PcdReader final : public PointReader {
         }
         info_.encoding = enc;
         have_data = true;
-      } else {
-        line_error("unknown PCD header keyword " + detail::quoted(tok[0]) +
-                   ": expected VERSION, FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, VIEWPOINT, POINTS or DATA");
       }
     }
-    data_line_ = line_no_;
+    const std::uint64_t data_line = line_no_;
+    const std::uint64_t fields_line = keyword_lines["fields"], size_line = keyword_lines["size"],
+                        type_line = keyword_lines["type"], count_line = keyword_lines["count"],
+                        points_line = keyword_lines["points"];
+    const bool have_count = count_line != 0;
 
     // Fields, sizes, types, counts.
-    if (!have_fields || fields_.empty()) header_error("missing FIELDS: expected a FIELDS line naming x, y, z");
-    if (!have_size) header_error("missing SIZE: expected one size per field");
-    if (!have_type) header_error("missing TYPE: expected one type (F, I or U) per field");
+    if (fields_line == 0)
+      header_error(data_line, "the header ends without FIELDS: expected a FIELDS line naming x, y, z");
+    if (fields_.empty()) header_error(fields_line, "FIELDS names no field: expected x, y, z and others");
+    if (size_line == 0) header_error(data_line, "the header ends without SIZE: expected one size per field");
+    if (type_line == 0) header_error(data_line, "the header ends without TYPE: expected one type (F, I or U) per field");
     const std::size_t nf = fields_.size();
-    auto check_len = [&](const char* kw, std::size_t n) {
+    auto check_len = [&](const char* kw, std::uint64_t line, std::size_t n) {
       if (n != nf)
-        header_error(std::string(kw) + " has " + std::to_string(n) + " entries, expected " + std::to_string(nf) +
-                     " (one per field in FIELDS)");
+        header_error(line, std::string(kw) + " has " + std::to_string(n) + " entries, expected " + std::to_string(nf) +
+                               " (one per field in FIELDS, line " + std::to_string(fields_line) + ")");
     };
-    check_len("SIZE", sizes.size());
-    check_len("TYPE", types.size());
-    if (have_count) check_len("COUNT", counts.size());
+    check_len("SIZE", size_line, sizes.size());
+    check_len("TYPE", type_line, types.size());
+    if (have_count) check_len("COUNT", count_line, counts.size());
     std::size_t offset = 0, value = 0;
     std::vector<std::string> lowered;
     for (std::size_t i = 0; i < nf; ++i) {
       Field& f = fields_[i];
       std::uint64_t size = 0, count = 1;
       if (!detail::parse_uint64(sizes[i], size) || (size != 1 && size != 2 && size != 4 && size != 8))
-        header_error("SIZE of field " + f.name + " is " + detail::quoted(sizes[i]) + ", expected 1, 2, 4 or 8");
+        header_error(size_line, "SIZE of field " + detail::printable(f.name) + " is " + detail::quoted(sizes[i]) +
+                                    ", expected 1, 2, 4 or 8");
       if (have_count && (!detail::parse_uint64(counts[i], count) || count == 0 || count > (1u << 20)))
-        header_error("COUNT of field " + f.name + " is " + detail::quoted(counts[i]) +
-                     ", expected an integer in [1, 1048576]");
+        header_error(count_line, "COUNT of field " + detail::printable(f.name) + " is " + detail::quoted(counts[i]) +
+                                     ", expected an integer in [1, 1048576]");
       const std::string type(types[i]);
       f.size = static_cast<std::size_t>(size);
       f.count = static_cast<std::size_t>(count);
@@ -216,8 +246,9 @@ class PcdReader final : public PointReader {
                    : size == 4 ? (u ? detail::Scalar::u32 : detail::Scalar::i32)
                                : (u ? detail::Scalar::u64 : detail::Scalar::i64);
       } else {
-        header_error("field " + f.name + " has TYPE " + detail::quoted(type) + " and SIZE " + std::to_string(size) +
-                     ", expected F with SIZE 4 or 8, or I / U with SIZE 1, 2, 4 or 8");
+        header_error(type_line, "field " + detail::printable(f.name) + " has TYPE " + detail::quoted(type) + " and SIZE " +
+                                    std::to_string(size) +
+                                    ", expected F with SIZE 4 or 8, or I / U with SIZE 1, 2, 4 or 8");
       }
       f.type = type[0];
       f.offset = offset;
@@ -229,15 +260,16 @@ class PcdReader final : public PointReader {
     }
     point_size_ = offset;
     values_per_point_ = value;
-    if (point_size_ > (std::size_t{1} << 24)) header_error("point size " + std::to_string(point_size_) + " bytes is absurd");
+    if (point_size_ > (std::size_t{1} << 24))
+      header_error(size_line, "point size " + std::to_string(point_size_) + " bytes is absurd: expected at most 16 MiB");
 
     const auto x = detail::find_field(lowered, {"x"});
     const auto y = detail::find_field(lowered, {"y"});
     const auto z = detail::find_field(lowered, {"z"});
     if (!x || !y || !z) {
       std::string found;
-      for (const auto& f : fields_) found += (found.empty() ? "" : " ") + f.name;
-      header_error("expected fields x, y and z with COUNT 1, found FIELDS " + found);
+      for (const auto& f : fields_) found += (found.empty() ? "" : " ") + detail::printable(f.name);
+      header_error(fields_line, "expected fields x, y and z with COUNT 1, found FIELDS " + found);
     }
     ix_ = *x, iy_ = *y, iz_ = *z;
     ii_ = detail::find_field(lowered, detail::intensity_names);
@@ -253,16 +285,36 @@ class PcdReader final : public PointReader {
 
     // Point count.
     if (width && height && *width != 0 && *height != 0) {
-      if (*height != 0 && *width > std::numeric_limits<std::uint64_t>::max() / *height)
-        header_error("WIDTH x HEIGHT overflows");
+      const std::uint64_t wh_line = std::max(keyword_lines["width"], keyword_lines["height"]);
+      if (*width > std::numeric_limits<std::uint64_t>::max() / *height)
+        header_error(wh_line, "WIDTH x HEIGHT overflows");
       if (points && *points != *width * *height)
-        header_error("WIDTH " + std::to_string(*width) + " x HEIGHT " + std::to_string(*height) + " = " +
-                     std::to_string(*width * *height) + " does not match POINTS " + std::to_string(*points));
+        header_error(points_line, "WIDTH " + std::to_string(*width) + " x HEIGHT " + std::to_string(*height) + " = " +
+                                      std::to_string(*width * *height) + " does not match POINTS " +
+                                      std::to_string(*points));
       if (!points) points = *width * *height;
+      if (!points_line) points_line_ = wh_line;
     }
-    if (!points) header_error("missing POINTS (and no WIDTH x HEIGHT): expected the number of points");
+    if (!points)
+      header_error(data_line, "the header ends without POINTS (and without WIDTH x HEIGHT): expected the number of points");
+    if (points_line) points_line_ = points_line;
     points_ = *points;
     info_.declared_points = points_;
+  }
+
+  /// A field name given twice (case-insensitive) is an error on the FIELDS
+  /// line; `_` (padding) may repeat.
+  void check_distinct_fields() const {
+    std::vector<std::string> lowered;
+    for (const auto& f : fields_) lowered.push_back(detail::lower(f.name));
+    const auto d = detail::find_duplicate(lowered, [](const std::string& n) { return n != "_"; });
+    if (d)
+      line_error("field " + detail::quoted(fields_[d->second].name) + " appears twice in FIELDS (fields " +
+                 std::to_string(d->first + 1) + " and " + std::to_string(d->second + 1) + "): expected each name once");
+  }
+
+  std::string declared_binary() const {
+    return "the declared data (POINTS " + std::to_string(points_) + " x " + std::to_string(point_size_) + " bytes)";
   }
 
   void throw_truncated_binary(std::uint64_t whole_points) const {
@@ -278,14 +330,18 @@ class PcdReader final : public PointReader {
     const std::uint64_t max64 = std::numeric_limits<std::uint64_t>::max();
     if (encoding_ == Encoding::binary) {
       if (points_ > max64 / point_size_ || points_ * point_size_ > remaining) throw_truncated_binary(remaining / point_size_);
+      if (src_.size() != max64 && points_ * point_size_ < remaining) {
+        detail::throw_trailing_bytes(path_, data_offset_ + points_ * point_size_, src_.size(), declared_binary());
+      }
       block_records_ = std::max<std::size_t>(1, std::min<std::size_t>(4096, (std::size_t{1} << 20) / point_size_));
       block_.resize(block_records_ * point_size_);
     } else if (encoding_ == Encoding::ascii) {
       // No allocation depends on POINTS here; reject only what cannot fit even
       // at 2 bytes per point, and let streaming report smaller truncations by line.
       if (points_ > 0 && points_ - 1 > remaining / 2) {
-        header_error("POINTS " + std::to_string(points_) + " cannot fit in the " + std::to_string(remaining) +
-                     " bytes of ascii data after the header (every point needs at least 2 bytes)");
+        header_error(points_line_, "POINTS " + std::to_string(points_) + " cannot fit in the " +
+                                       std::to_string(remaining) +
+                                       " bytes of ascii data after the header (every point needs at least 2 bytes)");
       }
     } else {
       load_compressed(remaining);
@@ -303,8 +359,8 @@ class PcdReader final : public PointReader {
     const std::uint32_t usize = detail::load_le<std::uint32_t>(sizes + 4);
     const std::uint64_t expected = points_ * static_cast<std::uint64_t>(point_size_);
     if (points_ > (std::uint64_t{1} << 32) || expected > 0xffffffffu) {
-      header_error("POINTS " + std::to_string(points_) + " x " + std::to_string(point_size_) +
-                   " bytes exceeds the 4 GiB limit of a binary_compressed block");
+      header_error(points_line_, "POINTS " + std::to_string(points_) + " x " + std::to_string(point_size_) +
+                                     " bytes exceeds the 4 GiB limit of a binary_compressed block");
     }
     if (usize != expected) {
       throw InputError(path_, detail::where_byte(data_offset_ + 4),
@@ -336,6 +392,8 @@ class PcdReader final : public PointReader {
                              " bytes of LZF data, file ends after " + std::to_string(old + got));
       }
     }
+    detail::expect_binary_end(src_, "the LZF block of " + std::to_string(csize) + " bytes (its size at byte " +
+                                        std::to_string(data_offset_) + ")");
     soa_.resize(usize);
     const std::string err = lzf_decompress(comp.data(), comp.size(), soa_.data(), soa_.size());
     if (!err.empty()) throw InputError(path_, detail::where_byte(data_offset_ + 8), "corrupt binary_compressed data: " + err);
@@ -427,7 +485,8 @@ class PcdReader final : public PointReader {
   detail::ByteSource src_;
   std::string line_;
   std::uint64_t line_no_ = 0;
-  std::uint64_t data_line_ = 0;
+  std::uint64_t points_line_ = 0;  ///< the line that gave the point count
+  bool ended_ = false;             ///< what follows the data was checked
   std::vector<std::string_view> tok_;
   std::vector<Field> fields_;
   std::size_t point_size_ = 0;
