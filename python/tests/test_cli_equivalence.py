@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: MIT
+"""cluster_stream's cycle k is the CLI's cycle k: the same rows, the same partition.
+
+The stream is simulated by the tool (``streamclust simulate``), read from the
+same CSV by both (``streamclust.read`` and ``streamclust cluster``), and the
+CLI's ``--labels FILE --cycles all`` rows are compared with every Retrieval.
+"""
+
+import csv
+import subprocess
+
+import numpy as np
+import pytest
+
+import streamclust
+from conftest import same_partition
+
+CONFIGURATIONS = [
+    ("carc-mid360", {}),
+    ("carc", {"linkage": "euclidean", "distance": 0.4, "index": "capped", "cap": 3, "window_count": 15000}),
+    ("carc-mid360", {"projection": "cylindrical", "connectivity": "lazy-bfs", "mask": 3}),
+    ("carc", {"linkage": "range-adaptive", "grid": (32, 512), "window_time": 0.2, "fov_elevation": (-10, 60)}),
+    ("objects-mid360", {}),
+]
+
+
+def cli_arguments(options):
+    from streamclust._options import POLICY_KEYWORDS, to_arguments
+    return to_arguments(POLICY_KEYWORDS, options, "test")
+
+
+@pytest.fixture(scope="module")
+def stream_csv(tool, tmp_path_factory):
+    path = tmp_path_factory.mktemp("stream") / "office.csv"
+    subprocess.run([tool, "simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "1.2",
+                    "--seed", "11", "--mount", "0,20,0", "--dropout", "0.02", "--out", str(path), "--quiet"],
+                   check=True)
+    return path
+
+
+def cli_cycles(tool, path, preset, options, rate, tmp_path):
+    labels = tmp_path / "labels.csv"
+    subprocess.run([tool, "cluster", str(path), "--preset", preset, "--rate", repr(float(rate)),
+                    "--labels", str(labels), "--cycles", "all", "--quiet"] + cli_arguments(options), check=True)
+    cycles = {}
+    with open(labels, newline="") as f:
+        for row in csv.DictReader(f):
+            c = cycles.setdefault(int(row["cycle"]), {"time": float(row["time"]), "index": [], "label": []})
+            c["index"].append(int(row["index"]))
+            c["label"].append(int(row["label"]))
+    return cycles
+
+
+@pytest.mark.parametrize("preset,options", CONFIGURATIONS)
+def test_every_cycle_equals_the_cli(tool, stream_csv, tmp_path, preset, options):
+    rate = 20.0
+    data = streamclust.read(stream_csv)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset=preset, rate=rate, **options)
+    theirs = cli_cycles(tool, stream_csv, preset, options, rate, tmp_path)
+    assert [r.cycle for r in ours] == sorted(theirs), "the same cycles"
+    assert len(ours) >= 10
+    for r in ours:
+        c = theirs[r.cycle]
+        assert r.time == pytest.approx(c["time"], rel=1e-8, abs=1e-8), f"cycle {r.cycle}: time"
+        assert np.array_equal(r.index, np.asarray(c["index"], dtype=np.int64)), f"cycle {r.cycle}: rows"
+        assert same_partition(r.labels, c["label"]), f"cycle {r.cycle}: partition"
+    if preset.startswith("objects"):
+        assert any((r.labels == streamclust.GROUND).any() for r in ours), "ground rows were compared"
+
+
+def test_packets_and_schedule_by_hand_equal_cluster_stream(stream_csv):
+    """Clusterer.insert in packets + retrieve(time) on the schedule == cluster_stream."""
+    data = streamclust.read(stream_csv)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]]).astype(np.float64)
+    t = data["t"]
+    reference = streamclust.cluster_stream(xyz, t, preset="carc-mid360", rate=10)
+    c = streamclust.Clusterer(preset="carc-mid360")
+    got = []
+    period = 1.0 / 10.0
+    t0, k, start = t[0], 1.0, 0  # RetrievalSchedule: retrieval k due at t0 + k * period
+    for i in range(1, len(t)):
+        due = t0 + k * period
+        if not t[i] >= due:
+            continue
+        k = max(k + 1.0, np.floor((t[i] - t0) / period) + 1.0)
+        c.insert(xyz[start:i], t[start:i])
+        start = i
+        c.advance_to(due)
+        if not c.calibrating:
+            got.append(c.retrieve(due))
+    c.insert(xyz[start:], t[start:])
+    c.complete_calibration()
+    got.append(c.retrieve(float(t[-1])))
+    assert len(got) == len(reference)
+    for a, b in zip(got, reference):
+        assert a.time == pytest.approx(b.time)
+        assert np.array_equal(a.index, b.index)
+        assert np.array_equal(a.labels, b.labels)
+        assert np.array_equal(a.components, b.components)
