@@ -101,7 +101,8 @@ std::optional<double> optional_time(const py::object& time, const char* name) {
 
 /// A StreamSession shared with Python: every call releases the GIL, then
 /// takes the session's mutex (so calls from several Python threads run one
-/// at a time, never concurrently in the engine).
+/// at a time, never concurrently in the engine). Lock order: mutex, then
+/// GIL (retrieve copies its rows under both); never the mutex with the GIL.
 class Clusterer {
  public:
   explicit Clusterer(const std::vector<std::string>& args) : session_(make_engine(args)) {}
@@ -150,21 +151,31 @@ class Clusterer {
     return out;
   }
 
+  // Every accessor releases the GIL before it takes the mutex: retrieve()
+  // takes the GIL while holding the mutex, so waiting for the mutex with the
+  // GIL held could deadlock.
   bool calibrating() {
+    py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(mutex_);
     return session_.calibrating();
   }
   std::uint64_t offered() {
+    py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(mutex_);
     return session_.engine().offered();
   }
   std::size_t size() {
+    py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(mutex_);
     return session_.engine().size();
   }
   py::tuple grid() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const GridShape g = session_.engine().grid();
+    GridShape g;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      g = session_.engine().grid();
+    }
     return py::make_tuple(g.rows, g.cols, g.wrap_columns);
   }
 
