@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 """Insertion throughput from numpy vs the C++ insert_batch on the same stream.
 
-Simulates a stream (or takes FILE), writes it as CSV, then times, R times each:
+Simulates a stream (or takes FILE), writes it as CSV, then times, R times each
+(interleaved, C++ then Python in each repetition):
   C++:    streamclust_py_insert_rate FILE  (insert_batch over std::vector<Point>, packets of P)
   Python: Clusterer.insert(xyz, t, intensity) over numpy packets of P (the same points, read
           back from the same CSV with streamclust.read)
@@ -61,15 +62,19 @@ def main():
         xyz = np.column_stack([data["x"], data["y"], data["z"]])  # (N, 3) float32, C-contiguous
         t, intensity = data["t"], data["intensity"]
 
-        cpp = json.loads(subprocess.run([a.insert_rate, path, "--preset", a.preset, "--packet", str(a.packet),
-                                         "--repeat", str(a.repeat)], check=True, capture_output=True,
-                                        text=True).stdout)
-    py = [python_seconds(xyz, t, intensity, a.preset, a.packet) for _ in range(a.repeat)]
+        # Interleaved, one run of each per repetition, so a load change on a
+        # shared machine hits both sides alike.
+        cpp_seconds, py = [], []
+        for _ in range(a.repeat):
+            run = subprocess.run([a.insert_rate, path, "--preset", a.preset, "--packet", str(a.packet),
+                                  "--repeat", "1"], check=True, capture_output=True, text=True)
+            cpp_seconds.extend(json.loads(run.stdout)["seconds"])
+            py.append(python_seconds(xyz, t, intensity, a.preset, a.packet))
     py_rate = len(t) / statistics.median(py)
-    cpp_rate = cpp["median_points_per_second"]
+    cpp_rate = len(t) / statistics.median(cpp_seconds)
     result = {
         "points": len(t), "packet": a.packet, "repeat": a.repeat, "preset": a.preset,
-        "cpp_seconds": cpp["seconds"], "python_seconds": [round(s, 6) for s in py],
+        "cpp_seconds": cpp_seconds, "python_seconds": [round(s, 6) for s in py],
         "cpp_median_points_per_second": round(cpp_rate), "python_median_points_per_second": round(py_rate),
         "ratio": round(py_rate / cpp_rate, 4),
     }
