@@ -12,7 +12,7 @@ COMPONENT_DTYPE = np.dtype([
     ("max", np.float32, 3),       # box, upper corner [m]
     ("t_min", np.float64),        # oldest point [s]
     ("t_max", np.float64),        # newest point [s]
-])
+], align=True)  # the C struct's layout: 4 bytes of padding before t_min, 72 bytes a row
 
 #: Row labels that are not components (the CLI's --labels file, docs/cli.md).
 UNLABELLED, GROUND, CEILING = -1, -2, -3

@@ -67,6 +67,8 @@ def test_continuous_partition_is_the_batch_partition(seed):
         assert same_partition(r.labels[window], batch_components(points, d)), f"retrieval at t = {r.time}"
         assert len(r.components) == len(np.unique(r.labels[window]))
         assert r.components["size"].sum() == window.sum()
+        assert r.components.dtype == streamclust.COMPONENT_DTYPE
+        assert r.index.dtype == np.int64 and r.labels.dtype == np.int32
         retrievals += 1
     assert retrievals == 12
 
