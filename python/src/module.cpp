@@ -125,8 +125,9 @@ class Clusterer {
     return py::int_(accepted);
   }
 
-  void advance_to(double time) {
-    if (!std::isfinite(time)) throw py::value_error("time: expected finite seconds");
+  void advance_to(const py::object& time_obj) {
+    if (time_obj.is_none()) throw py::value_error("time: expected seconds, got None");
+    const double time = *optional_time(time_obj, "time");
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(mutex_);
     session_.advance_to(time);

@@ -113,11 +113,15 @@ def test_nan_is_a_rejection_not_an_error():
     assert [streamclust.REJECT_REASONS[r] for r in reasons] == ["accepted", "non_finite", "non_finite", "accepted"]
 
 
-@pytest.mark.parametrize("time", ["soon", float("nan"), float("inf")])
-def test_bad_retrieve_time(time):
+@pytest.mark.parametrize("time", ["soon", float("nan"), float("inf"), [1.0]])
+def test_bad_retrieve_and_advance_time(time):
     c = streamclust.Clusterer(preset="carc")
     with pytest.raises(ValueError, match="time"):
         c.retrieve(time)
+    with pytest.raises(ValueError, match="time"):
+        c.advance_to(time)
+    with pytest.raises(ValueError, match="time"):
+        c.advance_to(None)
 
 
 @pytest.mark.parametrize("kw,name", [
