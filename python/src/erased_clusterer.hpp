@@ -3,7 +3,8 @@
 
 /// \file
 /// ErasedClusterer: one virtual interface over every compiled configuration
-/// of the continuous engine, so the module binds one class. A virtual call
+/// of the continuous engine (and of the frame clusterer of `--mode frame`),
+/// so the module binds one class. A virtual call
 /// per `insert` (a packet of points) or per retrieval, never per point: the
 /// engine inside keeps its compiled fast paths. `make_erased_clusterer`
 /// picks the configuration the CLI would run for the same options (its
@@ -22,8 +23,9 @@
 
 namespace streamclust::python {
 
-/// A StreamClusterer of some compiled configuration. Not thread-safe (one
-/// caller at a time; the Python binding serialises calls with a mutex).
+/// A StreamClusterer (or FrameClusterer) of some compiled configuration.
+/// Not thread-safe (one caller at a time; the Python binding serialises
+/// calls with a mutex).
 class ErasedClusterer {
  public:
   virtual ~ErasedClusterer() = default;
@@ -44,8 +46,8 @@ class ErasedClusterer {
   virtual GridShape grid() const = 0;
 };
 
-/// The continuous engine the CLI runs for `o` (resolved: `o.setup` filled
-/// when motion or ground is asked for). Throws cli::UsageError for a value a
+/// The engine the CLI runs for `o`: continuous, or frame with `--mode
+/// frame` (resolved: `o.setup` filled when motion or ground is asked for). Throws cli::UsageError for a value a
 /// policy rejects.
 std::unique_ptr<ErasedClusterer> make_erased_clusterer(const cli::ClusterOptions& o);
 

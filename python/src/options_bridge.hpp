@@ -29,15 +29,10 @@ namespace streamclust::python {
 inline constexpr const char* kArrayInput = "<numpy arrays>";
 
 /// ClusterOptions of CLI-style policy arguments. Throws cli::UsageError
-/// with the CLI's message; frame mode (the `baseline` preset) is refused.
+/// with the CLI's message.
 inline cli::ClusterOptions parse_python_options(std::vector<std::string> args) {
   args.emplace_back(kArrayInput);
-  cli::ClusterOptions o = cli::parse_cluster_options(args);
-  if (o.mode != cli::Mode::continuous) {
-    throw cli::UsageError("--mode: the Python module runs the continuous engine only (the frame clusterer of "
-                          "--mode frame and the baseline preset is not offered)");
-  }
-  return o;
+  return cli::parse_cluster_options(args);
 }
 
 /// True when `o` asks the run setup to estimate the mount or the sensor
@@ -71,11 +66,12 @@ inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o
   return window;
 }
 
-/// Fills `o.setup` as `streamclust cluster` does (quietly), the ground
+/// Fills `o.setup` as `streamclust cluster` does in continuous mode (quietly), the ground
 /// estimate made on `first_window` when given. Without one, options that
 /// need an estimate are a UsageError naming what to give instead. Poses
 /// files that cannot be read throw io::InputError.
 inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vector3f>* first_window) {
+  if (o.mode != cli::Mode::continuous) return;  // the CLI resolves a setup for the continuous engine only
   if (!first_window && needs_first_window(o)) {
     throw cli::UsageError("--ground: a Clusterer fed packet by packet cannot estimate the mount and sensor height "
                           "from the first window; give --mount (or --poses) and --sensor-height, or use "

@@ -29,8 +29,8 @@ __all__ = ["Clusterer", "Retrieval", "Simulation", "cluster_stream", "read", "si
 #: (code i is REJECT_REASONS[i]; 0 is "accepted").
 REJECT_REASONS = tuple(_streamclust.REJECT_REASONS)
 
-#: The CLI's presets the module runs (the frame-mode "baseline" is not offered).
-PRESETS = ("carc", "carc-mid360", "carc-avia", "objects", "objects-mid360", "objects-avia")
+#: The CLI's presets ("baseline" is the frame clusterer: each retrieval re-clusters the window).
+PRESETS = ("carc", "carc-mid360", "carc-avia", "baseline", "objects", "objects-mid360", "objects-avia")
 
 
 def _policy_arguments(preset, options):
@@ -54,10 +54,11 @@ class Clusterer:
     ``streamclust cluster`` is a keyword (``window_time``, ``window_count``,
     ``linkage``, ``theta``, ``min_ray_angle``, ``distance``, ``min_distance``,
     ``range_factor``, ``mask``, ``index``, ``cap``, ``connectivity``,
-    ``projection``, ``fov_azimuth``, ``fov_elevation``, ``fov_z``,
+    ``projection``, ``mode``, ``fov_azimuth``, ``fov_elevation``, ``fov_z``,
     ``min_range``, ``grid``, ``max_multiplicity``, ``poses``, ``mount``,
     ``ground``, ``sensor_height``, ``ground_tolerance``, ``ground_cell``,
-    ``max_slope``, ``ceiling``). Unknown keywords and bad values raise
+    ``max_slope``, ``ceiling``). ``mode="frame"`` (the ``baseline`` preset)
+    runs the frame clusterer, as the CLI does. Unknown keywords and bad values raise
     ValueError naming the keyword. With ``ground=True`` (the objects presets)
     a Clusterer needs ``mount`` (or ``poses``) and ``sensor_height``: the CLI
     estimates them from the first window of a file, which only

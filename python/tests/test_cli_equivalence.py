@@ -21,6 +21,7 @@ CONFIGURATIONS = [
     ("carc-mid360", {"projection": "cylindrical", "connectivity": "lazy-bfs", "mask": 3}),
     ("carc", {"linkage": "range-adaptive", "grid": (32, 512), "window_time": 0.2, "fov_elevation": (-10, 60)}),
     ("objects-mid360", {}),
+    ("baseline", {"index": "bucket", "window_count": 12000}),
 ]
 
 

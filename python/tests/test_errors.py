@@ -30,7 +30,9 @@ BAD_OPTIONS = [
     ({"cap": 300}, "cap"),
     ({"connectivity": "graph"}, "connectivity"),
     ({"projection": "planar"}, "projection"),
-    ({"mode": "frame"}, "mode"),
+    ({"mode": "batch"}, "mode"),
+    ({"mode": "frame", "connectivity": "forest"}, "connectivity"),  # the CLI: frame mode has no connectivity
+    ({"mode": "frame", "mount": (0, 10, 0)}, "mount"),
     ({"fov_azimuth": (10,)}, "fov_azimuth"),
     ({"fov_elevation": ("a", "b")}, "fov_elevation"),
     ({"fov_z": 3}, "fov_z"),
@@ -62,7 +64,7 @@ def test_bad_clusterer_option(options, name):
         streamclust.Clusterer(preset="carc", **options)
 
 
-@pytest.mark.parametrize("preset", ["nope", "baseline", 3, None])
+@pytest.mark.parametrize("preset", ["nope", "Carc", 3, None])
 def test_bad_preset(preset):
     with pytest.raises(ValueError, match="preset"):
         streamclust.Clusterer(preset=preset)
