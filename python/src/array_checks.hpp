@@ -51,11 +51,14 @@ inline std::string shape_of(const py::array& a) {
 
 /// The points of xyz (N, 3) float32/float64, t (N,) float64 and optional
 /// intensity (N,) float32/float64, checked, as raw buffers (no copy). The
-/// arrays must outlive the buffers.
-inline PointBuffers point_buffers(const py::handle& xyz_obj, const py::handle& t_obj, const py::handle& intensity_obj) {
-  const py::array xyz = require_ndarray(xyz_obj, "xyz");
+/// arrays must outlive the buffers. `xyz_name` and `t_name` name the
+/// arguments in the messages.
+inline PointBuffers point_buffers(const py::handle& xyz_obj, const py::handle& t_obj, const py::handle& intensity_obj,
+                                  const char* xyz_name = "xyz", const char* t_name = "t") {
+  const std::string xn = xyz_name, tn = t_name;
+  const py::array xyz = require_ndarray(xyz_obj, xyz_name);
   if (xyz.ndim() != 2 || xyz.shape(1) != 3) {
-    throw py::value_error("xyz: expected shape (N, 3), got " + shape_of(xyz));
+    throw py::value_error(xn + ": expected shape (N, 3), got " + shape_of(xyz));
   }
   PointBuffers b;
   b.size = static_cast<std::size_t>(xyz.shape(0));
@@ -64,21 +67,21 @@ inline PointBuffers point_buffers(const py::handle& xyz_obj, const py::handle& t
   } else if (py::array_t<double>::check_(xyz)) {
     b.xyz64 = static_cast<const double*>(xyz.data());
   } else {
-    throw py::value_error("xyz: expected dtype float32 or float64 (native byte order), got " +
+    throw py::value_error(xn + ": expected dtype float32 or float64 (native byte order), got " +
                           std::string(py::str(xyz.dtype())));
   }
-  require_c_contiguous(xyz, "xyz");
+  require_c_contiguous(xyz, xyz_name);
 
-  const py::array t = require_ndarray(t_obj, "t");
-  if (t.ndim() != 1) throw py::value_error("t: expected shape (N,), got " + shape_of(t));
+  const py::array t = require_ndarray(t_obj, t_name);
+  if (t.ndim() != 1) throw py::value_error(tn + ": expected shape (N,), got " + shape_of(t));
   if (static_cast<std::size_t>(t.shape(0)) != b.size) {
-    throw py::value_error("t: " + std::to_string(t.shape(0)) + " times for " + std::to_string(b.size) +
-                          " points (xyz); expected one time per point");
+    throw py::value_error(tn + ": " + std::to_string(t.shape(0)) + " times for " + std::to_string(b.size) +
+                          " points (" + xn + "); expected one time per point");
   }
   if (!py::array_t<double>::check_(t)) {
-    throw py::value_error("t: expected dtype float64 seconds, got " + std::string(py::str(t.dtype())));
+    throw py::value_error(tn + ": expected dtype float64 seconds, got " + std::string(py::str(t.dtype())));
   }
-  require_c_contiguous(t, "t");
+  require_c_contiguous(t, t_name);
   b.t = static_cast<const double*>(t.data());
 
   if (!intensity_obj.is_none()) {

@@ -105,7 +105,11 @@ std::optional<double> optional_time(const py::object& time, const char* name) {
 /// GIL (retrieve copies its rows under both); never the mutex with the GIL.
 class Clusterer {
  public:
-  explicit Clusterer(const std::vector<std::string>& args) : session_(make_engine(args)) {}
+  /// `first_xyz`, `first_t`: None, or the stream's beginning, from which the
+  /// mount and sensor height are estimated as the CLI does from its input's
+  /// first window (ground without mount or sensor height).
+  Clusterer(const std::vector<std::string>& args, const py::handle& first_xyz, const py::handle& first_t)
+      : session_(make_engine(args, first_xyz, first_t)) {}
 
   py::object insert(const py::handle& xyz, const py::handle& t, const py::handle& intensity, bool want_reasons) {
     const PointBuffers points = point_buffers(xyz, t, intensity);
@@ -181,9 +185,16 @@ class Clusterer {
   }
 
  private:
-  static std::unique_ptr<ErasedClusterer> make_engine(const std::vector<std::string>& args) {
+  static std::unique_ptr<ErasedClusterer> make_engine(const std::vector<std::string>& args,
+                                                      const py::handle& first_xyz, const py::handle& first_t) {
     cli::ClusterOptions o = parse_python_options(args);
-    resolve_setup(o, nullptr);
+    if (first_xyz.is_none() && first_t.is_none()) {
+      resolve_setup(o, nullptr);
+    } else {
+      const PointBuffers first = point_buffers(first_xyz, first_t, py::none(), "first_window xyz", "first_window t");
+      const std::vector<Eigen::Vector3f> window = first_window_of(o, first);
+      resolve_setup(o, &window);
+    }
     return make_erased_clusterer(o);
   }
 
@@ -381,7 +392,8 @@ PYBIND11_MODULE(_streamclust, m) {
   m.attr("REJECT_REASONS") = reasons;
 
   py::class_<sp::Clusterer>(m, "Clusterer")
-      .def(py::init<const std::vector<std::string>&>(), py::arg("args"))
+      .def(py::init<const std::vector<std::string>&, const py::handle&, const py::handle&>(), py::arg("args"),
+           py::arg("first_xyz") = py::none(), py::arg("first_t") = py::none())
       .def("insert", &sp::Clusterer::insert, py::arg("xyz"), py::arg("t"), py::arg("intensity") = py::none(),
            py::arg("reasons") = false)
       .def("advance_to", &sp::Clusterer::advance_to, py::arg("time"))

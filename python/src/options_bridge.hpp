@@ -73,9 +73,9 @@ inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o
 inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vector3f>* first_window) {
   if (o.mode != cli::Mode::continuous) return;  // the CLI resolves a setup for the continuous engine only
   if (!first_window && needs_first_window(o)) {
-    throw cli::UsageError("--ground: a Clusterer fed packet by packet cannot estimate the mount and sensor height "
-                          "from the first window; give --mount (or --poses) and --sensor-height, or use "
-                          "cluster_stream, which estimates them as the CLI does");
+    throw cli::UsageError("--ground: the mount and sensor height are estimated from the stream's first window, "
+                          "which a Clusterer does not have yet: give first_window=(xyz, t) (the stream's "
+                          "beginning), or --mount (or --poses) and --sensor-height, or use cluster_stream");
   }
   o.quiet = true;
   std::ostringstream notes;  // the CLI's notes on stderr; not shown

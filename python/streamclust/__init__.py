@@ -60,16 +60,23 @@ class Clusterer:
     ``max_slope``, ``ceiling``). ``mode="frame"`` (the ``baseline`` preset)
     runs the frame clusterer, as the CLI does. Unknown keywords and bad values raise
     ValueError naming the keyword. With ``ground=True`` (the objects presets)
-    a Clusterer needs ``mount`` (or ``poses``) and ``sensor_height``: the CLI
-    estimates them from the first window of a file, which only
-    :func:`cluster_stream` has.
+    the CLI estimates the mount and sensor height not given from the first
+    window of its input: give ``first_window=(xyz, t)``, the stream's
+    beginning (at least T_B seconds of it; read, not kept), for the same
+    estimate, or ``mount`` (or ``poses``) and ``sensor_height``.
 
     Thread safety: calls from several threads are serialised (a mutex); the
     GIL is released while the engine works.
     """
 
-    def __init__(self, preset="carc-mid360", **options):
-        self._engine = _call(_streamclust.Clusterer, _policy_arguments(preset, options))
+    def __init__(self, preset="carc-mid360", *, first_window=None, **options):
+        first_xyz = first_t = None
+        if first_window is not None:
+            try:
+                first_xyz, first_t = first_window
+            except (TypeError, ValueError):
+                raise ValueError(f"first_window: expected a pair (xyz, t) of numpy arrays, got {first_window!r}") from None
+        self._engine = _call(_streamclust.Clusterer, _policy_arguments(preset, options), first_xyz, first_t)
 
     def insert(self, xyz, t, intensity=None, reasons=False):
         """Offers N points in stream order; returns the number accepted.

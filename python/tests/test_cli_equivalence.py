@@ -70,13 +70,15 @@ def test_every_cycle_equals_the_cli(tool, stream_csv, tmp_path, preset, options)
         assert any((r.labels == streamclust.GROUND).any() for r in ours), "ground rows were compared"
 
 
-def test_packets_and_schedule_by_hand_equal_cluster_stream(stream_csv):
-    """Clusterer.insert in packets + retrieve(time) on the schedule == cluster_stream."""
+@pytest.mark.parametrize("preset", ["carc-mid360", "objects-mid360", "baseline"])
+def test_packets_and_schedule_by_hand_equal_cluster_stream(stream_csv, preset):
+    """Clusterer.insert in packets + retrieve(time) on the schedule == cluster_stream
+    (objects-mid360: the mount and sensor height estimated from first_window)."""
     data = streamclust.read(stream_csv)
     xyz = np.column_stack([data["x"], data["y"], data["z"]]).astype(np.float64)
     t = data["t"]
-    reference = streamclust.cluster_stream(xyz, t, preset="carc-mid360", rate=10)
-    c = streamclust.Clusterer(preset="carc-mid360")
+    reference = streamclust.cluster_stream(xyz, t, preset=preset, rate=10)
+    c = streamclust.Clusterer(preset=preset, first_window=(xyz, t))
     got = []
     period = 1.0 / 10.0
     t0, k, start = t[0], 1.0, 0  # RetrievalSchedule: retrieval k due at t0 + k * period

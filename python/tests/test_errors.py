@@ -64,6 +64,15 @@ def test_bad_clusterer_option(options, name):
         streamclust.Clusterer(preset="carc", **options)
 
 
+def test_bad_first_window():
+    with pytest.raises(ValueError, match="first_window"):
+        streamclust.Clusterer(preset="objects", first_window=XYZ)
+    with pytest.raises(ValueError, match="first_window t: 3 times for 4 points"):
+        streamclust.Clusterer(preset="objects", first_window=(XYZ, T[:3]))
+    with pytest.raises(ValueError, match="first_window xyz: expected dtype"):
+        streamclust.Clusterer(preset="objects", first_window=(XYZ.astype(np.int16), T))
+
+
 @pytest.mark.parametrize("preset", ["nope", "Carc", 3, None])
 def test_bad_preset(preset):
     with pytest.raises(ValueError, match="preset"):
