@@ -230,6 +230,7 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   std::uint64_t cycle = 0, inserted_since = 0;
   double first_time = 0.0;
   auto run_cycle = [&](double cycle_time) {
+    session.advance_to(cycle_time);  // as the CLI's run_cycle (a no-op after the scheduled advance)
     const Clustering& result = session.retrieve(rows);
     if (all || std::binary_search(wanted.begin(), wanted.end(), cycle)) {
       py::gil_scoped_acquire acquire;
