@@ -39,6 +39,46 @@ def stream_csv(tool, tmp_path_factory):
     return path
 
 
+@pytest.fixture(scope="module")
+def rough_stream_csv(tool, tmp_path_factory):
+    """The simulated stream with 1 % NaN coordinates, a 0.35 s pause and
+    points too close to the sensor: rejected rows (-1) and skipped retrievals."""
+    d = tmp_path_factory.mktemp("rough")
+    clean = d / "clean.csv"
+    subprocess.run([tool, "simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "1.0",
+                    "--seed", "4", "--out", str(clean), "--quiet"], check=True)
+    data = streamclust.read(clean)
+    rng = np.random.default_rng(4)
+    x, y, z, t = (data[k].astype(np.float64) for k in ("x", "y", "z", "t"))
+    x[rng.random(len(t)) < 0.01] = np.nan
+    near = rng.random(len(t)) < 0.005
+    x[near], y[near], z[near] = 0.01, 0.0, 0.0
+    t[t > 0.5] += 0.35
+    path = d / "rough.csv"
+    with open(path, "w") as f:
+        f.write("x,y,z,intensity,t\n")
+        np.savetxt(f, np.column_stack([x, y, z, data["intensity"], t]),
+                   fmt=["%.9g", "%.9g", "%.9g", "%.9g", "%.17g"], delimiter=",")
+    return path
+
+
+@pytest.mark.parametrize("preset,options", [CONFIGURATIONS[0], CONFIGURATIONS[1], CONFIGURATIONS[-1]])
+def test_every_cycle_equals_the_cli_with_rejections_and_a_pause(tool, rough_stream_csv, tmp_path, preset, options):
+    data = streamclust.read(rough_stream_csv)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset=preset, rate=20, **options)
+    theirs = cli_cycles(tool, rough_stream_csv, preset, options, 20, tmp_path)
+    assert [r.cycle for r in ours] == sorted(theirs)
+    assert any((r.labels == streamclust.UNLABELLED).any() for r in ours), "rejected rows were compared"
+    gaps = np.diff([r.time for r in ours])
+    assert gaps.max() > 0.3, "the pause skipped retrievals"
+    for r in ours:
+        c = theirs[r.cycle]
+        assert r.time == pytest.approx(c["time"], rel=1e-8, abs=1e-8), f"cycle {r.cycle}: time"
+        assert np.array_equal(r.index, np.asarray(c["index"], dtype=np.int64)), f"cycle {r.cycle}: rows"
+        assert same_partition(r.labels, c["label"]), f"cycle {r.cycle}: partition"
+
+
 def cli_cycles(tool, path, preset, options, rate, tmp_path):
     labels = tmp_path / "labels.csv"
     subprocess.run([tool, "cluster", str(path), "--preset", preset, "--rate", repr(float(rate)),
