@@ -113,11 +113,11 @@ class Clusterer {
 
   py::object insert(const py::handle& xyz, const py::handle& t, const py::handle& intensity, bool want_reasons) {
     const PointBuffers points = point_buffers(xyz, t, intensity);
-    py::array_t<std::uint8_t> reasons;
+    std::optional<py::array_t<std::uint8_t>> reasons;  // allocated only when asked for
     std::uint8_t* reasons_out = nullptr;
     if (want_reasons) {
-      reasons = py::array_t<std::uint8_t>(static_cast<py::ssize_t>(points.size));
-      reasons_out = reasons.mutable_data();
+      reasons.emplace(static_cast<py::ssize_t>(points.size));
+      reasons_out = reasons->mutable_data();
     }
     std::size_t accepted = 0;
     {
@@ -125,7 +125,7 @@ class Clusterer {
       const std::lock_guard<std::mutex> lock(mutex_);
       accepted = session_.insert(points, reasons_out);
     }
-    if (want_reasons) return py::make_tuple(accepted, reasons);
+    if (reasons) return py::make_tuple(accepted, *reasons);
     return py::int_(accepted);
   }
 
