@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The full test run (this is .ci/run and the README's test command):
-#   gcc    Release, g++        -> build/gcc    all tests, examples, benchmark smoke runs
+#   gcc    Release, g++        -> build/gcc    all tests, examples, benchmark smoke runs, and the
+#                                              Python module with its pytest suite (CTest python_pytest)
 #   clang  Release, clang++-14 -> build/clang  tests and examples (no benchmarks)
 #   asan   Debug, g++, ASan+UBSan -> build/asan tests and examples (bench-labelled tests excluded)
 #
@@ -71,11 +72,27 @@ run_stage() {
     "$name" $((t1 - t0)) $((t2 - t1)) $((t3 - t2)) $((t3 - t0)))")
 }
 
+# The interpreter the Python module is built for and tested with: the first
+# one that has numpy and pytest (a pyenv shim ahead of Debian's python3 may
+# have neither).
+python_for_module() {
+  local py
+  for py in python3 /usr/bin/python3; do
+    if command -v "$py" >/dev/null 2>&1 && "$py" -c 'import numpy, pytest' >/dev/null 2>&1; then
+      command -v "$py"
+      return 0
+    fi
+  done
+  echo "test.sh: no python3 with numpy and pytest (scripts/install-deps.sh installs them)" >&2
+  return 1
+}
+
 for stage in "${STAGES[@]}"; do
   case "$stage" in
     gcc)
       [[ -n "${SKIP_GCC:-}" ]] && continue
-      run_stage gcc g++ Release --
+      PYTHON_FOR_MODULE=$(python_for_module)
+      run_stage gcc g++ Release -- -DSTREAMCLUST_PYTHON=ON -DPython3_EXECUTABLE="$PYTHON_FOR_MODULE"
       ;;
     clang)
       [[ -n "${SKIP_CLANG:-}" ]] && continue

@@ -68,8 +68,11 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
 /// what is not given (the mount when neither --mount nor --poses is, the
 /// sensor height without --sensor-height; see estimate_ground) and notes it
 /// on `err` unless quiet. `timed` times the ground and placement stages (the
-/// report). Throws UsageError for a value a policy rejects.
-inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream& err) {
+/// report). `first_window`, when given, replaces the first window read from
+/// `o.input` (a caller that holds the stream in memory). Throws UsageError
+/// for a value a policy rejects.
+inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream& err,
+                               const std::vector<Eigen::Vector3f>* first_window = nullptr) {
   RunSetup s;
   s.motion.enabled = has_motion_options(o);
   s.motion.posed = load_motion_params(o);
@@ -83,7 +86,7 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
   g.detect_ceiling = o.ceiling;
   if (o.sensor_height) g.sensor_height = *o.sensor_height;
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
-    s.estimate = estimate_ground(first_window_points(o));
+    s.estimate = estimate_ground(first_window ? *first_window : first_window_points(o));
     if (s.estimate) {
       if (!s.motion.enabled) {
         s.motion.enabled = true;

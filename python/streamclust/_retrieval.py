@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: MIT
+"""Retrieval: one labelled window, as numpy arrays."""
+
+import numpy as np
+
+#: dtype of Retrieval.components (one row per connected component).
+COMPONENT_DTYPE = np.dtype([
+    ("id", np.int64),             # stable component id
+    ("size", np.int64),           # points in the window
+    ("centroid", np.float32, 3),  # mean position [m]
+    ("min", np.float32, 3),       # box, lower corner [m]
+    ("max", np.float32, 3),       # box, upper corner [m]
+    ("t_min", np.float64),        # oldest point [s]
+    ("t_max", np.float64),        # newest point [s]
+], align=True)  # the C struct's layout: 4 bytes of padding before t_min, 72 bytes a row
+
+#: Row labels that are not components (the CLI's --labels file, docs/cli.md).
+UNLABELLED, GROUND, CEILING = -1, -2, -3
+
+
+class Retrieval:
+    """One retrieval: the window's rows by stream index, and its components.
+
+    Attributes
+    ----------
+    cycle : int
+        Retrievals before this one (0-based). In :func:`cluster_stream` it is
+        the CLI's cycle number on the same stream.
+    time : float
+        Stream time of the retrieval [s]: the scheduled time in
+        :func:`cluster_stream`, the time passed to :meth:`Clusterer.retrieve`,
+        else the newest point's.
+    index : numpy.ndarray, int64 (M,)
+        Stream index of each row (0-based; rejected points counted), ascending:
+        every window point and every rejected point inside the window's span,
+        the rows of ``streamclust cluster --labels``.
+    labels : numpy.ndarray, int32 (M,)
+        Stable component id (>= 0), -1 unlabelled (rejected), -2 ground,
+        -3 ceiling (with ``ground=True``).
+    components : numpy.ndarray, structured (K,), :data:`COMPONENT_DTYPE`
+        id, size, centroid, min, max, t_min, t_max per component, by id.
+
+    The arrays are new (one copy out of the engine, which reuses its buffers
+    at the next retrieval); they belong to this object and stay valid.
+    """
+
+    __slots__ = ("cycle", "time", "index", "labels", "components")
+
+    def __init__(self, cycle, time, index, labels, components):
+        self.cycle = int(cycle)
+        self.time = float(time)
+        self.index = index
+        self.labels = labels
+        self.components = components
+
+    def __len__(self):
+        return len(self.index)
+
+    def __repr__(self):
+        return (f"Retrieval(cycle={self.cycle}, time={self.time:.6f}, rows={len(self.index)}, "
+                f"components={len(self.components)})")
