@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include "support/bad_files.hpp"
 #include "support/temp_dir.hpp"
 
 #include <streamclust/io/reader.hpp>
@@ -26,11 +27,11 @@ struct BadInputDir : streamclust::test::TempDir {
   explicit BadInputDir(const std::string& name) : TempDir("io_bad_input", name) {}
 };
 
-io::ReadOptions with_rate() {
-  io::ReadOptions o;
-  o.point_rate = 1000.0;
-  return o;
-}
+using streamclust::test::append_bytes;
+using streamclust::test::expect_error;
+using streamclust::test::file_bytes;
+using streamclust::test::some_records;
+using streamclust::test::with_rate;
 
 /// All records of `path`; throws what the reader throws.
 std::vector<io::Record> read_all(const std::string& path) {
@@ -39,43 +40,6 @@ std::vector<io::Record> read_all(const std::string& path) {
   while (r->read(out, 2) > 0) {
   }
   return out;
-}
-
-/// Requires an InputError at `where` whose message contains `expected`.
-void expect_error(const std::string& path, const std::string& where, const std::string& expected) {
-  INFO("file " << path);
-  try {
-    const auto records = read_all(path);
-    FAIL("expected an InputError, read " << records.size() << " records");
-  } catch (const io::InputError& e) {
-    INFO("message: " << e.what());
-    CHECK(e.file() == path);
-    CHECK(e.where() == where);
-    CHECK(e.what_expected().find(expected) != std::string::npos);
-  }
-}
-
-template <class T>
-void append_bytes(std::string& s, T v) {
-  char b[sizeof v];
-  std::memcpy(b, &v, sizeof v);
-  s.append(b, sizeof v);
-}
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::vector<io::Record> some_records(std::size_t n) {
-  std::vector<io::Record> v(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i].x = static_cast<float>(i);
-    v[i].y = 1;
-    v[i].z = 2;
-    v[i].t = static_cast<double>(i) * 0.001;
-  }
-  return v;
 }
 
 // Lines 1-6; WIDTH, HEIGHT, POINTS, DATA follow on lines 7-10.

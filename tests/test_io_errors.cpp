@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include "support/bad_files.hpp"
 #include "support/temp_dir.hpp"
 
 #include <streamclust/io/reader.hpp>
@@ -29,54 +30,11 @@ struct ErrorTempDir : streamclust::test::TempDir {
   explicit ErrorTempDir(const std::string& name) : TempDir("io_errors", name) {}
 };
 
-io::ReadOptions with_rate() {
-  io::ReadOptions o;
-  o.point_rate = 1000.0;
-  return o;
-}
-
-/// Opens and reads all of `path`; requires an InputError naming `path`, at
-/// `where`, whose message contains `expected`.
-void expect_error(const std::string& path, const std::string& where, const std::string& expected,
-                  const io::ReadOptions& options = with_rate()) {
-  INFO("file " << path);
-  try {
-    auto r = io::open_reader(path, options);
-    std::vector<io::Record> out;
-    while (r->read(out, 100) > 0) {
-    }
-    FAIL("expected an InputError, read " << out.size() << " records");
-  } catch (const io::InputError& e) {
-    INFO("message: " << e.what());
-    CHECK(e.file() == path);
-    CHECK(e.where() == where);
-    CHECK(e.what_expected().find(expected) != std::string::npos);
-    CHECK(std::string(e.what()) == path + ": " + where + ": " + e.what_expected());
-  }
-}
-
-template <class T>
-void append_bytes(std::string& s, T v) {
-  char b[sizeof v];
-  std::memcpy(b, &v, sizeof v);
-  s.append(b, sizeof v);
-}
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::vector<io::Record> some_records(std::size_t n) {
-  std::vector<io::Record> v(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i].x = static_cast<float>(i);
-    v[i].y = 1;
-    v[i].z = 2;
-    v[i].t = static_cast<double>(i) * 0.001;
-  }
-  return v;
-}
+using streamclust::test::append_bytes;
+using streamclust::test::expect_error;
+using streamclust::test::file_bytes;
+using streamclust::test::some_records;
+using streamclust::test::with_rate;
 
 const char* pcd_header_xyz =
     "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\n"

@@ -18,7 +18,6 @@
 #include <streamclust/stream_clusterer.hpp>
 
 #include <algorithm>
-
 #include <memory>
 #include <stdexcept>
 
@@ -39,28 +38,34 @@ struct FrameEngineTag {
   using engine = FrameEngineClusterer<Config>;
 };
 
-template <class Config>
-class EngineClusterer final : public ErasedClusterer {
+/// What both modes forward to their engine alike.
+template <class Engine>
+class ForwardingClusterer : public ErasedClusterer {
  public:
-  explicit EngineClusterer(const ClustererParams<Config>& params) : engine_(params) {}
+  template <class Params>
+  explicit ForwardingClusterer(const Params& params) : engine_(params) {}
 
   std::size_t insert(const PointBuffers& points, RejectReason* reasons) override {
     const ArrayPointIterator first(&points, 0), last(&points, points.size);
     RejectReason* const end = engine_.insert_batch(first, last, reasons);
-    std::size_t accepted = 0;
-    for (const RejectReason* r = reasons; r != end; ++r) accepted += *r == RejectReason::accepted;
-    return accepted;
+    return static_cast<std::size_t>(std::count(reasons, end, RejectReason::accepted));
   }
   void advance_to(double time) override { engine_.advance_to(time); }
   bool calibrating() const override { return engine_.calibrating(); }
   void complete_calibration() override { engine_.complete_calibration(); }
-  const Clustering& retrieve() override { return engine_.retrieve(); }
   std::uint64_t offered() const override { return engine_.offered(); }
   std::size_t size() const override { return engine_.size(); }
   GridShape grid() const override { return engine_.grid(); }
 
- private:
-  StreamClusterer<Config> engine_;
+ protected:
+  Engine engine_;
+};
+
+template <class Config>
+class EngineClusterer final : public ForwardingClusterer<StreamClusterer<Config>> {
+ public:
+  using ForwardingClusterer<StreamClusterer<Config>>::ForwardingClusterer;
+  const Clustering& retrieve() override { return this->engine_.retrieve(); }
 };
 
 /// A FrameClusterer (each retrieval re-clusters the window from scratch,
@@ -69,33 +74,19 @@ class EngineClusterer final : public ErasedClusterer {
 /// are the frame's numbering (0, 1, ... by first appearance): not stable
 /// across retrievals, as in the CLI's frame mode.
 template <class Config>
-class FrameEngineClusterer final : public ErasedClusterer {
+class FrameEngineClusterer final : public ForwardingClusterer<FrameClusterer<Config>> {
  public:
-  explicit FrameEngineClusterer(const ClustererParams<Config>& params) : engine_(params) {}
-
-  std::size_t insert(const PointBuffers& points, RejectReason* reasons) override {
-    const ArrayPointIterator first(&points, 0), last(&points, points.size);
-    RejectReason* const end = engine_.insert_batch(first, last, reasons);
-    std::size_t accepted = 0;
-    for (const RejectReason* r = reasons; r != end; ++r) accepted += *r == RejectReason::accepted;
-    return accepted;
-  }
-  void advance_to(double time) override { engine_.advance_to(time); }
-  bool calibrating() const override { return engine_.calibrating(); }
-  void complete_calibration() override { engine_.complete_calibration(); }
-  std::uint64_t offered() const override { return engine_.offered(); }
-  std::size_t size() const override { return engine_.size(); }
-  GridShape grid() const override { return engine_.grid(); }
+  using ForwardingClusterer<FrameClusterer<Config>>::ForwardingClusterer;
 
   /// The frame's labels in window order (as the CLI's frame mode writes
   /// them) and the components' summaries. O(window) beyond the batch run.
   const Clustering& retrieve() override {
-    const BatchResult& frame = engine_.retrieve();
+    const BatchResult& frame = this->engine_.retrieve();
     result_.points.clear();
     result_.components.assign(frame.components, ComponentSummary{});
     result_.structure.clear();
     std::size_t i = 0;
-    engine_.for_each_point([&](const Sample& s, std::uint64_t stream_index) {
+    this->engine_.for_each_point([&](const Sample& s, std::uint64_t stream_index) {
       const std::int64_t label = i < frame.labels.size() ? frame.labels[i] : -1;
       ++i;
       result_.points.push_back(PointLabel{stream_index, label < 0 ? kNoComponent : static_cast<ComponentId>(label)});
@@ -121,7 +112,6 @@ class FrameEngineClusterer final : public ErasedClusterer {
   }
 
  private:
-  FrameClusterer<Config> engine_;
   Clustering result_;
 };
 

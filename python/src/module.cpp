@@ -12,7 +12,6 @@
 #include "array_checks.hpp"
 #include "erased_clusterer.hpp"
 #include "options_bridge.hpp"
-#include "record_time.hpp"
 #include "window_rows.hpp"
 
 #include "cli/evaluate.hpp"
@@ -227,6 +226,8 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   StreamSession session(make_erased_clusterer(o));
   WindowRows rows;
   RetrievalSchedule schedule(o.rate_hz);
+  StreamTimeOrder record_times(cli::engine_time_order_params(o));  // as the CLI: only valid times move the schedule
+  std::uint64_t valid_times = 0;
   std::uint64_t cycle = 0, inserted_since = 0;
   double first_time = 0.0;
   auto run_cycle = [&](double cycle_time) {
@@ -241,6 +242,8 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   };
   std::size_t offered = 0;  // points [0, offered) went to the engine
   for (std::size_t i = 0; i < points.size; ++i) {
+    if (record_times.admit_time(points.t[i]) != RejectReason::accepted) continue;
+    ++valid_times;
     const bool started = schedule.started();
     const std::optional<double> due = schedule.on_record(points.t[i]);
     if (!started && schedule.started()) first_time = schedule.first_time();
@@ -253,6 +256,10 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
     run_cycle(*due);
   }
   inserted_since += session.insert(points.slice(offered, points.size), nullptr);
+  if (valid_times == 0) {
+    py::gil_scoped_acquire acquire;
+    throw py::value_error("t: no usable time (finite, within +-9e9 s, not a jump; the CLI exits 4 on such a stream)");
+  }
   session.complete_calibration();
   if (inserted_since > 0 || cycle == 0) {
     run_cycle(schedule.started() ? std::max(session.last_accepted_time(), first_time) : 0.0);
@@ -269,12 +276,14 @@ py::dict read_file(const std::string& path, const std::vector<std::string>& args
   }
   std::vector<io::Record> records;
   io::InputInfo info;
+  io::TimeOrigin origin;
   {
     py::gil_scoped_release release;
     auto reader = io::open_reader(path, read_options);
     info = reader->info();
     while (reader->read(records, 65536) > 0) {
     }
+    origin = reader->time_origin();
   }
   const auto n = static_cast<py::ssize_t>(records.size());
   py::array_t<float> x(n), y(n), z(n), intensity(n);
@@ -289,7 +298,7 @@ py::dict read_file(const std::string& path, const std::vector<std::string>& args
     py_[i] = r.y;
     pz[i] = r.z;
     pi[i] = r.intensity;
-    pt[i] = python_time(r, info);
+    pt[i] = r.t;  // seconds since the origin, exact at epoch scale (io/stream_time.hpp)
     pl[i] = r.label;
   }
   py::dict d;
@@ -298,6 +307,7 @@ py::dict read_file(const std::string& path, const std::vector<std::string>& args
   d["z"] = z;
   d["intensity"] = intensity;
   d["t"] = t;
+  d["time_origin"] = origin.seconds;
   if (info.has_label) d["label"] = label;
   return d;
 }

@@ -141,3 +141,30 @@ def test_packets_and_schedule_by_hand_equal_cluster_stream(stream_csv, preset):
         assert np.array_equal(a.index, b.index)
         assert np.array_equal(a.labels, b.labels)
         assert np.array_equal(a.components, b.components)
+
+
+def test_epoch_times_keep_their_nanoseconds_and_the_cli_partitions(tool, tmp_path):
+    """A recording in Unix time: read() counts from its whole-second origin,
+    exactly, and cluster_stream on it gives the CLI's cycles, whose times
+    are the origin plus ours."""
+    path = tmp_path / "epoch.csv"
+    subprocess.run([tool, "simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "0.8", "--seed", "5",
+                    "--start-time", "1700000000", "--out", str(path), "--quiet"], check=True)
+    data = streamclust.read(path)
+    assert data["time_origin"] == 1700000000
+    assert data["t"][0] == 0.0 and data["t"][-1] < 1.0
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset="carc-mid360", rate=20)
+    labels = tmp_path / "labels.csv"
+    subprocess.run([tool, "cluster", str(path), "--preset", "carc-mid360", "--labels", str(labels), "--cycles", "all",
+                    "--quiet"], check=True)
+    theirs = {}
+    with open(labels, newline="") as f:
+        for row in csv.DictReader(f):
+            c = theirs.setdefault(int(row["cycle"]), {"time": row["time"], "label": []})
+            c["label"].append(int(row["label"]))
+    assert [r.cycle for r in ours] == sorted(theirs)
+    for r in ours:
+        c = theirs[r.cycle]
+        assert c["time"] == f"{1700000000 + int(r.time)}.{round((r.time % 1) * 1e9):09d}", f"cycle {r.cycle}: time"
+        assert same_partition(r.labels, c["label"]), f"cycle {r.cycle}: partition"

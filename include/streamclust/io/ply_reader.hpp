@@ -494,7 +494,8 @@ class PlyReader final : public PointReader {
     std::string names;
     bool list = false;
     for (const auto& p : e.props) {
-      names += (names.empty() ? "" : " ") + detail::printable(p.name);
+      if (!names.empty()) names += ' ';
+      names += detail::printable(p.name);  // not `"" + string&&`: g++ 12 -Wrestrict false positive in C++20
       list = list || p.is_list;
     }
     if (!list)
