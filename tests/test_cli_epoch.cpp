@@ -145,7 +145,7 @@ TEST_CASE("epoch times: the objects preset with the recording's poses, verified,
   check_shift_invariant({"--preset", "objects-mid360", "--sensor-height", "1", "--poses", "TUM", "--verify"});
 }
 
-TEST_CASE("epoch times: info shows the span with nanoseconds") {
+TEST_CASE("epoch times: info shows the span with nanoseconds; --time-origin changes no output time") {
   const streamclust::test::TempDir tmp("cli", "epoch_info");
   const fs::path csv = tmp.dir / "s.csv";
   REQUIRE(run_cli({"simulate", "--duration", "0.2", "--start-time", "1700000000", "--out", csv.string(), "--quiet"})
@@ -154,6 +154,15 @@ TEST_CASE("epoch times: info shows the span with nanoseconds") {
   INFO(r.out << r.err);
   REQUIRE(r.code == 0);
   CHECK(std::regex_search(r.out, std::regex("time: .*1700000000\\.000[0-9]{6} s to 1700000000\\.19[0-9]{7} s")));
+  // --time-origin: another time base gives the same absolute times out.
+  const auto own = run_cli({"cluster", csv.string(), "--labels", (tmp.dir / "own.csv").string(), "--quiet"});
+  const auto given = run_cli({"cluster", csv.string(), "--time-origin", "1699999000", "--labels",
+                              (tmp.dir / "given.csv").string(), "--quiet"});
+  REQUIRE(own.code == 0);
+  REQUIRE(given.code == 0);
+  CHECK(read_label_rows(tmp.dir / "own.csv").times == read_label_rows(tmp.dir / "given.csv").times);
+  CHECK(run_cli({"cluster", csv.string(), "--time-origin", "1.5"}).code == 2);
+  CHECK(run_cli({"cluster", csv.string(), "--time-origin", "1e12"}).code == 2);
   CHECK(run_cli({"simulate", "--start-time", "1.5", "--out", csv.string()}).code == 2);
   CHECK(run_cli({"simulate", "--start-time", "-3", "--out", csv.string()}).code == 2);
 }

@@ -189,9 +189,12 @@ def read(path, **read_options):
 
     read_options: ``format`` ("auto", "csv", "pcd", "ply", "kitti"),
     ``time_unit`` ("s", "ms", "us", "ns"), ``point_rate`` [Hz] (times for an
-    input without a time field). Returns a dict of numpy arrays: x, y, z,
-    intensity (float32), t (float64 [s]) and, when the file has one, label
-    (int64).
+    input without a time field), ``time_origin`` (whole seconds to count
+    from; default: the first time's). Returns a dict: x, y, z, intensity
+    (float32 arrays), t (float64 [s] since time_origin, exact for Unix
+    times), time_origin (int [s]; absolute time = time_origin + t) and, when
+    the file has one, label (int64). Pass ``time_origin`` on to a Clusterer
+    or cluster_stream that reads ``poses`` in absolute time.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise ValueError(f"path: expected a file path, got {path!r}")

@@ -33,6 +33,9 @@ POLICY_KEYWORDS = {
     "min_range": ("--min-range", "number"),
     "grid": ("--grid", "grid"),
     "max_multiplicity": ("--max-multiplicity", "number"),
+    "max_time_jump": ("--max-time-jump", "number"),
+    # the whole seconds t counts from: read()'s time_origin; poses are read from it
+    "time_origin": ("--time-origin", "number"),
     # motion and structure removal (the objects presets)
     "poses": ("--poses", "path"),
     "mount": ("--mount", "angles"),
@@ -48,6 +51,7 @@ READ_KEYWORDS = {
     "format": ("--format", "choice"),
     "time_unit": ("--time-unit", "choice"),
     "point_rate": ("--point-rate", "number"),
+    "time_origin": ("--time-origin", "number"),
 }
 
 SIMULATION_KEYWORDS = {

@@ -168,3 +168,26 @@ def test_epoch_times_keep_their_nanoseconds_and_the_cli_partitions(tool, tmp_pat
         c = theirs[r.cycle]
         assert c["time"] == f"{1700000000 + int(r.time)}.{round((r.time % 1) * 1e9):09d}", f"cycle {r.cycle}: time"
         assert same_partition(r.labels, c["label"]), f"cycle {r.cycle}: partition"
+
+
+def test_epoch_poses_meet_times_read_from_the_recording(tool, tmp_path):
+    """Poses in Unix time with times from read(): time_origin puts them on one
+    time base, and the objects preset with poses gives the CLI's partitions."""
+    path = tmp_path / "moving.csv"
+    subprocess.run([tool, "simulate", "--sensor", "mid360", "--scene", "street", "--speed", "1.5", "--seconds", "0.9",
+                    "--start-time", "1700000000", "--out", str(path), "--quiet"], check=True)
+    tum = tmp_path / "moving.tum"
+    data = streamclust.read(path)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    options = {"sensor_height": 1.0, "poses": str(tum)}
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset="objects-mid360", rate=20,
+                                      time_origin=data["time_origin"], **options)
+    theirs = cli_cycles(tool, path, "objects-mid360", options, 20.0, tmp_path)
+    assert [r.cycle for r in ours] == sorted(theirs)
+    assert len(ours) >= 5
+    for r in ours:
+        assert (r.labels >= 0).sum() > 1000, f"cycle {r.cycle}: placed and clustered"
+        assert same_partition(r.labels, theirs[r.cycle]["label"]), f"cycle {r.cycle}: partition"
+    # Without the origin the poses (Unix time) miss the times (from 0): nothing is placed.
+    lost = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset="objects-mid360", rate=20, **options)
+    assert all((r.labels >= 0).sum() == 0 for r in lost)

@@ -56,6 +56,8 @@ input:
   --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
   --point-rate HZ                   the stream's point rate: records without a time field
                                     get t = index / HZ (a time field is kept)
+  --time-origin S                   whole seconds times count from (default: those of the
+                                    first time); --poses are read from the same origin
 policies (a preset first, then every option below overrides it):
   --preset carc|carc-mid360|carc-avia|baseline   (default carc)
         carc         spherical, bucket grid, angular theta 10, w 5, T_M 2, adaptive grid
@@ -112,6 +114,7 @@ too ("no time field"); --point-rate then gives its times as for cluster.
   --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
   --point-rate HZ                   the stream's point rate: records without a time field
                                     get t = index / HZ
+  --time-origin S                   whole seconds times count from (default: the first time's)
 
 examples:
   streamclust info scan.pcd

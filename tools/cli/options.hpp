@@ -5,6 +5,7 @@
 /// Command-line options of the `streamclust` tool: parsing, presets and
 /// validation. Every bad option becomes a UsageError (exit code 2).
 
+#include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/record.hpp>
 #include <streamclust/sensors.hpp>
 
@@ -293,6 +294,12 @@ inline bool parse_input_option(ArgCursor& c, io::ReadOptions& read) {
     read.time_unit = io::parse_time_unit(c.choice({"s", "ms", "us", "ns"}));
   } else if (a == "--point-rate") {
     read.point_rate = parse_positive(a, c.value());
+  } else if (a == "--time-origin") {
+    const std::string v = c.value();
+    std::int64_t seconds = 0;
+    if (!io::detail::parse_int64(v, seconds) || !(std::fabs(static_cast<double>(seconds)) <= io::max_time_origin_seconds))
+      throw UsageError("--time-origin: expected whole seconds within +-9e9 (e.g. 1700000000), got '" + v + "'");
+    read.time_origin = io::TimeOrigin{seconds};
   } else {
     return false;
   }
