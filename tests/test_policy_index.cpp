@@ -383,6 +383,64 @@ TEST_CASE("the capped and bucket grids offer gather; stale slots are never hande
   CHECK(gathered(buckets, 0) == all);
 }
 
+TEST_CASE("BucketGrid: a cell that spills takes the largest pooled bucket") {
+  constexpr PointHandle inline_cap = BucketGrid::kInlineCapacity;
+  BucketGrid grid{{}};
+  grid.reset(GridShape{1, 3, false});
+  PointHandle next = 0;
+  const auto fill = [&](CellIndex cell, PointHandle n) {
+    std::vector<PointHandle> handles;
+    for (PointHandle k = 0; k < n; ++k, ++next) {
+      grid.insert(cell, next);
+      handles.push_back(next);
+    }
+    return handles;
+  };
+  const std::vector<PointHandle> big = fill(0, inline_cap + 100);
+  const std::vector<PointHandle> small = fill(1, inline_cap + 3);
+  for (const PointHandle h : big) grid.remove(0, h);  // the large bucket is pooled first,
+  for (const PointHandle h : small) grid.remove(1, h);  // the small one last
+  REQUIRE(grid.spilled_cells() == 0);
+  const std::size_t pooled = grid.heap_bytes();
+  fill(2, inline_cap + 100);  // takes the large bucket: nothing grows
+  CHECK(grid.spilled_cells() == 1);
+  CHECK(grid.heap_bytes() == pooled);
+}
+
+TEST_CASE("BucketGrid: youngest and gather_older read a crowded cell by its chain start") {
+  static_assert(streamclust::has_spatial_index_chain_v<BucketGrid>);
+  static_assert(!streamclust::has_spatial_index_chain_v<CappedGrid>);
+  static_assert(!streamclust::has_spatial_index_chain_v<OverwriteGrid>);
+  BucketGrid grid{{}};
+  grid.reset(GridShape{1, 2, false});
+  std::vector<PointHandle> cell;  // handles near the wrap of PointHandle: the order is by difference
+  for (PointHandle h = 0xFFFFFFF0u; h != 12u; ++h) {
+    if (h % 3 == 0) continue;  // gaps: other cells' points
+    grid.insert(0, h);
+    cell.push_back(h);
+    CHECK(grid.youngest(0) == h);
+  }
+  REQUIRE(cell.size() > 2 * BucketGrid::kInlineCapacity);
+  std::vector<PointHandle> out(cell.size());
+  for (std::size_t k = 0; k <= cell.size(); ++k) {
+    const PointHandle bound = k < cell.size() ? cell[k] : 12u;  // a bound past the youngest: all are older
+    CAPTURE(k);
+    CHECK(grid.gather_older(0, bound, out.data(), out.size()) == k);
+    CHECK(std::vector<PointHandle>(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(k)) ==
+          std::vector<PointHandle>(cell.begin(), cell.begin() + static_cast<std::ptrdiff_t>(k)));
+    std::vector<PointHandle> small(3, kNoPoint);  // room for 3: the count is whole, nothing past the room
+    CHECK(grid.gather_older(0, bound, small.data(), 2) == k);
+    CHECK(small[2] == kNoPoint);
+  }
+  // Removing the oldest (the engine's order) keeps both in step.
+  for (std::size_t k = 0; k + 1 < cell.size(); ++k) {
+    grid.remove(0, cell[k]);
+    CHECK(grid.youngest(0) == cell.back());
+    CHECK(grid.gather_older(0, cell[k + 1], out.data(), out.size()) == 0);
+    CHECK(grid.gather_older(0, cell.back(), out.data(), out.size()) == cell.size() - k - 2);
+  }
+}
+
 static_assert(streamclust::has_spatial_index_prefetch_v<BucketGrid> &&
               streamclust::has_spatial_index_prefetch_v<CappedGrid> &&
               streamclust::has_spatial_index_prefetch_v<OverwriteGrid>);

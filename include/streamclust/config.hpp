@@ -126,6 +126,12 @@ struct ClustererParams {
   typename detail::params_of<typename config_traits<Config>::resolution>::type resolution{};
   /// Width w of the w x w neighbourhood mask in cells; odd, 1 to 255.
   int mask_size = 5;
+  /// StreamClusterer: read crowded cells by their chains of linked points
+  /// (engine/cell_chains.hpp; an index with unbounded cells and the chain
+  /// capability, e.g. BucketGrid): the same components, O(1) per point in a
+  /// cell of duplicates. Off: every linked pair is an edge (a point graph of
+  /// all linkage edges, O(k^2) in a crowded cell).
+  bool crowded_cell_chains = true;
   typename detail::params_of<typename config_traits<Config>::connectivity>::type connectivity{};
   typename detail::params_of<typename config_traits<Config>::motion>::type motion{};
   typename detail::params_of<typename config_traits<Config>::ground>::type ground{};

@@ -44,7 +44,8 @@ namespace streamclust {
 /// Per accepted point (`insert`, Algorithm 1): the point is judged
 /// (acceptance.hpp), points that left the window are evicted, the point is
 /// projected to a grid cell, the w x w mask around it is searched and every
-/// candidate passing the linkage becomes a neighbour (NeighbourSearch); the
+/// candidate passing the linkage becomes a neighbour (NeighbourSearch; a
+/// crowded cell is read by its chain of linked points, CellChains); the
 /// neighbours go to the connectivity strategy, then the point to the index.
 /// `retrieve()` asks the strategy for the components, which it writes
 /// through the one result writer (ComponentResult) with stable ids
@@ -82,8 +83,9 @@ namespace streamclust {
 /// Sample, or 24 with a payload carrying the ray, 16 of payload with a
 /// payload linkage, 8 + the strategy's PointState per point; the peak window
 /// plus 1/8), the index, the strategy's edges (12 bytes per stored edge, or
-/// 8 per forest and new edge for the spanning forest), scratch and result
-/// vectors that grow geometrically; none shrinks. `reserve(n)` sizes the
+/// 8 per forest and new edge for the spanning forest), the crowded-cell
+/// chain starts (4 bytes per grid cell, with a bucket grid: CellChains),
+/// scratch and result vectors that grow geometrically; none shrinks. `reserve(n)` sizes the
 /// per-point parts up front.
 ///
 /// Resolution: a policy that needs calibration (adaptive) makes the engine
@@ -159,7 +161,8 @@ class StreamClusterer {
         connectivity_(params.connectivity),
         motion_(params.motion),
         ground_(params.ground),
-        search_(detail::checked_mask_half_width(params.mask_size), connectivity_prune_witnesses(connectivity_)),
+        search_(detail::checked_mask_half_width(params.mask_size), connectivity_prune_witnesses(connectivity_),
+                params.crowded_cell_chains),
         state_(connectivity_),
         time_order_(params.time_order) {
     if (!resolution_.needs_calibration()) set_grid(choose_grid(resolution_, projection_, {}));
@@ -169,7 +172,9 @@ class StreamClusterer {
 
   /// Offers one point, its time read with `stamp(p)`. Returns why it was not
   /// inserted, or `accepted`. Every call advances the stream index.
-  /// Amortised O(w^2 k + e) with k points per cell and e neighbours.
+  /// Amortised O(w^2 k + e) with k points per cell and e neighbours; a
+  /// crowded cell whose chain the point links counts only its points older
+  /// than the chain start, and its youngest (CellChains).
   template <class P>
   RejectReason insert(const P& p) {
     return insert(p, stamp(p));

@@ -24,12 +24,17 @@
 /// | `ci.heap_bytes()`          | std::size_t | heap bytes held (capacities, not sizes), for `StreamClusterer::memory_usage()`; without it the index's memory is reported as unknown | any |
 /// | `ci.max_cell_size()`       | std::size_t | the most handles one cell can ever hold (a bounded index); the engine then sizes its neighbour-search scratch once (w^2 x this) instead of growing it with the densest mask seen so far | O(1) |
 /// | `ci.gather(cell, out, room)` | std::size_t | return n, the cell's handle count; when n <= room, `out[0, n)` holds its handles in `for_each` order. `out[0, room)` may be overwritten with anything, nothing past it. The engine passes room >= `max_cell_size()` (bounded cells), grows its buffer and asks again when n > room. Lets it gather a mask without a branch on each cell's occupancy | O(k) |
+/// | `ci.youngest(cell)`        | PointHandle | the handle stored last in the cell (the cell is not empty)           | O(1)       |
+/// | `ci.gather_older(cell, bound, out, room)` | std::size_t | return n, the count of the cell's handles stored before handle `bound` (older: `std::int32_t(h - bound) < 0`); when n <= room, `out[0, n)` holds them. Nothing past `out + room` is written | O(n + 1) |
 ///
 /// The engine calls `prefetch` for every cell of the mask before it visits
 /// them, so the cells' cache misses overlap (`has_spatial_index_prefetch_v`);
 /// `is_spatial_index_heap_reporting_v` detects `heap_bytes`,
 /// `has_spatial_index_cell_bound_v` detects `max_cell_size`,
-/// `has_spatial_index_gather_v` detects `gather`.
+/// `has_spatial_index_gather_v` detects `gather`; `has_spatial_index_chain_v`
+/// detects `youngest` with `gather_older`, with which the engine reads a
+/// crowded cell in O(1) when the new point links its youngest point
+/// (engine/cell_chains.hpp).
 ///
 /// `cell` is a CellIndex below the last `reset` shape's cell count; k is the
 /// cell's occupancy. A displaced point stays in the window and keeps its edges;
@@ -113,6 +118,27 @@ struct has_spatial_index_gather<I, std::void_t<decltype(std::declval<const I&>()
 /// `std::size_t gather(CellIndex, PointHandle* out, std::size_t room) const`.
 template <class I>
 inline constexpr bool has_spatial_index_gather_v = detail::has_spatial_index_gather<I>::value;
+
+namespace detail {
+template <class I, class = void>
+struct has_spatial_index_chain : std::false_type {};
+template <class I>
+struct has_spatial_index_chain<
+    I, std::void_t<decltype(std::declval<const I&>().youngest(CellIndex{})),
+                   decltype(std::declval<const I&>().gather_older(CellIndex{}, PointHandle{},
+                                                                  std::declval<PointHandle*>(), std::size_t{}))>>
+    : std::bool_constant<std::is_convertible_v<decltype(std::declval<const I&>().youngest(CellIndex{})), PointHandle> &&
+                         std::is_convertible_v<decltype(std::declval<const I&>().gather_older(
+                                                   CellIndex{}, PointHandle{}, std::declval<PointHandle*>(),
+                                                   std::size_t{})),
+                                               std::size_t>> {};
+}  // namespace detail
+
+/// True when index `I` has the optional `PointHandle youngest(CellIndex) const`
+/// and `std::size_t gather_older(CellIndex, PointHandle bound, PointHandle* out,
+/// std::size_t room) const` (the crowded-cell reads of engine/cell_chains.hpp).
+template <class I>
+inline constexpr bool has_spatial_index_chain_v = detail::has_spatial_index_chain<I>::value;
 
 /// True when spatial index `I` offers the optional `prefetch(CellIndex) const`.
 template <class I>

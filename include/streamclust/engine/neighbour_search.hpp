@@ -10,6 +10,7 @@
 #include <streamclust/concepts/spatial_index.hpp>
 #include <streamclust/detail/hints.hpp>
 #include <streamclust/detail/mask.hpp>
+#include <streamclust/engine/cell_chains.hpp>
 #include <streamclust/engine/retrieval_stats.hpp>
 #include <streamclust/types.hpp>
 
@@ -47,6 +48,14 @@ namespace streamclust {
 /// linkage accepts them. Each witness costs one linkage test per kept
 /// neighbour older than itself (one `link_many` call).
 ///
+/// Crowded cells (`chains` on, an index with unbounded cells, `gather` and
+/// the chain capability, e.g. BucketGrid): in a cell holding
+/// CellChains::kCrowdedCell points or more, the new point first tests the
+/// cell's youngest point; when they link, only the youngest and the points
+/// older than the cell's chain start are candidates (engine/cell_chains.hpp
+/// says why the rest add nothing to the components). The point-level graph
+/// then holds the window's connectivity, not every linked pair.
+///
 /// Cost: O(w^2 + candidates) per point, plus O(found x witnesses). The
 /// scratch buffers keep their size: sized once per grid for an index with
 /// bounded cells (w^2 x max_cell_size()), else grown when a crowded mask
@@ -58,15 +67,21 @@ class NeighbourSearch {
   static constexpr bool uses_payload = Ring::uses_payload;
   static constexpr bool tests_many = has_linkage_link_many_v<Linkage>;
   using payload_type = typename Ring::payload_type;
+  /// True when the index lets crowded cells be read by their chains.
+  static constexpr bool can_chain = has_spatial_index_chain_v<Index> && has_spatial_index_gather_v<Index> &&
+                                    !has_spatial_index_cell_bound_v<Index>;
 
   /// `half`: the mask's half width [cells]; `witnesses`: the filter's
-  /// witnesses per point (0: keep every edge).
-  NeighbourSearch(int half, std::uint32_t witnesses) : half_(half), witnesses_(witnesses) {}
+  /// witnesses per point (0: keep every edge); `chains`: read crowded cells
+  /// by their chains (when the index can).
+  NeighbourSearch(int half, std::uint32_t witnesses, bool chains = true)
+      : half_(half), witnesses_(witnesses), chains_on_(can_chain && chains) {}
 
   /// The grid is chosen: for an index with bounded cells the scratch gets its
   /// final size now, so no denser mask later makes it grow in steady state.
   void set_grid(const GridShape& grid, const Index& index) {
     grid_ = grid;
+    if (chains_on_) chains_.reset(grid.cell_count());
     if constexpr (has_spatial_index_cell_bound_v<Index>) {
       const auto width = static_cast<std::size_t>(2 * half_ + 1);
       const std::size_t most = width * width * index.max_cell_size();
@@ -105,6 +120,7 @@ class NeighbourSearch {
       if constexpr (has_spatial_index_prefetch_v<Index>) index.prefetch(c);
     });
     mask_count_ = n;
+    own_cell_ = cell;
   }
 
   /// Passes (2) and (3): the neighbours of point `h` (in `ring`, not in the
@@ -115,7 +131,7 @@ class NeighbourSearch {
                    RetrievalStats& stats) {
     const bool pruning = witnesses_ != 0;
     const bool with_slots = tests_many || pruning;
-    const std::size_t count = gather(ring, index, pruning, with_slots);
+    const std::size_t count = gather(ring, index, linkage, h, pruning, with_slots, stats);
     // Same capacity as candidates_: they grow only when it does.
     if (neighbours_.capacity() < candidates_.capacity()) neighbours_.reserve(candidates_.capacity());
     neighbours_.resize(count);
@@ -175,7 +191,8 @@ class NeighbourSearch {
   std::size_t heap_bytes() const {
     return mask_cells_.capacity() * sizeof(CellIndex) + mask_at_.capacity() * sizeof(CellAt) +
            (candidates_.capacity() + neighbours_.capacity()) * sizeof(PointHandle) +
-           slots_.capacity() * sizeof(std::uint32_t) + flags_.capacity() + cells_.capacity() * sizeof(std::uint16_t);
+           slots_.capacity() * sizeof(std::uint32_t) + flags_.capacity() + cells_.capacity() * sizeof(std::uint16_t) +
+           chains_.heap_bytes();
   }
 
  private:
@@ -213,8 +230,11 @@ class NeighbourSearch {
   /// the buffers stay sized to a room (w^2 K for bounded cells, at least
   /// w^2 kGatherCellRoom otherwise, grown when a crowded cell does not fit)
   /// and the stale handles past each cell's count are overwritten by the
-  /// next cell's. O(w^2 k).
-  std::size_t gather(const Ring& ring, const Index& index, bool pruning, bool with_slots) {
+  /// next cell's. With chains, a cell is read with room for fewer than
+  /// kCrowdedCell handles first; a crowded one goes to `gather_crowded`.
+  /// O(w^2 k), O(w^2 kCrowdedCell) where every crowded cell's chain is linked.
+  std::size_t gather(const Ring& ring, const Index& index, const Linkage& linkage, PointHandle h, bool pruning,
+                     bool with_slots, RetrievalStats& stats) {
     const auto prefetch_candidate = [&](std::uint32_t slot) {
       if constexpr (uses_payload) {
         detail::prefetch(&ring.payloads()[slot]);
@@ -235,21 +255,29 @@ class NeighbourSearch {
       if (with_slots && slots_.size() < candidates_.size()) slots_.resize(candidates_.size());
       if (pruning && cells_.size() < candidates_.size()) cells_.resize(candidates_.size());
       std::size_t count = 0;
+      bool keep_own_chain = false;  // the new point extends its own cell's chain
       for (std::size_t i = 0; i < mask_count_; ++i) {
         std::size_t n = 0;
         if constexpr (bounded) {  // n <= K, and K of room are left: count <= i K
           n = index.gather(mask_cells_[i], candidates_.data() + count, per_cell);
         } else {
           const std::size_t room = candidates_.size() - count;
-          n = index.gather(mask_cells_[i], candidates_.data() + count, room);
-          if (n > room) {  // a crowded cell: grow and gather it again
-            grow(std::max(2 * candidates_.size(), count + n + mask_count_ * per_cell));
+          const std::size_t read_room = chains_on_ ? std::min(room, CellChains::kCrowdedCell - 1) : room;
+          n = index.gather(mask_cells_[i], candidates_.data() + count, read_room);
+          bool crowded = false;
+          if constexpr (can_chain) {
+            crowded = chains_on_ && n >= CellChains::kCrowdedCell;
+            if (crowded) n = gather_crowded(ring, index, linkage, h, mask_cells_[i], count, n, grow, keep_own_chain, stats);
+          }
+          if (!crowded && n > read_room) {  // a crowded cell: grow and gather it again
+            if (n > room) grow(std::max(2 * candidates_.size(), count + n + mask_count_ * per_cell));
             n = index.gather(mask_cells_[i], candidates_.data() + count, candidates_.size() - count);
           }
         }
         if (pruning) std::fill_n(cells_.data() + count, n, static_cast<std::uint16_t>(i));
         count += n;
       }
+      if (chains_on_ && !keep_own_chain) chains_.restart(own_cell_, h);
       const PointHandle* const cand = candidates_.data();
       std::uint32_t* const slots = slots_.data();
       const PointHandle origin = ring.origin();
@@ -275,6 +303,39 @@ class NeighbourSearch {
       }
       return candidates_.size();
     }
+  }
+
+  /// A crowded cell (`n` points, at candidates_[count...]): when `h` links the
+  /// cell's youngest point, the youngest and the points older than the
+  /// cell's chain start, else every point (`grow(room)` makes room). Keeps
+  /// the chain of `h`'s own cell when they link (`keep_own_chain`). Returns
+  /// the candidates written; counts the rest in `stats.candidates_skipped`.
+  /// O(1 + points older than the chain start), O(n) when they do not link.
+  template <class Grow>
+  std::size_t gather_crowded(const Ring& ring, const Index& index, const Linkage& linkage, PointHandle h,
+                             CellIndex cell, std::size_t count, std::size_t n, const Grow& grow,
+                             bool& keep_own_chain, RetrievalStats& stats) {
+    const auto fit = [&](std::size_t wanted) {
+      if (count + wanted > candidates_.size()) grow(std::max(2 * candidates_.size(), count + wanted + mask_count_));
+    };
+    const PointHandle youngest = index.youngest(cell);
+    const std::uint32_t youngest_slot = ring.slot(youngest);
+    std::uint8_t linked = 0;
+    test_links(ring, linkage, ring.slot(h), &youngest_slot, 1, &linked);
+    if (linked == 0) {  // the chain ends here: every point is a candidate
+      fit(n);
+      return index.gather(cell, candidates_.data() + count, candidates_.size() - count);
+    }
+    keep_own_chain = keep_own_chain || cell == own_cell_;
+    const PointHandle start = chains_.start(cell, ring.oldest(), h);
+    std::size_t older = index.gather_older(cell, start, candidates_.data() + count, candidates_.size() - count);
+    if (count + older + 1 > candidates_.size()) {
+      fit(older + 1);
+      older = index.gather_older(cell, start, candidates_.data() + count, candidates_.size() - count);
+    }
+    candidates_[count + older] = youngest;
+    stats.candidates_skipped += n - (older + 1);
+    return older + 1;
   }
 
   /// The redundant-edge filter (see the class comment) over the first
@@ -322,7 +383,10 @@ class NeighbourSearch {
 
   int half_;
   std::uint32_t witnesses_;
+  bool chains_on_;
   GridShape grid_{};
+  CellIndex own_cell_ = 0;                  ///< the cell of the point being linked (the mask's centre)
+  CellChains chains_;                       ///< crowded cells: each cell's chain start
   std::vector<CellIndex> mask_cells_;       ///< the listed mask: [0, mask_count_)
   std::vector<CellAt> mask_at_;             ///< filter: row and column of each listed cell
   std::size_t mask_count_ = 0;

@@ -34,6 +34,7 @@ struct RetrievalStats {
   std::uint64_t forest_folds = 0;       ///< spanning_forest: folds without labelling (new edges past the threshold)
   std::uint64_t edges_found = 0;        ///< spanning_forest: edges of the inserted points to older neighbours
   std::uint64_t edges_pruned = 0;       ///< spanning_forest: of those, dropped as redundant (prune_witnesses)
+  std::uint64_t candidates_skipped = 0; ///< crowded cells: chain points not tested (engine/cell_chains.hpp)
   std::uint64_t forest_displaced = 0;   ///< spanning_forest: kept forest edges a fold moved aside (detail::merge_forest)
   std::uint64_t edges_folded = 0;       ///< spanning_forest: new edges the folds read (those still live at their fold)
   std::uint64_t edges_accepted = 0;     ///< spanning_forest: of those, accepted into the forest (the rest closed cycles)

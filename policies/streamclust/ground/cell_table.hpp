@@ -53,6 +53,9 @@ class CellTable {
     } else {
       column = static_cast<std::uint32_t>(pool_.size());
       detail::reserve_geometric(pool_, pool_.size() + 1);
+      // The free list never holds more than the pool: sized with it, so a
+      // release never allocates.
+      if (free_.capacity() < pool_.capacity()) free_.reserve(pool_.capacity());
       pool_.emplace_back();
     }
     slots_[i] = Slot{key, column};
@@ -60,7 +63,8 @@ class CellTable {
     return column;
   }
 
-  /// Releases cell (ix, iy)'s column (it must exist). O(1) expected.
+  /// Releases cell (ix, iy)'s column (it must exist). O(1) expected; never
+  /// allocates.
   void release(std::int32_t ix, std::int32_t iy) {
     const std::uint64_t key = pack(ix, iy);
     std::size_t i = home(key);

@@ -37,10 +37,13 @@ namespace streamclust {
 ///
 /// Memory: 32 bytes per cell, plus per spill bucket in use or pooled
 /// 32 bytes and 4 bytes per handle of capacity. Spill buckets keep their
-/// capacity when released (`remove`, `clear`, `reset`), and a full spill
-/// with removed handles at its front is compacted instead of grown, so a
-/// bucket's capacity only grows past its largest live occupancy: once every
-/// cell has seen its peak, the window allocates nothing. Heap blocks: `cells_`, `spills_` (each with its
+/// capacity when released (`remove`, `clear`, `reset`), a full spill
+/// with removed handles at its front is compacted instead of grown, and a
+/// cell that spills takes the pooled bucket of the largest capacity (the
+/// pool is a max-heap by capacity), so a bucket's capacity only grows past
+/// its largest live occupancy and the pool's large buckets go to the cells
+/// that fill first: once the crowded cells have seen their peaks, the
+/// window allocates nothing. Heap blocks: `cells_`, `spills_` (each with its
 /// `items` vector), `free_spills_`.
 ///
 /// Thread safety: not thread-safe (one writer, no concurrent readers).
@@ -163,6 +166,33 @@ class BucketGrid {
     return n;
   }
 
+  /// Optional SpatialIndex capability: the handle stored last in `cell`
+  /// (not empty). O(1).
+  PointHandle youngest(CellIndex cell) const {
+    const Cell& c = cells_[cell];
+    if (c.spill == kNoSpill) return c.items[c.count - 1];
+    return spills_[c.spill].items.back();
+  }
+
+  /// Optional SpatialIndex capability: the count n of the cell's handles
+  /// stored before handle `bound` (`std::int32_t(h - bound) < 0`) and, as far
+  /// as `room` allows, those handles, oldest first, in out[0, min(n, room)).
+  /// The cell is oldest first, so they are its prefix. O(n + 1).
+  std::size_t gather_older(CellIndex cell, PointHandle bound, PointHandle* out, std::size_t room) const {
+    const auto older = [bound](PointHandle h) { return static_cast<std::int32_t>(h - bound) < 0; };
+    const Cell& c = cells_[cell];
+    std::size_t n = 0;
+    for (std::uint32_t i = 0; i < c.count && older(c.items[i]); ++i, ++n) {
+      if (n < room) out[n] = c.items[i];
+    }
+    if (n < c.count || c.spill == kNoSpill) return n;
+    const Spill& s = spills_[c.spill];
+    for (std::size_t i = s.head, end = s.items.size(); i < end && older(s.items[i]); ++i, ++n) {
+      if (n < room) out[n] = s.items[i];
+    }
+    return n;
+  }
+
   /// Optional SpatialIndex capability: hint that `for_each(cell, ...)` follows
   /// soon (prefetches the cell's record; no effect on the contents). O(1).
   void prefetch(CellIndex cell) const { detail::prefetch(cells_.data() + cell); }
@@ -209,13 +239,25 @@ class BucketGrid {
     std::uint32_t head = 0;  ///< index of the oldest live handle in `items`
   };
 
+  /// Max-heap order of the pool: by capacity.
+  bool smaller_spill(std::uint32_t a, std::uint32_t b) const {
+    return spills_[a].items.capacity() < spills_[b].items.capacity();
+  }
+
+  /// A pooled spill bucket, the largest, or a new one. O(log pooled) or
+  /// O(1) amortised.
   std::uint32_t acquire_spill() {
+    const auto smaller = [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); };
     if (!free_spills_.empty()) {
+      std::pop_heap(free_spills_.begin(), free_spills_.end(), smaller);
       const std::uint32_t s = free_spills_.back();
       free_spills_.pop_back();
       return s;
     }
     spills_.emplace_back();
+    // The pool never holds more than every bucket: sized with them, so a
+    // release never allocates.
+    if (free_spills_.capacity() < spills_.capacity()) free_spills_.reserve(spills_.capacity());
     if (params_.reserve_per_cell > kInlineCapacity) spills_.back().items.reserve(params_.reserve_per_cell - kInlineCapacity);
     return static_cast<std::uint32_t>(spills_.size() - 1);
   }
@@ -228,6 +270,8 @@ class BucketGrid {
       s.items.clear();
       s.head = 0;
       free_spills_.push_back(c.spill);
+      std::push_heap(free_spills_.begin(), free_spills_.end(),
+                     [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); });
       c.spill = kNoSpill;
     } else if (std::size_t{s.head} * 2 > n) {
       s.items.erase(s.items.begin(), s.items.begin() + static_cast<std::ptrdiff_t>(s.head));
@@ -242,6 +286,8 @@ class BucketGrid {
       spills_[i].head = 0;
       free_spills_.push_back(static_cast<std::uint32_t>(i));
     }
+    std::make_heap(free_spills_.begin(), free_spills_.end(),
+                   [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); });
   }
 
   Params params_;

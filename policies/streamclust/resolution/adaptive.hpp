@@ -83,9 +83,19 @@ inline const char* to_string(AdaptiveStop s) {
 /// - then constraints: N_d >= 1; cols / rows within
 ///   [fov_aspect / aspect_factor, fov_aspect x aspect_factor] (a grid with
 ///   square angular cells has cols / rows = fov_aspect; a ratio outside is
-///   projected onto the interval keeping rows x cols); rows x cols <=
-///   max_cells (both scaled down). The initial grid is constrained the same
-///   way before the first measurement.
+///   projected onto the interval keeping rows x cols); rows x cols <= the
+///   cell limit (both scaled down): max_cells, and at most
+///   max_cells_per_point cells per accepted point (never fewer than the
+///   initial grid's). The initial grid is constrained the same way before
+///   the first measurement.
+///
+/// Why a limit per point: N points occupy at most N cells, so a grid of 64
+/// cells per point is at least 98 % empty whatever the points' layout; the
+/// sensors' first windows settle at 3-20 cells per point
+/// (docs/adaptive-resolution.md). Without it, points crowded into a tiny
+/// solid angle with a little jitter (a sensor facing a wall at close range)
+/// keep lowering M_mu as the cells shrink and drive the loop to max_cells:
+/// a 16.8 M cell grid, 537 MB of bucket-grid index.
 ///
 /// Stopping (the paper: "once M_mu stabilises"), reported by stop_reason():
 /// - `converged`: M_mu <= T_M and its relative change from the previous
@@ -137,6 +147,7 @@ class AdaptiveResolution {
     float aspect_factor = 4.0f;          ///< cols/rows within [fov_aspect / f, fov_aspect x f], f in [1, 1e6]
     std::uint32_t max_iterations = 50;   ///< grids measured at most, [1, 10000]
     std::uint32_t max_cells = 1u << 24;  ///< [cells] upper bound on H x W, [1, 2^31]
+    float max_cells_per_point = 64.0f;   ///< [cells per accepted point] bound on H x W, [1, 1e6]
   };
 
   /// Validates `params`; throws std::invalid_argument naming the parameter,
@@ -153,6 +164,7 @@ class AdaptiveResolution {
     check_range("aspect_factor", params.aspect_factor, 1.0, 1e6, "[1, 1e6]");
     check_range("max_iterations", params.max_iterations, 1.0, 10000.0, "[1, 10000]");
     check_range("max_cells", params.max_cells, 1.0, 2147483648.0, "[1, 2^31] cells");
+    check_range("max_cells_per_point", params.max_cells_per_point, 1.0, 1e6, "[1, 1e6] cells per point");
     const double cells = static_cast<double>(params.initial_rows) * static_cast<double>(params.initial_cols);
     if (cells > static_cast<double>(params.max_cells))
       throw error("initial_rows x initial_cols", cells, "[1, max_cells] cells");
@@ -179,6 +191,11 @@ class AdaptiveResolution {
       stop_ = AdaptiveStop::no_input;
       return grid_;
     }
+    const auto accepted = static_cast<double>(
+        std::count_if(coords.begin(), coords.end(), [](const Projected& p) { return p.accepted(); }));
+    const double initial_cells = static_cast<double>(params_.initial_rows) * static_cast<double>(params_.initial_cols);
+    cell_limit_ = std::min(static_cast<double>(params_.max_cells),
+                           std::max(initial_cells, static_cast<double>(params_.max_cells_per_point) * accepted));
     std::vector<CellIndex> keys;
     std::vector<CellIndex> scratch;
     std::vector<GridSize> visited;
@@ -317,9 +334,9 @@ class AdaptiveResolution {
     return constrain(rule(rows, s.density_v, s.gap_v), rule(cols, s.density_h, s.gap_h), fov_aspect);
   }
 
-  /// Apply N >= 1, the aspect interval and max_cells; round to integers.
+  /// Apply N >= 1, the aspect interval and the cell limit; round to integers.
   GridSize constrain(double rows, double cols, float fov_aspect) const {
-    const double max_cells = params_.max_cells;
+    const double max_cells = cell_limit_;
     const double lo = static_cast<double>(fov_aspect) / params_.aspect_factor;
     const double hi = static_cast<double>(fov_aspect) * params_.aspect_factor;
     rows = std::min(std::max(rows, 1.0), max_cells);
@@ -397,6 +414,7 @@ class AdaptiveResolution {
 
   Params params_;
   GridSize grid_;
+  double cell_limit_ = 0.0;  ///< [cells] the last calibrate's bound on H x W (max_cells, per point)
   std::vector<AdaptiveStep> trace_;
   AdaptiveStop stop_ = AdaptiveStop::not_run;
   bool calibrated_ = false;
