@@ -101,7 +101,7 @@ def main():
         ax.axvspan(0, args.warmup / 60.0, color="0.85", lw=0)
     ax_p99.set_ylabel("cycle latency P99 [ms]")
     ax_p99.set_xlabel("stream time [min] (grey: warm-up)")
-    ax_p99.set_ylim(bottom=0)
+    ax_p99.set_ylim(0, 1.5 * ax_p99.get_ylim()[1])  # room for the legend above the lines
     ax_p99.legend(loc="upper left", fontsize=7, frameon=False, ncol=2)
     ax_p99.set_xlim(0, max(ax_p99.get_xlim()[1], 0.1))
     ax_p99.grid(alpha=0.3)

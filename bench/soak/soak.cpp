@@ -245,11 +245,17 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     if (c->retrieved && c->time > o.warmup + 1e-9) steady.push_back(c->latency_us / 1000.0);
   }
   const sc::LatencySummary all = sc::summarize(steady);
+  double load_min = 1e9, load_max = -1e9;
+  for (const sc::bench::SecondSample* s = series.seconds_begin(); s != series.seconds_end(); ++s) {
+    load_min = std::min(load_min, s->load1);
+    load_max = std::max(load_max, s->load1);
+  }
   std::printf("  ran          %llu points (%.1f kHz) in %.1f s of wall time (engine %.1f s: %.2f M points/s), grid %u x %u\n",
               static_cast<unsigned long long>(offered), static_cast<double>(offered) / o.seconds / 1000.0, wall_s,
               engine_s, static_cast<double>(offered) / engine_s / 1e6, engine->grid().rows, engine->grid().cols);
-  std::printf("  latency      %zu steady cycles: median %.2f ms, P99 %.2f ms, P99.9 %.2f ms, max %.2f ms\n", all.count,
-              all.median, all.p99, all.p999, all.max);
+  std::printf("  latency      %zu steady cycles: median %.2f ms, P99 %.2f ms, P99.9 %.2f ms, max %.2f ms; "
+              "load average %.2f-%.2f on %ld cores\n", all.count, all.median, all.p99, all.p999, all.max, load_min, load_max,
+              ::sysconf(_SC_NPROCESSORS_ONLN));
   const sc::bench::SoakTargets targets;
   const sc::bench::SoakVerdict verdict = sc::bench::judge_soak(series, o.seconds, window, o.warmup, targets);
   sc::bench::print_verdict(stdout, verdict, targets);
