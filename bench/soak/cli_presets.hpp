@@ -6,10 +6,14 @@
 /// tool's own headers (tools/cli) so that the soak cannot drift from them:
 /// apply_preset, the compiled CliConfig, make_params and make_run_setup.
 ///
-/// | preset           | configuration                                                                | parameters |
-/// |------------------|------------------------------------------------------------------------------|------------|
-/// | `carc` (default) | `CliConfig<SphericalProjection, BucketGrid, AngularLinkage, TimeWindow>`      | theta 10 deg, w 5, T_M 2, T_B 0.1 s, full sphere, spanning forest |
-/// | `objects-mid360` | `CliConfig<SphericalProjection, CappedGrid, RangeAdaptiveLinkage, TimeWindow>` | K 4, w 5, T_M 4, T_B 0.5 s, Mid-360 field of view, height map ground; mount and sensor height given (`--mount`, `--sensor-height`) or estimated from the first window |
+/// - `carc` (the tool's default): `CliConfig<SphericalProjection,
+///   BucketGrid, AngularLinkage, TimeWindow>`, spanning forest; theta
+///   10 deg, w 5, T_M 2, T_B 0.1 s, the full sphere.
+/// - `objects-mid360`: `CliConfig<SphericalProjection, CappedGrid,
+///   RangeAdaptiveLinkage, TimeWindow>`, spanning forest; K 4, w 5, T_M 4,
+///   T_B 0.5 s, the Mid-360's field of view, the height-map ground; mount and
+///   sensor height given (`--mount`, `--sensor-height`) or estimated from
+///   the first window.
 ///
 /// CliConfig's resolution, motion and ground slots are run-time forwarders
 /// (RuntimeResolution, RuntimeMotion, RuntimeGround); the library's
@@ -55,9 +59,10 @@ void require_cli_config(const cli::ClusterOptions& o) {
   const bool index_ok = std::is_same_v<Index, BucketGrid>   ? o.index == cli::IndexKind::bucket
                         : std::is_same_v<Index, CappedGrid> ? o.index == cli::IndexKind::capped
                                                             : false;
-  const bool linkage_ok = std::is_same_v<Linkage, AngularLinkage>         ? o.linkage == cli::LinkageKind::angular
-                          : std::is_same_v<Linkage, RangeAdaptiveLinkage> ? o.linkage == cli::LinkageKind::range_adaptive
-                                                                          : false;
+  const bool linkage_ok = std::is_same_v<Linkage, AngularLinkage> ? o.linkage == cli::LinkageKind::angular
+                          : std::is_same_v<Linkage, RangeAdaptiveLinkage>
+                              ? o.linkage == cli::LinkageKind::range_adaptive
+                              : false;
   const bool rest_ok = o.mode == cli::Mode::continuous && o.projection == cli::ProjectionKind::spherical &&
                        !o.window_is_count && o.connectivity == cli::ConnectivityKind::spanning_forest &&
                        std::is_same_v<typename Config::window, TimeWindow> &&

@@ -13,10 +13,11 @@
 // 96-point packets (a Livox packet), advance_to the slice's end, retrieve;
 // its latency is the wall time of that work (steady_clock), the simulation
 // of the slice not included. Every second of stream time the soak samples
-// the resident set (/proc/self/status: VmRSS, anonymous and file-backed), the engine's heap capacities, the
-// machine's load, the window, the second's 20 cycle latencies and the
-// engine's heap allocations (bench/latency/alloc_counter: a counting global
-// operator new, attributing only the calls made inside the engine).
+// the resident set (/proc/self/status: VmRSS, anonymous and file-backed),
+// the engine's heap capacities, the machine's load, the window, the
+// second's 20 cycle latencies and the engine's heap allocations
+// (bench/latency/alloc_counter: a counting global operator new, attributing
+// only the calls made inside the engine).
 //
 // Targets (soak_verdict.hpp): RSS growth after the first window under 1 %;
 // the last minute's P99 at most 1.2 x the first minute's; no engine
@@ -95,7 +96,8 @@ const char* config_name() {
 /// simulator of its own (the same stream): what the tool reads for its
 /// first-window estimate.
 std::vector<Eigen::Vector3f> first_window(const SoakOptions& o, const sim::Scene& scene,
-                                          const sim::Simulator<sc::bench::Mid360Source>::Params& params, double window) {
+                                          const sim::Simulator<sc::bench::Mid360Source>::Params& params,
+                                          double window) {
   sim::Simulator<sc::bench::Mid360Source> simulator(sc::bench::Mid360Source(o.livox_data), scene, params);
   std::vector<Eigen::Vector3f> points;
   const sim::SimPoint first = simulator.next();
@@ -117,8 +119,10 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     cli.sensor_height = sim_params.start_position.z();
   }
   {
+    // The tool reads the first window only to estimate what is not given.
+    const bool estimates = cli.ground && (!sc::cli::has_motion_options(cli) || !cli.sensor_height);
     const std::vector<Eigen::Vector3f> first =
-        cli.ground ? first_window(o, scene, sim_params, window) : std::vector<Eigen::Vector3f>{};
+        estimates ? first_window(o, scene, sim_params, window) : std::vector<Eigen::Vector3f>{};
     sc::bench::resolve_cli_setup(cli, first);
   }
   const sc::ClustererParams<Config> params = sc::cli::make_params<Config>(cli);
@@ -147,15 +151,18 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     std::printf("               theta %.0f deg, w %d, T_M %.0f, T_B %.2f s\n", static_cast<double>(cli.theta_deg),
                 cli.mask, static_cast<double>(cli.max_multiplicity), window);
   } else {
-    std::printf("               range-adaptive %.2f m + %.2f x range, K %u, w %d, T_M %.0f, T_B %.2f s, ground and ceiling out\n",
-                static_cast<double>(cli.min_distance), static_cast<double>(cli.range_factor), cli.cap, cli.mask,
-                static_cast<double>(cli.max_multiplicity), window);
+    std::printf(
+        "               range-adaptive %.2f m + %.2f x range, K %u, w %d, T_M %.0f, T_B %.2f s, "
+        "ground and ceiling out\n",
+        static_cast<double>(cli.min_distance), static_cast<double>(cli.range_factor), cli.cap, cli.mask,
+        static_cast<double>(cli.max_multiplicity), window);
   }
   if (cli.setup && cli.setup->estimate) {
     const auto& e = *cli.setup->estimate;
-    std::printf("  setup        the tool's first-window estimate: roll %.2f deg, pitch %.2f deg, sensor %.3f m above the ground "
-                "(simulated: level, %.1f m)\n", e.roll_deg, e.pitch_deg, e.height,
-                static_cast<double>(sim_params.start_position.z()));
+    std::printf(
+        "  setup        the tool's first-window estimate: roll %.2f deg, pitch %.2f deg, "
+        "sensor %.3f m above the ground (simulated: level, %.1f m)\n",
+        e.roll_deg, e.pitch_deg, e.height, static_cast<double>(sim_params.start_position.z()));
   } else if (cli.ground && cli.sensor_height) {
     std::printf("  setup        --mount 0,0,0 --sensor-height %.1f (the simulated sensor: level, at rest)\n",
                 static_cast<double>(*cli.sensor_height));
@@ -226,9 +233,10 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     series.close_second(s);
     if (s.second % 60 == 0) {
       const sc::bench::SecondSample& last = *(series.seconds_end() - 1);
-      std::printf("  minute %3u   wall %6.1f s, RSS %.2f MiB, window %llu points, last second: median %.2f ms, max %.2f ms\n",
-                  s.second / 60, last.wall_s, static_cast<double>(last.rss_kib) / 1024.0,
-                  static_cast<unsigned long long>(last.window_points), last.median_ms, last.max_ms);
+      std::printf(
+          "  minute %3u   wall %6.1f s, RSS %.2f MiB, window %llu points, last second: median %.2f ms, max %.2f ms\n",
+          s.second / 60, last.wall_s, static_cast<double>(last.rss_kib) / 1024.0,
+          static_cast<unsigned long long>(last.window_points), last.median_ms, last.max_ms);
       std::fflush(stdout);
     }
   }
@@ -250,12 +258,14 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     load_min = std::min(load_min, s->load1);
     load_max = std::max(load_max, s->load1);
   }
-  std::printf("  ran          %llu points (%.1f kHz) in %.1f s of wall time (engine %.1f s: %.2f M points/s), grid %u x %u\n",
-              static_cast<unsigned long long>(offered), static_cast<double>(offered) / o.seconds / 1000.0, wall_s,
-              engine_s, static_cast<double>(offered) / engine_s / 1e6, engine->grid().rows, engine->grid().cols);
-  std::printf("  latency      %zu steady cycles: median %.2f ms, P99 %.2f ms, P99.9 %.2f ms, max %.2f ms; "
-              "load average %.2f-%.2f on %ld cores\n", all.count, all.median, all.p99, all.p999, all.max, load_min, load_max,
-              ::sysconf(_SC_NPROCESSORS_ONLN));
+  std::printf(
+      "  ran          %llu points (%.1f kHz) in %.1f s of wall time (engine %.1f s: %.2f M points/s), grid %u x %u\n",
+      static_cast<unsigned long long>(offered), static_cast<double>(offered) / o.seconds / 1000.0, wall_s, engine_s,
+      static_cast<double>(offered) / engine_s / 1e6, engine->grid().rows, engine->grid().cols);
+  std::printf(
+      "  latency      %zu steady cycles: median %.2f ms, P99 %.2f ms, P99.9 %.2f ms, max %.2f ms; "
+      "load average %.2f-%.2f on %ld cores\n",
+      all.count, all.median, all.p99, all.p999, all.max, load_min, load_max, ::sysconf(_SC_NPROCESSORS_ONLN));
   const sc::bench::SoakTargets targets;
   const sc::bench::SoakVerdict verdict = sc::bench::judge_soak(series, o.seconds, window, o.warmup, targets);
   sc::bench::print_verdict(stdout, verdict, targets);

@@ -22,29 +22,30 @@ namespace streamclust::bench {
 /// One cycle: the points of a 50 ms slice inserted, then (once the grid is
 /// calibrated) a retrieval.
 struct CycleRecord {
-  double time = 0.0;             ///< stream time at the end of the slice [s]
-  double latency_us = 0.0;       ///< wall time of insertion + retrieval [us]
-  double cpu_us = 0.0;           ///< this thread's CPU time of the same work [us]
-  std::uint32_t inserted = 0;    ///< points offered in the slice
-  std::uint32_t allocations = 0; ///< the engine's operator new calls in the cycle
-  bool retrieved = false;        ///< false while the first window is buffered for the grid
+  double time = 0.0;              ///< stream time at the end of the slice [s]
+  double latency_us = 0.0;        ///< wall time of insertion + retrieval [us]
+  double cpu_us = 0.0;            ///< this thread's CPU time of the same work [us]
+  std::uint32_t inserted = 0;     ///< points offered in the slice
+  std::uint32_t allocations = 0;  ///< the engine's operator new calls in the cycle
+  bool retrieved = false;         ///< false while the first window is buffered for the grid
 };
 
 /// One second of stream time.
 struct SecondSample {
-  std::uint32_t second = 0;        ///< stream second that ended [s]
-  double wall_s = 0.0;             ///< wall time since the stream started [s]
-  std::uint64_t rss_kib = 0;       ///< resident set at the end of the second [KiB]
-  std::uint64_t rss_anon_kib = 0;  ///< of which anonymous (heap, stacks) [KiB]
-  std::uint64_t rss_file_kib = 0;  ///< of which file-backed (code and data of the binary and libraries) [KiB]
-  std::uint64_t engine_kib = 0;    ///< the engine's heap capacities (memory_usage().total()) [KiB]
-  double load1 = 0.0;              ///< one-minute load average of the machine
-  std::uint32_t cycles = 0;        ///< cycles with a retrieval in the second
-  std::uint64_t points = 0;        ///< points offered in the second
-  std::uint64_t window_points = 0; ///< object + structure points in the window at the end
-  double median_ms = 0.0, p99_ms = 0.0, max_ms = 0.0;  ///< cycle latency (nearest rank; P99 of 20 is the max)
-  double cpu_p99_ms = 0.0;         ///< CPU-time P99 of the same cycles [ms]
-  std::uint64_t allocations = 0;   ///< the engine's operator new calls in the second
+  std::uint32_t second = 0;         ///< stream second that ended [s]
+  double wall_s = 0.0;              ///< wall time since the stream started [s]
+  std::uint64_t rss_kib = 0;        ///< resident set at the end of the second [KiB]
+  std::uint64_t rss_anon_kib = 0;   ///< of which anonymous (heap, stacks) [KiB]
+  std::uint64_t rss_file_kib = 0;   ///< of which file-backed (code and data of the binary and libraries) [KiB]
+  std::uint64_t engine_kib = 0;     ///< the engine's heap capacities (memory_usage().total()) [KiB]
+  double load1 = 0.0;               ///< one-minute load average of the machine
+  std::uint32_t cycles = 0;         ///< cycles with a retrieval in the second
+  std::uint64_t points = 0;         ///< points offered in the second
+  std::uint64_t window_points = 0;  ///< object + structure points in the window at the end
+  /// Cycle latency of the second's cycles [ms], nearest rank (the P99 of 20 is the max).
+  double median_ms = 0.0, p99_ms = 0.0, max_ms = 0.0;
+  double cpu_p99_ms = 0.0;          ///< CPU-time P99 of the same cycles [ms]
+  std::uint64_t allocations = 0;    ///< the engine's operator new calls in the second
 };
 
 class SoakSeries {
@@ -95,11 +96,13 @@ class SoakSeries {
   /// std::runtime_error when the file cannot be written.
   void write_seconds_csv(const std::string& path) const {
     std::ofstream f(path);
-    f << "second,wall_s,rss_kib,rss_anon_kib,rss_file_kib,engine_kib,load1,cycles,points,window_points,median_ms,p99_ms,max_ms,cpu_p99_ms,allocations\n";
+    f << "second,wall_s,rss_kib,rss_anon_kib,rss_file_kib,engine_kib,load1,cycles,points,window_points,"
+         "median_ms,p99_ms,max_ms,cpu_p99_ms,allocations\n";
     for (const SecondSample* s = seconds_begin(); s != seconds_end(); ++s) {
-      f << s->second << ',' << s->wall_s << ',' << s->rss_kib << ',' << s->rss_anon_kib << ',' << s->rss_file_kib << ',' << s->engine_kib << ',' << s->load1 << ',' << s->cycles << ','
-        << s->points << ',' << s->window_points << ',' << s->median_ms << ',' << s->p99_ms << ',' << s->max_ms << ','
-        << s->cpu_p99_ms << ',' << s->allocations << '\n';
+      f << s->second << ',' << s->wall_s << ',' << s->rss_kib << ',' << s->rss_anon_kib << ',' << s->rss_file_kib << ','
+        << s->engine_kib << ',' << s->load1 << ',' << s->cycles << ',' << s->points << ',' << s->window_points << ','
+        << s->median_ms << ',' << s->p99_ms << ',' << s->max_ms << ',' << s->cpu_p99_ms << ',' << s->allocations
+        << '\n';
     }
     finish(f, path);
   }

@@ -43,11 +43,11 @@ struct SoakVerdict {
   std::uint32_t rss_baseline_second = 0, rss_max_second = 0;
   std::uint64_t rss_baseline_kib = 0, rss_max_after_kib = 0, rss_end_kib = 0;
   SecondSample rss_baseline_sample, rss_max_sample;  ///< the two samples compared (anonymous and file-backed parts)
-  double rss_growth = 0.0;  ///< (max after - baseline) / baseline
+  double rss_growth = 0.0;                           ///< (max after - baseline) / baseline
   // Latency by period.
   bool p99_judged = false, p99_ok = true;
   double period_s = 60.0;
-  std::vector<PeriodLatency> periods;  ///< periods holding steady cycles, in time order
+  std::vector<PeriodLatency> periods;           ///< periods holding steady cycles, in time order
   double p99_ratio = 0.0, cpu_p99_ratio = 0.0;  ///< last period over first
   // Allocations after the warm-up.
   bool allocations_judged = false, allocations_ok = true;
@@ -149,16 +149,22 @@ inline SoakVerdict judge_soak(const SoakSeries& series, double seconds, double w
 
 /// Prints the verdict's figures and one line per target to `out`.
 inline void print_verdict(std::FILE* out, const SoakVerdict& v, const SoakTargets& t) {
-  const auto verdict = [](bool judged, bool ok) { return !judged ? "not judged (run too short)" : ok ? "met" : "MISSED"; };
+  const auto verdict = [](bool judged, bool ok) {
+    return !judged ? "not judged (run too short)" : ok ? "met" : "MISSED";
+  };
   const auto mib = [](std::uint64_t kib) { return static_cast<double>(kib) / 1024.0; };
-  std::fprintf(out, "  RSS          %.2f MiB at the end of second %u (the first window); max afterwards %.2f MiB (second %u), "
-                    "end %.2f MiB: growth %+.3f %% (target < %.1f %%): %s\n",
-               mib(v.rss_baseline_kib), v.rss_baseline_second, mib(v.rss_max_after_kib), v.rss_max_second,
-               mib(v.rss_end_kib), 100.0 * v.rss_growth, 100.0 * t.max_rss_growth, verdict(v.rss_judged, v.rss_ok));
+  std::fprintf(
+      out,
+      "  RSS          %.2f MiB at the end of second %u (the first window); max afterwards %.2f MiB (second %u), "
+      "end %.2f MiB: growth %+.3f %% (target < %.1f %%): %s\n",
+      mib(v.rss_baseline_kib), v.rss_baseline_second, mib(v.rss_max_after_kib), v.rss_max_second, mib(v.rss_end_kib),
+      100.0 * v.rss_growth, 100.0 * t.max_rss_growth, verdict(v.rss_judged, v.rss_ok));
   if (v.rss_judged) {
     const SecondSample& a = v.rss_baseline_sample;
     const SecondSample& b = v.rss_max_sample;
-    std::fprintf(out, "               anonymous %.2f -> %.2f MiB, file-backed %.2f -> %.2f MiB, engine heap capacities %.2f -> %.2f MiB\n",
+    std::fprintf(out,
+                 "               anonymous %.2f -> %.2f MiB, file-backed %.2f -> %.2f MiB, "
+                 "engine heap capacities %.2f -> %.2f MiB\n",
                  mib(a.rss_anon_kib), mib(b.rss_anon_kib), mib(a.rss_file_kib), mib(b.rss_file_kib), mib(a.engine_kib),
                  mib(b.engine_kib));
   }
@@ -168,17 +174,21 @@ inline void print_verdict(std::FILE* out, const SoakVerdict& v, const SoakTarget
   if (!v.periods.empty()) {
     const PeriodLatency& a = v.periods.front();
     const PeriodLatency& b = v.periods.back();
-    std::fprintf(out, "  P99          first period (%.0f-%.0f s, %zu cycles) %.2f ms, last (%.0f-%.0f s, %zu cycles) %.2f ms: "
-                      "x%.3f (CPU x%.3f; target at most x%.2f): %s\n",
-                 std::max(a.start_s, v.warmup_s), a.end_s, a.cycles, a.p99_ms, b.start_s, b.end_s, b.cycles, b.p99_ms,
-                 v.p99_ratio, v.cpu_p99_ratio, 1.0 + t.max_p99_rise, verdict(v.p99_judged, v.p99_ok));
+    std::fprintf(
+        out,
+        "  P99          first period (%.0f-%.0f s, %zu cycles) %.2f ms, last (%.0f-%.0f s, %zu cycles) %.2f ms: "
+        "x%.3f (CPU x%.3f; target at most x%.2f): %s\n",
+        std::max(a.start_s, v.warmup_s), a.end_s, a.cycles, a.p99_ms, b.start_s, b.end_s, b.cycles, b.p99_ms,
+        v.p99_ratio, v.cpu_p99_ratio, 1.0 + t.max_p99_rise, verdict(v.p99_judged, v.p99_ok));
   }
-  std::fprintf(out, "  allocations  %llu in the warm-up (first %.0f s); %llu after it, in %llu cycles (target %llu): %s\n",
-               static_cast<unsigned long long>(v.warmup_allocations), v.warmup_s,
-               static_cast<unsigned long long>(v.steady_allocations),
-               static_cast<unsigned long long>(v.steady_cycles_with_allocations),
-               static_cast<unsigned long long>(t.max_steady_allocations), verdict(v.allocations_judged, v.allocations_ok));
-  if (v.steady_allocations > 0) std::fprintf(out, "               (last allocating cycle at %.2f s)\n", v.last_steady_allocation_s);
+  std::fprintf(
+      out, "  allocations  %llu in the warm-up (first %.0f s); %llu after it, in %llu cycles (target %llu): %s\n",
+      static_cast<unsigned long long>(v.warmup_allocations), v.warmup_s,
+      static_cast<unsigned long long>(v.steady_allocations),
+      static_cast<unsigned long long>(v.steady_cycles_with_allocations),
+      static_cast<unsigned long long>(t.max_steady_allocations), verdict(v.allocations_judged, v.allocations_ok));
+  if (v.steady_allocations > 0)
+    std::fprintf(out, "               (last allocating cycle at %.2f s)\n", v.last_steady_allocation_s);
 }
 
 }  // namespace streamclust::bench
