@@ -9,6 +9,8 @@ PACKAGES=(
   libboost-graph-dev libeigen3-dev librange-v3-dev
   doctest-dev libbenchmark-dev
   nlohmann-json3-dev
+  # the fuzz targets (-DSTREAMCLUST_FUZZ=ON, scripts/fuzz.sh): clang-14's libFuzzer runtime
+  libclang-rt-14-dev
   # the Python module (-DSTREAMCLUST_PYTHON=ON, docs/python.md), its tests and example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-setuptools
 )
