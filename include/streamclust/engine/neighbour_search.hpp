@@ -256,22 +256,27 @@ class NeighbourSearch {
       if (pruning && cells_.size() < candidates_.size()) cells_.resize(candidates_.size());
       std::size_t count = 0;
       bool keep_own_chain = false;  // the new point extends its own cell's chain
+      // With chains a cell is read with room for fewer than kCrowdedCell
+      // handles: a crowded cell's are never copied whole.
+      const std::size_t room_cap = chains_on_ ? CellChains::kCrowdedCell - 1 : candidates_.max_size();
       for (std::size_t i = 0; i < mask_count_; ++i) {
         std::size_t n = 0;
         if constexpr (bounded) {  // n <= K, and K of room are left: count <= i K
           n = index.gather(mask_cells_[i], candidates_.data() + count, per_cell);
         } else {
           const std::size_t room = candidates_.size() - count;
-          const std::size_t read_room = chains_on_ ? std::min(room, CellChains::kCrowdedCell - 1) : room;
+          const std::size_t read_room = std::min(room, room_cap);
           n = index.gather(mask_cells_[i], candidates_.data() + count, read_room);
-          bool crowded = false;
-          if constexpr (can_chain) {
-            crowded = chains_on_ && n >= CellChains::kCrowdedCell;
-            if (crowded) n = gather_crowded(ring, index, linkage, h, mask_cells_[i], count, n, grow, keep_own_chain, stats);
-          }
-          if (!crowded && n > read_room) {  // a crowded cell: grow and gather it again
-            if (n > room) grow(std::max(2 * candidates_.size(), count + n + mask_count_ * per_cell));
-            n = index.gather(mask_cells_[i], candidates_.data() + count, candidates_.size() - count);
+          if (n > read_room) {  // rare: a crowded cell, or the room ran out
+            bool crowded = false;
+            if constexpr (can_chain) {
+              crowded = chains_on_ && n >= CellChains::kCrowdedCell;
+              if (crowded) n = gather_crowded(ring, index, linkage, h, mask_cells_[i], count, n, grow, keep_own_chain, stats);
+            }
+            if (!crowded) {  // grow and gather it again
+              if (n > room) grow(std::max(2 * candidates_.size(), count + n + mask_count_ * per_cell));
+              n = index.gather(mask_cells_[i], candidates_.data() + count, candidates_.size() - count);
+            }
           }
         }
         if (pruning) std::fill_n(cells_.data() + count, n, static_cast<std::uint16_t>(i));
@@ -312,7 +317,7 @@ class NeighbourSearch {
   /// the candidates written; counts the rest in `stats.candidates_skipped`.
   /// O(1 + points older than the chain start), O(n) when they do not link.
   template <class Grow>
-  std::size_t gather_crowded(const Ring& ring, const Index& index, const Linkage& linkage, PointHandle h,
+  STREAMCLUST_NOINLINE std::size_t gather_crowded(const Ring& ring, const Index& index, const Linkage& linkage, PointHandle h,
                              CellIndex cell, std::size_t count, std::size_t n, const Grow& grow,
                              bool& keep_own_chain, RetrievalStats& stats) {
     const auto fit = [&](std::size_t wanted) {

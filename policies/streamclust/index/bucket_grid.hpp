@@ -246,7 +246,7 @@ class BucketGrid {
 
   /// A pooled spill bucket, the largest, or a new one. O(log pooled) or
   /// O(1) amortised.
-  std::uint32_t acquire_spill() {
+  STREAMCLUST_NOINLINE std::uint32_t acquire_spill() {
     const auto smaller = [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); };
     if (!free_spills_.empty()) {
       std::pop_heap(free_spills_.begin(), free_spills_.end(), smaller);
@@ -262,17 +262,23 @@ class BucketGrid {
     return static_cast<std::uint32_t>(spills_.size() - 1);
   }
 
+  /// Returns the emptied spill bucket of `c` to the pool. O(log pooled).
+  STREAMCLUST_NOINLINE void release_spill(Cell& c) {
+    Spill& s = spills_[c.spill];
+    s.items.clear();
+    s.head = 0;
+    free_spills_.push_back(c.spill);  // never allocates: reserved with spills_
+    std::push_heap(free_spills_.begin(), free_spills_.end(),
+                   [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); });
+    c.spill = kNoSpill;
+  }
+
   /// Drops the spill's oldest handle; releases the spill when it empties.
   void pop_front(Cell& c, Spill& s) {
     ++s.head;
     const std::size_t n = s.items.size();
     if (s.head == n) {
-      s.items.clear();
-      s.head = 0;
-      free_spills_.push_back(c.spill);
-      std::push_heap(free_spills_.begin(), free_spills_.end(),
-                     [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); });
-      c.spill = kNoSpill;
+      release_spill(c);
     } else if (std::size_t{s.head} * 2 > n) {
       s.items.erase(s.items.begin(), s.items.begin() + static_cast<std::ptrdiff_t>(s.head));
       s.head = 0;
