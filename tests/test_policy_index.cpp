@@ -407,6 +407,31 @@ TEST_CASE("BucketGrid: a cell that spills takes the largest pooled bucket") {
   CHECK(grid.heap_bytes() == pooled);
 }
 
+TEST_CASE("BucketGrid: a full spill bucket moves into a larger pooled one instead of growing") {
+  constexpr PointHandle inline_cap = BucketGrid::kInlineCapacity;
+  BucketGrid grid{{}};
+  grid.reset(GridShape{1, 2, false});
+  std::vector<PointHandle> big, small;
+  PointHandle next = 0;
+  for (PointHandle k = 0; k < inline_cap + 100; ++k, ++next) {
+    grid.insert(0, next);
+    big.push_back(next);
+  }
+  for (PointHandle k = 0; k < inline_cap + 3; ++k, ++next) {
+    grid.insert(1, next);
+    small.push_back(next);
+  }
+  for (const PointHandle h : big) grid.remove(0, h);  // the large bucket is pooled; cell 1 keeps the small one
+  const std::size_t before = grid.heap_bytes();
+  for (PointHandle k = 0; k < 90; ++k, ++next) {  // cell 1 outgrows its bucket
+    grid.insert(1, next);
+    small.push_back(next);
+  }
+  CHECK(grid.heap_bytes() == before);  // no bucket grew: cell 1 moved into the large one
+  CHECK(contents(grid, 1) == small);
+  CHECK(grid.spilled_cells() == 1);
+}
+
 TEST_CASE("BucketGrid: youngest and gather_older read a crowded cell by its chain start") {
   static_assert(streamclust::has_spatial_index_chain_v<BucketGrid>);
   static_assert(!streamclust::has_spatial_index_chain_v<CappedGrid>);

@@ -40,10 +40,10 @@ namespace streamclust {
 /// capacity when released (`remove`, `clear`, `reset`), a full spill
 /// with removed handles at its front is compacted instead of grown, and a
 /// cell that spills takes the pooled bucket of the largest capacity (the
-/// pool is a max-heap by capacity), so a bucket's capacity only grows past
-/// its largest live occupancy and the pool's large buckets go to the cells
-/// that fill first: once the crowded cells have seen their peaks, the
-/// window allocates nothing. Heap blocks: `cells_`, `spills_` (each with its
+/// pool is a max-heap by capacity), and a full bucket trades places with a
+/// larger pooled one before it grows, so a bucket grows only when no pooled
+/// bucket is larger: the pool's capacity rises to the peak of the window's
+/// crowded cells and then the window allocates nothing. Heap blocks: `cells_`, `spills_` (each with its
 /// `items` vector), `free_spills_`.
 ///
 /// Thread safety: not thread-safe (one writer, no concurrent readers).
@@ -96,12 +96,8 @@ class BucketGrid {
       return kNoPoint;
     }
     if (c.spill == kNoSpill) c.spill = acquire_spill();
-    Spill& s = spills_[c.spill];
-    if (s.head > 0 && s.items.size() == s.items.capacity()) {  // compact the removed front instead of growing
-      s.items.erase(s.items.begin(), s.items.begin() + s.head);
-      s.head = 0;
-    }
-    s.items.push_back(h);
+    if (spills_[c.spill].items.size() == spills_[c.spill].items.capacity()) make_room(c);
+    spills_[c.spill].items.push_back(h);
     return kNoPoint;
   }
 
@@ -262,15 +258,34 @@ class BucketGrid {
     return static_cast<std::uint32_t>(spills_.size() - 1);
   }
 
-  /// Returns the emptied spill bucket of `c` to the pool. O(log pooled).
-  STREAMCLUST_NOINLINE void release_spill(Cell& c) {
+  /// Room for one more handle in `c`'s full spill bucket, without an
+  /// allocation where one can be avoided: compact the removed front, or
+  /// move the handles into the largest pooled bucket when it is larger
+  /// (the full one goes to the pool); only else does the bucket grow.
+  /// O(k + log pooled).
+  STREAMCLUST_NOINLINE void make_room(Cell& c) {
     Spill& s = spills_[c.spill];
-    s.items.clear();
-    s.head = 0;
-    free_spills_.push_back(c.spill);  // never allocates: reserved with spills_
+    if (s.head > 0) {  // compact the removed front instead of growing
+      s.items.erase(s.items.begin(), s.items.begin() + s.head);
+      s.head = 0;
+      return;
+    }
+    if (free_spills_.empty() || spills_[free_spills_.front()].items.capacity() <= s.items.size()) return;
+    const std::uint32_t full = c.spill;
+    c.spill = acquire_spill();  // the largest pooled bucket (the heap's front)
+    Spill& larger = spills_[c.spill];
+    larger.items.assign(spills_[full].items.begin(), spills_[full].items.end());
+    larger.head = 0;
+    release_spill(full);
+  }
+
+  /// Empties spill bucket `spill` and returns it to the pool. O(log pooled).
+  STREAMCLUST_NOINLINE void release_spill(std::uint32_t spill) {
+    spills_[spill].items.clear();
+    spills_[spill].head = 0;
+    free_spills_.push_back(spill);  // never allocates: reserved with spills_
     std::push_heap(free_spills_.begin(), free_spills_.end(),
                    [this](std::uint32_t a, std::uint32_t b) { return smaller_spill(a, b); });
-    c.spill = kNoSpill;
   }
 
   /// Drops the spill's oldest handle; releases the spill when it empties.
@@ -278,7 +293,8 @@ class BucketGrid {
     ++s.head;
     const std::size_t n = s.items.size();
     if (s.head == n) {
-      release_spill(c);
+      release_spill(c.spill);
+      c.spill = kNoSpill;
     } else if (std::size_t{s.head} * 2 > n) {
       s.items.erase(s.items.begin(), s.items.begin() + static_cast<std::ptrdiff_t>(s.head));
       s.head = 0;
