@@ -182,7 +182,7 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
     }
     if (parse_simulation_option(c, o.scenario)) continue;
     if (a == "--height") {
-      o.height = static_cast<float>(parse_positive(a, c.value()));
+      o.height = parse_positive_float(a, c.value());
       if (o.height > 100.0f) throw UsageError("--height: expected (0, 100] m");
     } else if (a == "--poses") {
       o.poses = c.choice({"on", "off"}) == "on";
@@ -216,10 +216,10 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
       o.rate_hz = parse_positive(a, c.value());
       if (o.rate_hz > 10000.0) throw UsageError("--rate: expected (0, 10000] Hz");
     } else if (a == "--distance") {
-      o.euclidean_distance = static_cast<float>(parse_positive(a, c.value()));
+      o.euclidean_distance = parse_positive_float(a, c.value());
       if (o.euclidean_distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
     } else if (a == "--plane-distance") {
-      o.plane_distance = static_cast<float>(parse_positive(a, c.value()));
+      o.plane_distance = parse_positive_float(a, c.value());
       if (o.plane_distance > 10.0f) throw UsageError("--plane-distance: expected (0, 10] m");
     } else if (a == "--ransac-iterations") {
       o.ransac_iterations = static_cast<std::size_t>(parse_count(a, c.value()));

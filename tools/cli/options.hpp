@@ -116,6 +116,14 @@ inline double parse_positive(std::string_view option, const std::string& value) 
   return v;
 }
 
+/// parse_positive for a float option: a value that rounds to 0 as a float
+/// (below 1e-45) is refused too.
+inline float parse_positive_float(std::string_view option, const std::string& value) {
+  const auto v = static_cast<float>(parse_positive(option, value));
+  if (!(v > 0.0f)) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
+  return v;
+}
+
 inline std::uint64_t parse_count(std::string_view option, const std::string& value) {
   const double v = parse_number(option, value);
   if (!(v >= 1.0) || v > 4e9 || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
@@ -218,13 +226,13 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
     o.linkage = v == "angular" ? LinkageKind::angular
                 : v == "euclidean" ? LinkageKind::euclidean : LinkageKind::range_adaptive;
   } else if (a == "--theta") {
-    o.theta_deg = static_cast<float>(parse_positive(a, c.value()));
+    o.theta_deg = parse_positive_float(a, c.value());
   } else if (a == "--min-ray-angle") {
     o.min_ray_angle_deg = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--distance") {
-    o.distance = static_cast<float>(parse_positive(a, c.value()));
+    o.distance = parse_positive_float(a, c.value());
   } else if (a == "--min-distance") {
-    o.min_distance = static_cast<float>(parse_positive(a, c.value()));
+    o.min_distance = parse_positive_float(a, c.value());
   } else if (a == "--range-factor") {
     o.range_factor = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--mask") {
@@ -249,7 +257,7 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
                               static_cast<std::uint32_t>(parse_count("--grid", v.substr(x + 1))));
     }
   } else if (a == "--max-multiplicity" || a == "--multiplicity") {
-    o.max_multiplicity = static_cast<float>(parse_positive(a, c.value()));
+    o.max_multiplicity = parse_positive_float(a, c.value());
   } else if (a == "--fov-azimuth" || a == "--fov-elevation" || a == "--fov-z") {
     const std::string v = c.value();
     const auto colon = v.find(':');
@@ -276,7 +284,10 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
 
 /// The checks on policy values that no single option can make.
 inline void validate_policy_options(const ClusterOptions& o) {
-  if (o.mask % 2 == 0 || o.mask > 255) throw UsageError("--mask: expected an odd number of cells from 1 to 255");
+  // mask < 1: a count beyond INT_MAX wraps to a negative int.
+  if (o.mask < 1 || o.mask % 2 == 0 || o.mask > 255) {
+    throw UsageError("--mask: expected an odd number of cells from 1 to 255");
+  }
   if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
 }
 
@@ -362,7 +373,7 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
     } else if (a == "--no-ground") {
       o.ground = false;
     } else if (a == "--sensor-height") {
-      o.sensor_height = static_cast<float>(parse_positive(a, c.value()));
+      o.sensor_height = parse_positive_float(a, c.value());
       if (*o.sensor_height > 100.0f) throw UsageError("--sensor-height: expected metres in (0, 100]");
     } else if (a == "--ground-tolerance") {
       o.ground_tolerance = static_cast<float>(parse_number(a, c.value()));
@@ -395,7 +406,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
           const auto comma = v.find(',', start);
           const std::string item = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
           const double n = parse_number("--cycles", item);
-          if (!(n >= 0.0) || n != static_cast<double>(static_cast<std::uint64_t>(n))) {
+          // The range first: converting a double beyond uint64 is undefined.
+          if (!(n >= 0.0 && n <= 9e15) || n != static_cast<double>(static_cast<std::uint64_t>(n))) {
             throw UsageError("--cycles: expected all, last or a comma-separated list of cycle numbers >= 0, got '" +
                              v + "'");
           }

@@ -120,7 +120,7 @@ inline bool parse_simulation_option(ArgCursor& c, SimulateOptions& o) {
   } else if (a == "--dropout") {
     o.dropout = static_cast<float>(parse_number(a, c.value()));
   } else if (a == "--max-range") {
-    o.max_range = static_cast<float>(parse_positive(a, c.value()));
+    o.max_range = parse_positive_float(a, c.value());
   } else if (a == "--seconds" || a == "--duration") {
     o.seconds = parse_positive(a, c.value());
     if (o.seconds > 3600.0) throw UsageError(a + ": at most 3600");

@@ -58,8 +58,9 @@ inline constexpr double tum_min_quaternion_norm = 1e-6;
 /// Reads a TUM trajectory from `in`; `name` (the file's path) names it in
 /// errors. Every line that is neither blank nor a `#` comment holds exactly
 /// 8 numbers separated by spaces or tabs; each is finite, the times strictly
-/// increase, the quaternion's norm is >= 1e-6 (not normalised here); at
-/// least one pose. Otherwise io::InputError "NAME: line N[, column K (name)]:
+/// increase, the quaternion's norm is >= 1e-6 and finite (components of
+/// 1e155 and more overflow it; not normalised here); at least one pose.
+/// Otherwise io::InputError "NAME: line N[, column K (name)]:
 /// expected ..., found ...". Times are returned as seconds since `origin`
 /// (the stream's time origin, stream_time.hpp), shifted exactly as the
 /// point readers shift theirs; numbers are parsed correctly rounded, so a
@@ -97,7 +98,7 @@ inline std::vector<TumRecord> read_tum(std::istream& in, const std::string& name
     const double t = relative_seconds_of_text(fields[0], v[0], 1.0, 1, origin);
     const TumRecord r{t, v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
     const double norm = std::sqrt(r.qx * r.qx + r.qy * r.qy + r.qz * r.qz + r.qw * r.qw);
-    if (!(norm >= tum_min_quaternion_norm)) {
+    if (!(norm >= tum_min_quaternion_norm) || !std::isfinite(norm)) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.3g", norm);
       throw InputError(name, detail::where_line(line_no),
