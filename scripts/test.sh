@@ -5,15 +5,17 @@
 #                                              Python module with its pytest suite (CTest python_pytest)
 #   clang  Release, clang++-14 -> build/clang  tests and examples (no benchmarks)
 #   asan   Debug, g++, ASan+UBSan -> build/asan tests and examples (bench-labelled tests excluded)
+#   fuzz   clang++-14, libFuzzer  -> build/fuzz   every fuzz target for 10 s on its seed corpus
+#                                                (scripts/fuzz.sh 10; docs/fuzzing.md)
 #
 # Usage:  scripts/test.sh [stage...]          e.g. scripts/test.sh gcc
 # Environment:
-#   STREAMCLUST_STAGES="gcc clang asan"  stages to run (arguments win over it)
-#   SKIP_GCC=1 SKIP_CLANG=1 SKIP_ASAN=1  drop a stage
-#   SKIP_DEPS=1                          do not run scripts/install-deps.sh
-#   JOBS=2                               parallel build and test jobs
-#   BUILD_ROOT=build                     where the build directories go
-#   CMAKE_GENERATOR                      honoured by CMake itself (e.g. Ninja)
+#   STREAMCLUST_STAGES="gcc clang asan fuzz"         stages to run (arguments win over it)
+#   SKIP_GCC=1 SKIP_CLANG=1 SKIP_ASAN=1 SKIP_FUZZ=1  drop a stage
+#   SKIP_DEPS=1                                      do not run scripts/install-deps.sh
+#   JOBS=2                                           parallel build and test jobs
+#   BUILD_ROOT=build                                 where the build directories go
+#   CMAKE_GENERATOR                                  honoured by CMake itself (e.g. Ninja)
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -24,7 +26,7 @@ BUILD_ROOT=${BUILD_ROOT:-build}
 if [[ $# -gt 0 ]]; then
   STAGES=("$@")
 else
-  read -r -a STAGES <<<"${STREAMCLUST_STAGES:-gcc clang asan}"
+  read -r -a STAGES <<<"${STREAMCLUST_STAGES:-gcc clang asan fuzz}"
 fi
 
 if [[ -z "${SKIP_DEPS:-}" ]]; then
@@ -72,6 +74,23 @@ run_stage() {
     "$name" $((t1 - t0)) $((t2 - t1)) $((t3 - t2)) $((t3 - t0)))")
 }
 
+# The fuzz targets (scripts/fuzz.sh): configure, build, then each target
+# for 10 s on its seed corpus; a crash, leak, timeout or OOM fails the stage.
+run_fuzz_stage() {
+  local dir="$BUILD_ROOT/fuzz" t0=$SECONDS
+  CURRENT_STAGE=fuzz
+  echo
+  echo "=== stage fuzz: clang++-14, libFuzzer + ASan + UBSan, $dir ==="
+  BUILD_DIR="$dir" JOBS="$JOBS" bash scripts/fuzz.sh --phase configure
+  local t1=$SECONDS
+  BUILD_DIR="$dir" JOBS="$JOBS" bash scripts/fuzz.sh --phase build
+  local t2=$SECONDS
+  BUILD_DIR="$dir" bash scripts/fuzz.sh --phase run 10
+  local t3=$SECONDS
+  SUMMARY+=("$(printf '%-6s configure %4ds  build %4ds  test %4ds  total %4ds' \
+    fuzz $((t1 - t0)) $((t2 - t1)) $((t3 - t2)) $((t3 - t0)))")
+}
+
 # The interpreter the Python module is built for and tested with: the first
 # one that has numpy and pytest (a pyenv shim ahead of Debian's python3 may
 # have neither).
@@ -105,8 +124,12 @@ for stage in "${STAGES[@]}"; do
       run_stage asan g++ Debug -LE bench -- -DSTREAMCLUST_SANITIZE=ON \
         -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_TEST_CXX20=OFF
       ;;
+    fuzz)
+      [[ -n "${SKIP_FUZZ:-}" ]] && continue
+      run_fuzz_stage
+      ;;
     *)
-      echo "test.sh: unknown stage '$stage' (known: gcc clang asan)" >&2
+      echo "test.sh: unknown stage '$stage' (known: gcc clang asan fuzz)" >&2
       exit 2
       ;;
   esac
