@@ -124,7 +124,9 @@ for t in "${TARGETS[@]}"; do
 done
 
 echo
-echo "=== fuzz.sh: build ${T_BUILD}s, ${#TARGETS[@]} targets x ${SECONDS_PER_TARGET}s, total $((SECONDS - T_ALL))s (logs: $BUILD_DIR/logs) ==="
+BUILT=""
+[[ $T_BUILD -gt 0 ]] && BUILT="build ${T_BUILD}s, "
+echo "=== fuzz.sh: ${BUILT}${#TARGETS[@]} targets x ${SECONDS_PER_TARGET}s, total $((SECONDS - T_ALL))s (logs: $BUILD_DIR/logs) ==="
 for line in "${SUMMARY[@]}"; do echo "  $line"; done
 if [[ ${#FAILED[@]} -gt 0 ]]; then
   echo "fuzz.sh: ${#FAILED[@]} target(s) failed: ${FAILED[*]} (inputs in $BUILD_DIR/artifacts/<target>/; rerun one with" \
