@@ -10,10 +10,13 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <vector>
 
 namespace streamclust::bench {
 
@@ -65,5 +68,59 @@ inline double load_average_1min() {
   if (!detail::read_small_file("/proc/loadavg", buffer, sizeof buffer)) return -1.0;
   return std::strtod(buffer, nullptr);
 }
+
+/// A fixed piece of CPU work, timed [us]: 2^20 steps of a dependent
+/// multiply-xorshift chain (no memory traffic), about 1-2 ms. Its time moves
+/// only with the host (clock frequency, another tenant on the core), so a
+/// cycle latency that rises with it is the machine's. Thread-safe.
+inline double host_probe_us() {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::uint64_t x = 0x9E3779B97F4A7C15ull;
+  for (int i = 0; i < (1 << 20); ++i) {
+    x ^= x >> 29;
+    x *= 0xBF58476D1CE4E5B9ull;
+  }
+  volatile std::uint64_t sink = x;  // keeps the chain, done before the clock is read again
+  (void)sink;
+  std::atomic_signal_fence(std::memory_order_seq_cst);
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// A fixed walk through memory, timed [us]: 2^15 dependent loads along one
+/// random cycle over 16 MiB (a pointer chase: every load misses the caches
+/// of a core and waits for the shared last-level cache or DRAM), about
+/// 2-4 ms. Its time moves with the other tenants of the host's caches and
+/// memory, which host_probe_us() does not see. The buffer is built at
+/// construction (Sattolo's shuffle, fixed seed). Not thread-safe.
+class MemoryProbe {
+ public:
+  MemoryProbe() : next_(std::size_t{1} << 22) {
+    for (std::size_t i = 0; i < next_.size(); ++i) next_[i] = static_cast<std::uint32_t>(i);
+    std::uint64_t x = 0x2545F4914F6CDD1Dull;
+    for (std::size_t i = next_.size() - 1; i > 0; --i) {  // one cycle through every slot
+      x ^= x << 13;
+      x ^= x >> 7;
+      x ^= x << 17;
+      const std::size_t j = static_cast<std::size_t>(x % i);
+      const std::uint32_t t = next_[i];
+      next_[i] = next_[j];
+      next_[j] = t;
+    }
+  }
+
+  double run_us() {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::uint32_t at = position_;
+    for (int i = 0; i < (1 << 15); ++i) at = next_[at];
+    volatile std::uint32_t end = at;  // the walk must be done before the clock is read again
+    std::atomic_signal_fence(std::memory_order_seq_cst);
+    position_ = end;  // the next run continues the walk: no warm lines
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+ private:
+  std::vector<std::uint32_t> next_;
+  std::uint32_t position_ = 0;
+};
 
 }  // namespace streamclust::bench

@@ -15,9 +15,12 @@
 // of the slice not included. Every second of stream time the soak samples
 // the resident set (/proc/self/status: VmRSS, anonymous and file-backed),
 // the engine's heap capacities, the machine's load, the window, the
-// second's 20 cycle latencies and the engine's heap allocations
+// second's 20 cycle latencies, the engine's heap allocations
 // (bench/latency/alloc_counter: a counting global operator new, attributing
-// only the calls made inside the engine).
+// only the calls made inside the engine), the engine's work (edges found:
+// the same on every run of the stream) and two probes of the host, fixed
+// CPU work and a fixed walk through 16 MiB of memory (proc_stats.hpp),
+// timed outside the cycles: a latency that moves with them is the host's.
 //
 // Targets (soak_verdict.hpp): RSS growth after the first window under 1 %;
 // the last minute's P99 at most 1.2 x the first minute's; no engine
@@ -184,6 +187,7 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
   bool tracing = false;
   std::uint64_t offered = 0;
   double engine_s = 0.0;
+  sc::bench::MemoryProbe memory_probe;  // built before the clock starts
   const auto start = Clock::now();
   for (std::size_t k = 1; k <= cycles; ++k) {
     const double cycle_end = static_cast<double>(k) * kCyclePeriod;
@@ -216,8 +220,9 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     const sc::bench::AllocCounters after = sc::bench::alloc_counters();
     const double us = std::chrono::duration<double, std::micro>(t1 - t0).count();
     engine_s += us * 1e-6;
+    const auto edges = static_cast<std::uint32_t>(retrieved ? engine->last_stats().edges_found : 0u);
     series.add_cycle({cycle_end, us, cpu, static_cast<std::uint32_t>(slice.size()),
-                      static_cast<std::uint32_t>(after.allocations - before.allocations), retrieved});
+                      static_cast<std::uint32_t>(after.allocations - before.allocations), edges, retrieved});
 
     if (k % kCyclesPerSecond != 0) continue;
     sc::bench::SecondSample s;
@@ -230,6 +235,8 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
     s.engine_kib = engine->memory_usage().total() / 1024u;
     s.load1 = sc::bench::load_average_1min();
     s.window_points = engine->size() + engine->structure_size();
+    s.host_probe_us = sc::bench::host_probe_us();  // outside the timed cycles
+    s.memory_probe_us = memory_probe.run_us();
     series.close_second(s);
     if (s.second % 60 == 0) {
       const sc::bench::SecondSample& last = *(series.seconds_end() - 1);

@@ -27,6 +27,9 @@ struct CycleRecord {
   double cpu_us = 0.0;            ///< this thread's CPU time of the same work [us]
   std::uint32_t inserted = 0;     ///< points offered in the slice
   std::uint32_t allocations = 0;  ///< the engine's operator new calls in the cycle
+  /// The engine's work in the cycle, independent of the host: edges from the
+  /// inserted points to older neighbours (RetrievalStats::edges_found).
+  std::uint32_t edges_found = 0;
   bool retrieved = false;         ///< false while the first window is buffered for the grid
 };
 
@@ -46,6 +49,9 @@ struct SecondSample {
   double median_ms = 0.0, p99_ms = 0.0, max_ms = 0.0;
   double cpu_p99_ms = 0.0;          ///< CPU-time P99 of the same cycles [ms]
   std::uint64_t allocations = 0;    ///< the engine's operator new calls in the second
+  std::uint64_t edges_found = 0;    ///< the engine's edges found in the second (host-independent work)
+  double host_probe_us = 0.0;       ///< host_probe_us() at the end of the second [us]
+  double memory_probe_us = 0.0;     ///< MemoryProbe::run_us() at the end of the second [us]
 };
 
 class SoakSeries {
@@ -69,6 +75,7 @@ class SoakSeries {
       const CycleRecord& c = cycles_[i];
       s.points += c.inserted;
       s.allocations += c.allocations;
+      s.edges_found += c.edges_found;
       if (!c.retrieved || n == wall_.size()) continue;
       wall_[n] = c.latency_us / 1000.0;
       cpu_[n] = c.cpu_us / 1000.0;
@@ -97,12 +104,12 @@ class SoakSeries {
   void write_seconds_csv(const std::string& path) const {
     std::ofstream f(path);
     f << "second,wall_s,rss_kib,rss_anon_kib,rss_file_kib,engine_kib,load1,cycles,points,window_points,"
-         "median_ms,p99_ms,max_ms,cpu_p99_ms,allocations\n";
+         "median_ms,p99_ms,max_ms,cpu_p99_ms,allocations,edges_found,host_probe_us,memory_probe_us\n";
     for (const SecondSample* s = seconds_begin(); s != seconds_end(); ++s) {
       f << s->second << ',' << s->wall_s << ',' << s->rss_kib << ',' << s->rss_anon_kib << ',' << s->rss_file_kib << ','
         << s->engine_kib << ',' << s->load1 << ',' << s->cycles << ',' << s->points << ',' << s->window_points << ','
         << s->median_ms << ',' << s->p99_ms << ',' << s->max_ms << ',' << s->cpu_p99_ms << ',' << s->allocations
-        << '\n';
+        << ',' << s->edges_found << ',' << s->host_probe_us << ',' << s->memory_probe_us << '\n';
     }
     finish(f, path);
   }
@@ -110,10 +117,10 @@ class SoakSeries {
   /// Writes the per-cycle table (header + one row per cycle).
   void write_cycles_csv(const std::string& path) const {
     std::ofstream f(path);
-    f << "time_s,latency_us,cpu_us,inserted,allocations,retrieved\n";
+    f << "time_s,latency_us,cpu_us,inserted,allocations,edges_found,retrieved\n";
     for (const CycleRecord* c = cycles_begin(); c != cycles_end(); ++c) {
       f << c->time << ',' << c->latency_us << ',' << c->cpu_us << ',' << c->inserted << ',' << c->allocations << ','
-        << (c->retrieved ? 1 : 0) << '\n';
+        << c->edges_found << ',' << (c->retrieved ? 1 : 0) << '\n';
     }
     finish(f, path);
   }

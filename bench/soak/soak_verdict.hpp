@@ -35,6 +35,9 @@ struct PeriodLatency {
   double start_s = 0.0, end_s = 0.0;  ///< stream time span [s]
   std::size_t cycles = 0;
   double median_ms = 0.0, p99_ms = 0.0, max_ms = 0.0, cpu_p99_ms = 0.0;
+  std::uint64_t edges_found = 0;  ///< the engine's work in the period (host-independent)
+  double host_probe_us = 0.0;     ///< median of the period's CPU probes [us] (the host's speed)
+  double memory_probe_us = 0.0;   ///< median of the period's memory probes [us] (the host's caches and memory)
 };
 
 struct SoakVerdict {
@@ -106,6 +109,7 @@ inline SoakVerdict judge_soak(const SoakSeries& series, double seconds, double w
   v.period_s = seconds >= 120.0 ? 60.0 : seconds / 2.0;
   const auto period_count = static_cast<std::size_t>(std::ceil(seconds / v.period_s - 1e-9));
   std::vector<std::vector<double>> wall(period_count), cpu(period_count);
+  std::vector<std::uint64_t> edges(period_count, 0);
   for (const CycleRecord* c = series.cycles_begin(); c != series.cycles_end(); ++c) {
     const bool steady = c->time > warmup_s + 1e-9;
     if (!steady) {
@@ -122,8 +126,17 @@ inline SoakVerdict judge_soak(const SoakSeries& series, double seconds, double w
     const auto k = std::min(period_count - 1, static_cast<std::size_t>(std::max(0.0, (c->time - 1e-9) / v.period_s)));
     wall[k].push_back(c->latency_us / 1000.0);
     cpu[k].push_back(c->cpu_us / 1000.0);
+    edges[k] += c->edges_found;
   }
   v.allocations_ok = v.steady_allocations <= targets.max_steady_allocations;
+  std::vector<std::vector<double>> probes(period_count), memory_probes(period_count);
+  for (const SecondSample* s = series.seconds_begin(); s != series.seconds_end(); ++s) {
+    const double t = static_cast<double>(s->second);
+    if (t <= warmup_s + 1e-9) continue;
+    const std::size_t k = std::min(period_count - 1, static_cast<std::size_t>((t - 1e-9) / v.period_s));
+    probes[k].push_back(s->host_probe_us);
+    memory_probes[k].push_back(s->memory_probe_us);
+  }
   for (std::size_t k = 0; k < period_count; ++k) {
     if (wall[k].empty()) continue;
     std::sort(wall[k].begin(), wall[k].end());
@@ -136,6 +149,13 @@ inline SoakVerdict judge_soak(const SoakSeries& series, double seconds, double w
     p.p99_ms = detail::rank_of_sorted(wall[k], 99.0);
     p.max_ms = wall[k].back();
     p.cpu_p99_ms = detail::rank_of_sorted(cpu[k], 99.0);
+    p.edges_found = edges[k];
+    if (!probes[k].empty()) {
+      std::sort(probes[k].begin(), probes[k].end());
+      p.host_probe_us = detail::rank_of_sorted(probes[k], 50.0);
+      std::sort(memory_probes[k].begin(), memory_probes[k].end());
+      p.memory_probe_us = detail::rank_of_sorted(memory_probes[k], 50.0);
+    }
     v.periods.push_back(p);
   }
   if (v.periods.size() >= 2) {
@@ -170,6 +190,17 @@ inline void print_verdict(std::FILE* out, const SoakVerdict& v, const SoakTarget
   }
   std::fprintf(out, "  P99 by %.0f s (steady cycles; ms, CPU in brackets):", v.period_s);
   for (const PeriodLatency& p : v.periods) std::fprintf(out, " %.2f [%.2f]", p.p99_ms, p.cpu_p99_ms);
+  std::fprintf(out, "\n");
+  // The work the cycles did, which the host cannot move: a P99 that rises
+  // while this stays flat is the machine's, not the engine's.
+  std::fprintf(out, "  work by %.0f s (edges found per steady cycle):", v.period_s);
+  for (const PeriodLatency& p : v.periods)
+    std::fprintf(out, " %.0f", p.cycles > 0 ? static_cast<double>(p.edges_found) / static_cast<double>(p.cycles) : 0.0);
+  std::fprintf(out, "\n");
+  // Fixed work timed once a second (proc_stats.hpp): the host's CPU speed and
+  // its caches and memory. A P99 that rises with them is the machine's.
+  std::fprintf(out, "  host by %.0f s (median probes, CPU / memory, us):", v.period_s);
+  for (const PeriodLatency& p : v.periods) std::fprintf(out, " %.0f/%.0f", p.host_probe_us, p.memory_probe_us);
   std::fprintf(out, "\n");
   if (!v.periods.empty()) {
     const PeriodLatency& a = v.periods.front();
