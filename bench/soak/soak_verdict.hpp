@@ -200,7 +200,12 @@ inline void print_verdict(std::FILE* out, const SoakVerdict& v, const SoakTarget
   // Fixed work timed once a second (proc_stats.hpp): the host's CPU speed and
   // its caches and memory. A P99 that rises with them is the machine's.
   std::fprintf(out, "  host by %.0f s (median probes, CPU / memory, us):", v.period_s);
-  for (const PeriodLatency& p : v.periods) std::fprintf(out, " %.0f/%.0f", p.host_probe_us, p.memory_probe_us);
+  for (const PeriodLatency& p : v.periods) {
+    if (p.host_probe_us > 0.0)
+      std::fprintf(out, " %.0f/%.0f", p.host_probe_us, p.memory_probe_us);
+    else
+      std::fprintf(out, " -");  // no second of the period after the warm-up
+  }
   std::fprintf(out, "\n");
   if (!v.periods.empty()) {
     const PeriodLatency& a = v.periods.front();
