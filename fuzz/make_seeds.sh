@@ -136,6 +136,97 @@ put("fuzz_kitti", "four.bin", kitti([p[:4] for p in pts[:4]]))
 put("fuzz_kitti", "special.bin", kitti([(float("nan"), 1, 2, 0), (float("inf"), 0, 0, 0), (1e30, -1e30, 0, 1e-40)]))
 put("fuzz_kitti", "one.bin", kitti([(10.0, 0.0, -1.5, 0.25)]))
 
+# ---------------------------------------------------------------- LVX / LVX2
+# The reader's test fixtures (tests/data/lvx, written by make_lvx.py there;
+# 1.7-4.3 KB each): every LVX version and data type, one and two LiDARs.
+lvx_dir = os.path.join(out, "..", "..", "tests", "data", "lvx")
+for name in sorted(os.listdir(lvx_dir)):
+    if name.endswith((".lvx", ".lvx2")):
+        with open(os.path.join(lvx_dir, name), "rb") as f:
+            put("fuzz_lvx", name, f.read())
+
+# ---------------------------------------------------------------- recordings
+# The recording readers' test fixtures (tests/data/recordings, written by
+# python3-rosbag, @mcap/core and sqlite3 there; 15-30 KB each). MCAP seeds get
+# their CRCs zeroed ("not computed" in the specification), so that mutations
+# reach the records instead of stopping at a CRC mismatch.
+rec_dir = os.path.join(out, "..", "..", "tests", "data", "recordings")
+def rec(name):
+    with open(os.path.join(rec_dir, name), "rb") as f:
+        return f.read()
+
+def mcap_records(b, start, end):
+    at = start
+    while at + 9 <= end:
+        op, length = b[at], struct.unpack_from("<Q", b, at + 1)[0]
+        yield at, op, b[at + 9:at + 9 + length]
+        at += 9 + length
+
+def mcap_without_crcs(b):
+    b = bytearray(b)
+    summary_start = struct.unpack_from("<Q", b, len(b) - 8 - 20)[0]
+    end = summary_start if summary_start else len(b) - 8 - 29
+    for at, op, _ in mcap_records(bytes(b), 8, end):
+        if op == 0x06:
+            struct.pack_into("<I", b, at + 9 + 24, 0)   # chunk uncompressed_crc
+        if op == 0x0F:
+            struct.pack_into("<I", b, at + 9, 0)        # data_section_crc
+    struct.pack_into("<I", b, len(b) - 8 - 4, 0)        # summary_crc
+    return bytes(b)
+
+for name in ["ros2_pc2_converter.mcap", "ros2_pc2_ouster.mcap", "ros2_custom_lz4.mcap", "ros2_custom_zstd.mcap"]:
+    put("fuzz_mcap", name, mcap_without_crcs(rec(name)))
+for name in ["ros1_custom.bag", "ros1_custom_lz4.bag", "ros1_custom_bz2.bag", "ros1_pc2_livox.bag"]:
+    put("fuzz_bag", name, rec(name))
+put("fuzz_db3", "ros2_pc2_old.db3", rec("ros2_pc2_old.db3"))
+put("fuzz_db3", "ros2_custom.db3", rec("ros2_custom_db3/ros2_custom_db3_0.db3"))
+
+def mcap_messages(b):
+    """Payloads of the Message records, top level and in uncompressed chunks."""
+    summary_start = struct.unpack_from("<Q", b, len(b) - 8 - 20)[0]
+    end = summary_start if summary_start else len(b) - 8 - 29
+    for _, op, content in mcap_records(b, 8, end):
+        if op == 0x05:
+            yield content[22:]
+        if op == 0x06:
+            clen = struct.unpack_from("<I", content, 28)[0]
+            compression = content[32:32 + clen]
+            records = content[32 + clen + 8:]
+            if compression == b"":
+                for _, op2, c2 in mcap_records(records, 0, len(records)):
+                    if op2 == 0x05:
+                        yield c2[22:]
+
+def bag_messages(b):
+    """Payloads of the message records in a bag's uncompressed chunks."""
+    def records(buf, at, end):
+        while at + 4 <= end:
+            hl = struct.unpack_from("<I", buf, at)[0]
+            header = buf[at + 4:at + 4 + hl]
+            dl = struct.unpack_from("<I", buf, at + 4 + hl)[0]
+            data = buf[at + 8 + hl:at + 8 + hl + dl]
+            fields, i = {}, 0
+            while i < len(header):
+                fl = struct.unpack_from("<I", header, i)[0]
+                k, _, v = header[i + 4:i + 4 + fl].partition(b"=")
+                fields[k] = v
+                i += 4 + fl
+            yield fields, data
+            at += 8 + hl + dl
+    for fields, data in records(b, 13, len(b)):
+        if fields.get(b"op") == b"\x05" and fields.get(b"compression") == b"none":
+            for f2, d2 in records(data, 0, len(data)):
+                if f2.get(b"op") == b"\x02":
+                    yield d2
+
+# One message per case; the first byte picks type and encoding (fuzz_ros_message.cpp).
+largest = lambda payloads: max(payloads, key=len)
+put("fuzz_ros_message", "ros1_custom", b"\x00" + largest(bag_messages(rec("ros1_custom.bag"))))
+put("fuzz_ros_message", "ros1_cloud_livox", b"\x01" + largest(bag_messages(rec("ros1_pc2_livox.bag"))))
+put("fuzz_ros_message", "cdr_custom", b"\x02" + largest(mcap_messages(rec("ros2_no_schema.mcap"))))
+put("fuzz_ros_message", "cdr_cloud_converter", b"\x03" + largest(mcap_messages(rec("ros2_pc2_converter.mcap"))))
+put("fuzz_ros_message", "cdr_cloud_ouster_rate", b"\x07" + largest(mcap_messages(rec("ros2_pc2_ouster.mcap"))))
+
 # ---------------------------------------------------------------- LZF
 # An input is a 2-byte little-endian declared size, then the compressed bytes.
 for name, raw in [("text", b"streamclust streamclust streamclust: continuous clustering, continuous!"),

@@ -22,7 +22,8 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 
-ALL_TARGETS=(fuzz_csv fuzz_pcd fuzz_ply fuzz_kitti fuzz_lzf fuzz_tum fuzz_cli_options fuzz_engine)
+ALL_TARGETS=(fuzz_csv fuzz_pcd fuzz_ply fuzz_kitti fuzz_lvx fuzz_bag fuzz_mcap fuzz_db3 fuzz_ros_message fuzz_lzf fuzz_tum
+             fuzz_cli_options fuzz_engine)
 PHASE=all
 if [[ $# -gt 1 && "$1" == "--phase" ]]; then
   PHASE=$2
@@ -57,6 +58,9 @@ dict_of() {
     fuzz_csv) echo fuzz/dict/csv.dict ;;
     fuzz_pcd) echo fuzz/dict/pcd.dict ;;
     fuzz_ply) echo fuzz/dict/ply.dict ;;
+    fuzz_lvx) echo fuzz/dict/lvx.dict ;;
+    fuzz_bag) echo fuzz/dict/bag.dict ;;
+    fuzz_mcap) echo fuzz/dict/mcap.dict ;;
     fuzz_tum) echo fuzz/dict/tum.dict ;;
     fuzz_cli_options) echo fuzz/dict/cli.dict ;;
     *) echo "" ;;
@@ -65,6 +69,9 @@ dict_of() {
 max_len_of() {
   case "$1" in
     fuzz_kitti) echo 4096 ;;
+    fuzz_lvx) echo 8192 ;;  # a few packages of about 1.4 KB
+    fuzz_bag | fuzz_mcap | fuzz_db3) echo 40960 ;;  # the seed recordings (15-38 KB)
+    fuzz_ros_message) echo 8192 ;;  # one message (2.3-6 KB)
     fuzz_tum) echo 8192 ;;
     fuzz_cli_options) echo 2048 ;;
     fuzz_engine) echo 12288 ;;  # ~2048 points, the scenario's own cap

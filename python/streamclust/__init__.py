@@ -185,9 +185,12 @@ def cluster_stream(xyz, t, intensity=None, *, preset, rate=20, cycles=None, **op
 
 
 def read(path, **read_options):
-    """Reads a point file (CSV, PCD, PLY, KITTI: every format the CLI reads).
+    """Reads a point file or a recording (CSV, PCD, PLY, KITTI, ROS 1 bag,
+    rosbag2 folder or .db3, MCAP, LVX/LVX2: every format the CLI reads).
 
-    read_options: ``format`` ("auto", "csv", "pcd", "ply", "kitti"),
+    read_options: ``format`` ("auto", "csv", "pcd", "ply", "kitti", "bag",
+    "db3", "mcap", "lvx"), ``topic`` (a recording's point-cloud topic, needed
+    when it has several; an LVX file's LiDAR by serial or index),
     ``time_unit`` ("s", "ms", "us", "ns"), ``point_rate`` [Hz] (times for an
     input without a time field), ``time_origin`` (whole seconds to count
     from; default: the first time's). Returns a dict: x, y, z, intensity

@@ -49,6 +49,7 @@ POLICY_KEYWORDS = {
 
 READ_KEYWORDS = {
     "format": ("--format", "choice"),
+    "topic": ("--topic", "choice"),
     "time_unit": ("--time-unit", "choice"),
     "point_rate": ("--point-rate", "number"),
     "time_origin": ("--time-origin", "number"),

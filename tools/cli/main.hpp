@@ -51,8 +51,10 @@ inline const char* cluster_help() {
 Streams INPUT point by point through the continuous C-ARC engine, retrieves
 clusters at a fixed rate of stream time and writes the results.
 
-input:
-  --format auto|csv|pcd|ply|kitti   input format (default auto: extension and content)
+input (a point file, or a recording: ROS 1 bag, rosbag2 folder or .db3, MCAP, LVX/LVX2):
+  --format auto|csv|pcd|ply|kitti|bag|db3|mcap|lvx   input format (default auto: extension and content)
+  --topic NAME                      the recording's point-cloud topic (needed when it has several),
+                                    or the LVX file's LiDAR (serial number or device index)
   --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
   --point-rate HZ                   the stream's point rate: records without a time field
                                     get t = index / HZ (a time field is kept)
@@ -100,17 +102,20 @@ examples:
   streamclust cluster frames.pcd --point-rate 100000 --window-time 0.2 --report report.json
   streamclust cluster scan.csv --preset carc-avia --index overwrite --mode frame --ply out.ply
   streamclust cluster scan.bin --format kitti --point-rate 1200000 --verify
+  streamclust cluster run.bag --topic /livox/lidar --preset carc-mid360 --labels labels.csv
 )";
 }
 
 inline const char* info_help() {
-  return R"(usage: streamclust info INPUT [--format F] [--time-unit U] [--point-rate HZ]
+  return R"(usage: streamclust info INPUT [--format F] [--topic NAME] [--time-unit U] [--point-rate HZ]
 
 Prints the format, fields, point count, bounds and time span of INPUT,
 reading it once as a stream. An input without a time field is described
 too ("no time field"); --point-rate then gives its times as for cluster.
+A recording (bag, rosbag2, MCAP) also lists its topics: type, message count.
 
-  --format auto|csv|pcd|ply|kitti   input format (default auto: extension and content)
+  --format auto|csv|pcd|ply|kitti|bag|db3|mcap|lvx   input format (default auto: extension and content)
+  --topic NAME                      the recording's point-cloud topic, or the LVX file's LiDAR
   --time-unit s|ms|us|ns            unit of the time column (default: ns for offset_time, s otherwise)
   --point-rate HZ                   the stream's point rate: records without a time field
                                     get t = index / HZ
@@ -119,6 +124,7 @@ too ("no time field"); --point-rate then gives its times as for cluster.
 examples:
   streamclust info scan.pcd
   streamclust info scan.bin --format kitti --point-rate 1200000
+  streamclust info run.mcap
 )";
 }
 

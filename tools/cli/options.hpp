@@ -292,15 +292,19 @@ inline void validate_policy_options(const ClusterOptions& o) {
 }
 
 /// Parses one input option shared by `cluster` and `info` (--format,
-/// --time-unit, --point-rate) into `read`. --point-rate HZ is the stream's
+/// --topic, --time-unit, --point-rate, --time-origin) into `read`. --point-rate HZ is the stream's
 /// point rate: the records of an input without a time field get
 /// t = index / HZ (an input with a time field keeps its times). Returns
 /// false when the option under the cursor is not one of them.
 inline bool parse_input_option(ArgCursor& c, io::ReadOptions& read) {
   const std::string& a = c.option();
   if (a == "--format") {
-    const std::string v = c.choice({"auto", "csv", "pcd", "ply", "kitti"});
+    const std::string v = c.choice({"auto", "csv", "pcd", "ply", "kitti", "bag", "db3", "mcap", "lvx"});
     read.format = v == "auto" ? std::nullopt : io::parse_format(v);
+  } else if (a == "--topic") {
+    const std::string v = c.value();
+    if (v.empty()) throw UsageError("--topic: expected a topic name (bags, MCAP) or a LiDAR (LVX: serial or index)");
+    read.topic = v;
   } else if (a == "--time-unit") {
     read.time_unit = io::parse_time_unit(c.choice({"s", "ms", "us", "ns"}));
   } else if (a == "--point-rate") {

@@ -8,6 +8,8 @@
 /// 1951 define them. Any PNG reader opens the result; it is about
 /// 3 x width x height bytes (no compression).
 
+#include <streamclust/io/crc32.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -68,23 +70,6 @@ class RgbImage {
 };
 
 namespace detail {
-
-/// CRC-32 (ISO 3309, polynomial 0xEDB88320 reflected), as PNG chunks use it;
-/// `crc` continues a running value (start with 0). O(n), table-driven.
-inline std::uint32_t crc32(const std::uint8_t* data, std::size_t n, std::uint32_t crc = 0) noexcept {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t i = 0; i < 256; ++i) {
-      std::uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[i] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (std::size_t i = 0; i < n; ++i) crc = table[(crc ^ data[i]) & 0xFFu] ^ (crc >> 8);
-  return ~crc;
-}
 
 /// Adler-32 (RFC 1950) of `n` bytes. O(n).
 inline std::uint32_t adler32(const std::uint8_t* data, std::size_t n) noexcept {

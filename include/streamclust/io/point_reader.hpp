@@ -121,6 +121,14 @@ class PointReader {
     return t;
   }
 
+  /// The same for an unsigned integer time in the field's unit (recordings:
+  /// nanoseconds composed from a message's base time and a point's offset).
+  double next_time_unsigned(std::uint64_t raw) noexcept {
+    const double t = info_.has_time ? time_.from_unsigned(raw) : time_from_rate();
+    ++index_;
+    return t;
+  }
+
   /// The same for a record without a time value (no time field).
   double next_time() noexcept {
     const double t = time_from_rate();

@@ -33,8 +33,9 @@ struct Record {
   std::int64_t label = -1;
 };
 
-/// The supported file formats.
-enum class Format { csv, pcd, ply, kitti };
+/// The supported input formats: point files (csv, pcd, ply, kitti) and
+/// recordings (ROS 1 bag, rosbag2 SQLite, MCAP, Livox LVX / LVX2).
+enum class Format { csv, pcd, ply, kitti, ros1_bag, rosbag2_sqlite, mcap, lvx };
 
 /// Units of a time field.
 enum class TimeUnit { s, ms, us, ns };
@@ -52,6 +53,10 @@ struct ReadOptions {
   /// the first finite time's whole seconds (`PointReader::time_origin`).
   /// Give it to read several inputs, or one input twice, on one time base.
   std::optional<TimeOrigin> time_origin;
+  /// Recordings: the stream to read -- a topic of a bag or MCAP file, or a
+  /// LiDAR of an LVX file (its serial number or device index). Default: the
+  /// only point-cloud stream; with several, the reader lists them in its error.
+  std::optional<std::string> topic;
 };
 
 /// What a reader found in the header of its input.
@@ -71,13 +76,17 @@ struct InputInfo {
   TimeUnit time_unit = TimeUnit::s;  ///< unit the time field is read in
 };
 
-/// "csv", "pcd", "ply", "kitti".
+/// "csv", "pcd", "ply", "kitti", "bag", "db3", "mcap", "lvx".
 inline const char* to_string(Format f) noexcept {
   switch (f) {
     case Format::csv: return "csv";
     case Format::pcd: return "pcd";
     case Format::ply: return "ply";
     case Format::kitti: return "kitti";
+    case Format::ros1_bag: return "bag";
+    case Format::rosbag2_sqlite: return "db3";
+    case Format::mcap: return "mcap";
+    case Format::lvx: return "lvx";
   }
   return "?";
 }
@@ -104,12 +113,17 @@ inline double seconds_per(TimeUnit u) noexcept {
   return 1.0;
 }
 
-/// Parses "csv", "pcd", "ply", "kitti" (also "bin"); nullopt otherwise.
+/// Parses the names to_string gives (also "bin" for kitti, "lvx2" for lvx);
+/// nullopt otherwise.
 inline std::optional<Format> parse_format(std::string_view s) noexcept {
   if (s == "csv") return Format::csv;
   if (s == "pcd") return Format::pcd;
   if (s == "ply") return Format::ply;
   if (s == "kitti" || s == "bin") return Format::kitti;
+  if (s == "bag") return Format::ros1_bag;
+  if (s == "db3") return Format::rosbag2_sqlite;
+  if (s == "mcap") return Format::mcap;
+  if (s == "lvx" || s == "lvx2") return Format::lvx;
   return std::nullopt;
 }
 
