@@ -7,9 +7,16 @@
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
+#include <streamclust/io/mcap_reader.hpp>
+#include <streamclust/io/ros/message_decoder.hpp>
+
 #include <doctest/doctest.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,4 +118,63 @@ TEST_CASE("info lists an LVX file's LiDARs, then each LiDAR") {
   REQUIRE(one.code == 0);
   CHECK(one.out.find("lidar HAP2301TX000731:\n") != std::string::npos);
   CHECK(one.out.find("lidar 0:\n") == std::string::npos);
+}
+
+TEST_CASE("--mcap: every cycle's window and boxes, as the labels file has them") {
+  namespace io = streamclust::io;
+  namespace ros = streamclust::io::ros;
+  TempDir dir("cli_recordings", "mcap");
+  const std::string mcap_path = dir.path("out.mcap"), labels_path = dir.path("labels.csv");
+  const auto r = run_cli({"cluster", data("recordings/ros1_custom_lz4.bag"), "--preset", "carc-mid360", "--window-time",
+                          "0.2", "--quiet", "--cycles", "all", "--labels", labels_path, "--mcap", mcap_path});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // The labels file, per cycle: the labels of rows that are window points (not -1).
+  std::map<std::uint64_t, std::multiset<std::int64_t>> want;
+  {
+    std::istringstream in(slurp(labels_path));
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      const auto c1 = line.find(','), c3 = line.rfind(',');
+      const std::uint64_t cycle = std::stoull(line.substr(0, c1));
+      const std::int64_t label = std::stoll(line.substr(c3 + 1));
+      if (label != -1) want[cycle].insert(label);
+    }
+  }
+  REQUIRE(want.size() > 1);
+  io::McapReader mcap(mcap_path);
+  REQUIRE(mcap.topics().size() == 2);
+  CHECK(mcap.topics()[0].name == "/streamclust/points");
+  CHECK(mcap.topics()[0].type == "foxglove_msgs/msg/PointCloud");
+  CHECK(mcap.topics()[1].type == "foxglove_msgs/msg/SceneUpdate");
+  std::vector<ros::MessageDefinitions> defs;
+  for (const auto& t : mcap.topics()) defs.emplace_back(t.type, *t.definition);
+  ros::DecodedMessage decoded;
+  io::RecordingMessage m;
+  std::uint64_t cycle = 0, updates = 0;
+  while (mcap.next(m)) {
+    ros::MessageDecoder decoder(defs[m.topic], ros::Encoding::cdr);
+    decoder.decode(m.data, m.size, m.origin, decoded);  // every field as the schema says, nothing left over
+    CHECK(m.log_time_ns >= 1700000000ull * 1000000000ull);
+    if (m.topic == 0) {
+      const ros::Leaf* data = decoded.find("data");
+      REQUIRE(data != nullptr);
+      std::multiset<std::int64_t> labels;
+      for (std::size_t i = 0; i < data->count / 20; ++i)
+        labels.insert(decoded.integer(ros::Primitive::int32, data->offset + 20 * i + 12));
+      CHECK(labels == want[cycle]);
+      ++cycle;
+    } else {
+      std::set<std::string> ids, expected;
+      for (std::size_t k = 0; const ros::Leaf* id = decoded.find("entities." + std::to_string(k) + ".id"); ++k)
+        ids.insert(id->text);
+      for (const std::int64_t l : want[updates])
+        if (l >= 0) expected.insert(std::to_string(l));
+      CHECK(ids == expected);
+      ++updates;
+    }
+  }
+  CHECK(cycle == want.size());
+  CHECK(updates == want.size());
 }

@@ -10,9 +10,11 @@
 
 #include "cli/cluster.hpp"
 #include "cli/engine_config.hpp"
+#include "cli/mcap_output.hpp"
 #include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/report.hpp"
+#include "cli/structure_labels.hpp"
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/frame_clusterer.hpp>
@@ -39,11 +41,6 @@
 #include <unistd.h>
 
 namespace streamclust::cli {
-
-/// Labels of structure points in the labels file and the point clouds
-/// (docs/cli.md); -1 is an unlabelled (rejected) record.
-inline constexpr std::int64_t kGroundLabel = -2;
-inline constexpr std::int64_t kCeilingLabel = -3;
 
 /// Which cycles go to the labels file and the point clouds.
 class CycleSelection {
@@ -166,7 +163,16 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   // The window's rows (labels, point clouds, the comparison of --verify) are
   // gathered only when an output needs them: copying a window per cycle
   // would evict the clusterer's data from the caches and slow the next cycle.
-  const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() || o.verify;
+  const bool rows_wanted =
+      !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() || !o.mcap_path.empty() || o.verify;
+  std::optional<McapOutput> mcap;  // every cycle
+  if (!o.mcap_path.empty()) {
+    try {
+      mcap.emplace(o.mcap_path);
+    } catch (const std::runtime_error&) {
+      throw UsageError("--mcap: cannot write '" + o.mcap_path + "'");
+    }
+  }
 
   // Retrieves at `cycle_time`, then writes/keeps the outputs of a selected cycle.
   auto run_cycle = [&](double cycle_time) -> int {
@@ -305,6 +311,11 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
       }
     }
     report.cycles.push_back(c);
+    if (mcap) {
+      stage = Stage::writing;
+      mcap->write(window_out.points, window_out.point_labels, cycle_time, reader->time_origin());
+      stage = Stage::clustering;
+    }
     if (selection.selected(cycle) || selection.last_only()) {
       have_selected = true;
       if (labels_file.is_open() && !selection.last_only()) {
@@ -413,6 +424,13 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     io::write_ply(o.ply_path, kept.points, kept.point_labels, true, report.time_origin);
   if (have_selected && !o.pcd_path.empty())
     io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary", report.time_origin);
+  if (mcap) {
+    try {
+      mcap->close();
+    } catch (const std::runtime_error&) {
+      throw UsageError("--mcap: writing '" + o.mcap_path + "' failed");
+    }
+  }
   if (!o.quiet) out << summary_line(report) << "\n";
   return kOk;
 }

@@ -94,6 +94,8 @@ outputs:
                     (cycle latency: wall time of the clusterer's work for the cycle)
   --ply FILE        last selected cycle, coloured by label, with a label property
   --pcd FILE        last selected cycle, with a label field
+  --mcap FILE       every cycle for Foxglove: the window as a PointCloud coloured by label
+                    and the clusters as boxes (SceneUpdate), at the stream's time
   --verify          compare every retrieval with the batch clusterer; exit 3 on mismatch
   --quiet, -q       no progress bar, no summary line
 

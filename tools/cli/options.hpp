@@ -88,6 +88,7 @@ struct ClusterOptions {
   std::shared_ptr<const RunSetup> setup;
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
+  std::string mcap_path;  ///< every cycle for Foxglove (tools/cli/mcap_output.hpp)
   bool all_cycles = false;
   std::vector<std::uint64_t> cycle_list;  ///< empty and !all_cycles: last cycle only
   bool verify = false;
@@ -400,6 +401,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.ply_path = c.value();
     } else if (a == "--pcd") {
       o.pcd_path = c.value();
+    } else if (a == "--mcap") {
+      o.mcap_path = c.value();
     } else if (a == "--cycles") {
       const std::string v = c.value();
       o.all_cycles = v == "all";

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# CTest mcap_foxglove: `streamclust cluster --mcap` read by an independent
+# MCAP reader (tests/scripts/check_mcap.mjs: @mcap/core with CRCs, indexes,
+# and every message decoded from its schema). Skipped (exit 77) without node
+# or without the npm packages: install them with scripts/install-npm-tools.sh
+# (npm registry needed) or point STREAMCLUST_NPM_PREFIX at them.
+# Usage: mcap_foxglove_test.sh TOOL SOURCE_DIR WORK_DIR
+set -euo pipefail
+tool=$1 src=$2 work=$3
+prefix=${STREAMCLUST_NPM_PREFIX:-$src/build/npm}
+if ! command -v node >/dev/null || [[ ! -d "$prefix/node_modules/@mcap/core" ]]; then
+  echo "skipped: needs node and @mcap/core in $prefix (scripts/install-npm-tools.sh)"
+  exit 77
+fi
+mkdir -p "$work"
+out="$work/clusters.mcap"
+"$tool" cluster "$src/tests/data/recordings/ros2_custom_lz4.mcap" --preset carc-mid360 --window-time 0.2 \
+  --quiet --mcap "$out" --labels "$work/labels.csv" --cycles all
+json=$(node "$src/tests/scripts/check_mcap.mjs" "$prefix" "$out")
+echo "$json"
+cycles=$(tail -n +2 "$work/labels.csv" | cut -d, -f1 | sort -u | wc -l)
+python3 - "$json" "$cycles" <<'PY'
+import json, sys
+r, cycles = json.loads(sys.argv[1]), int(sys.argv[2])
+def need(ok, what):
+    if not ok:
+        sys.exit("mcap_foxglove: " + what)
+need(r["profile"] == "ros2", "profile ros2")
+need(r["topics"]["/streamclust/points"]["schema"] == "foxglove_msgs/msg/PointCloud", "PointCloud schema")
+need(r["topics"]["/streamclust/clusters"]["schema"] == "foxglove_msgs/msg/SceneUpdate", "SceneUpdate schema")
+need(r["topics"]["/streamclust/points"]["messages"] == cycles, "one PointCloud per cycle (%d)" % cycles)
+need(r["indexed"] == r["messages"] == 2 * cycles, "the indexed reader finds every message")
+need(all(n > 0 for n in r["points"]) and all(e > 0 for e in r["entities"]), "points and boxes in every cycle")
+need(int(r["first_log_time"]) >= 1700000000 * 10**9, "log times in the stream's Unix time")
+print("mcap_foxglove: ok,", cycles, "cycles")
+PY
