@@ -30,6 +30,7 @@
 //                     $STREAMCLUST_LIVOX_DATA, else ../shared/data/livox)
 
 #include <streamclust/eval/object_metrics.hpp>
+#include <streamclust/io/birds_eye.hpp>
 #include <streamclust/io/png_writer.hpp>
 #include <streamclust/sensors.hpp>
 #include <streamclust/sim/scenes.hpp>
@@ -98,91 +99,20 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
 }
 
-/// A bright colour per rank (golden-angle hue steps: neighbours in rank
-/// differ most), from HSV with S = 0.75, V = 1.
-sc::io::RgbImage::Color rank_color(std::size_t rank) {
-  const double hue = std::fmod(static_cast<double>(rank) * 137.508, 360.0) / 60.0;
-  const double f = hue - std::floor(hue);
-  const auto level = [](double v) { return static_cast<std::uint8_t>(std::lround(255.0 * v)); };
-  const std::uint8_t hi = 255;
-  const std::uint8_t lo = level(0.25);
-  const std::uint8_t down = level(1.0 - 0.75 * f);
-  const std::uint8_t up = level(0.25 + 0.75 * f);
-  switch (static_cast<int>(hue)) {
-    case 0: return {hi, up, lo};
-    case 1: return {down, hi, lo};
-    case 2: return {lo, hi, up};
-    case 3: return {lo, down, hi};
-    case 4: return {up, lo, hi};
-    default: return {hi, lo, down};
-  }
-}
-
-/// Bird's-eye view (x to the right, y up) of a window, one colour per
-/// cluster: clusters above 5 % of the window (walls, floor, ceiling) dimmed
-/// and drawn first, clusters of at least 20 points (objects, people) on top
-/// in bright colours, smaller fragments grey. Ground-truth free.
+/// Bird's-eye view of a window (io/birds_eye.hpp): one colour per cluster
+/// with its box, structure-sized clusters dimmed, fragments grey, a metre
+/// scale and the sensor's origin. Ground-truth free.
 sc::io::RgbImage birds_eye(const sc::Clustering& result, const StreamLog& log) {
-  // Extent of the window's points, with a margin; 900 px on the long side.
-  float x_min = 1e30f, x_max = -1e30f, y_min = 1e30f, y_max = -1e30f;
+  std::vector<sc::io::Record> points;
+  std::vector<std::int64_t> labels;
+  points.reserve(result.points.size());
+  labels.reserve(result.points.size());
   for (const sc::PointLabel& pl : result.points) {
     const sim::SimPoint& p = log.at(pl.stream_index);
-    x_min = std::min(x_min, p.x);
-    x_max = std::max(x_max, p.x);
-    y_min = std::min(y_min, p.y);
-    y_max = std::max(y_max, p.y);
+    points.push_back(sc::io::Record{p.x, p.y, p.z, 0.0f, 0.0, -1});
+    labels.push_back(static_cast<std::int64_t>(pl.label));
   }
-  const float margin = 0.5f;
-  x_min -= margin;
-  x_max += margin;
-  y_min -= margin;
-  y_max += margin;
-  const float scale = 900.0f / std::max(x_max - x_min, y_max - y_min);  // px per metre
-  const auto w = static_cast<std::size_t>(std::ceil((x_max - x_min) * scale));
-  const auto h = static_cast<std::size_t>(std::ceil((y_max - y_min) * scale));
-  sc::io::RgbImage img(std::max<std::size_t>(w, 1), std::max<std::size_t>(h, 1), {16, 16, 20});
-
-  // Clusters by size, largest first; a cluster above 5 % of the window is
-  // structure-sized and drawn dim.
-  std::vector<std::pair<std::size_t, sc::ComponentId>> by_size;
-  for (const sc::ComponentSummary& c : result.components) by_size.emplace_back(c.size, c.id);
-  std::sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::vector<std::pair<sc::ComponentId, std::size_t>> rank_of;  // (id, rank), sorted by id
-  for (std::size_t r = 0; r < by_size.size(); ++r) rank_of.emplace_back(by_size[r].second, r);
-  std::sort(rank_of.begin(), rank_of.end());
-  const auto rank = [&](sc::ComponentId id) {
-    return std::lower_bound(rank_of.begin(), rank_of.end(), std::make_pair(id, std::size_t{0}))->second;
-  };
-  const std::size_t large = result.points.size() / 20;
-
-  std::vector<std::pair<std::size_t, std::size_t>> order;  // (rank, point index): draw largest cluster first
-  order.reserve(result.points.size());
-  for (std::size_t i = 0; i < result.points.size(); ++i) order.emplace_back(rank(result.points[i].label), i);
-  std::sort(order.begin(), order.end());
-  for (const auto& [r, i] : order) {
-    const sim::SimPoint& p = log.at(result.points[i].stream_index);
-    const long px = std::lround((p.x - x_min) * scale);
-    const long py = std::lround((y_max - p.y) * scale);
-    if (by_size[r].first >= large) {
-      sc::io::RgbImage::Color c = rank_color(r);
-      for (auto& v : c) v = static_cast<std::uint8_t>(v / 3);
-      img.set(px, py, c);
-    } else if (by_size[r].first < 20) {
-      img.set(px, py, {90, 90, 90});
-    } else {
-      const sc::io::RgbImage::Color c = rank_color(r);
-      for (long dy = 0; dy < 2; ++dy)
-        for (long dx = 0; dx < 2; ++dx) img.set(px + dx, py + dy, c);
-    }
-  }
-  // The sensor: a white cross at the origin.
-  const long sx = std::lround((0.0f - x_min) * scale);
-  const long sy = std::lround((y_max - 0.0f) * scale);
-  for (long d = -8; d <= 8; ++d) {
-    img.set(sx + d, sy, {255, 255, 255});
-    img.set(sx, sy + d, {255, 255, 255});
-  }
-  return img;
+  return sc::io::render_birds_eye(points, labels);
 }
 
 template <class Sensor>

@@ -178,3 +178,34 @@ TEST_CASE("--mcap: every cycle's window and boxes, as the labels file has them")
   CHECK(cycle == want.size());
   CHECK(updates == want.size());
 }
+
+TEST_CASE("--png: the last cycle's picture; --png-every N: every N-th cycle's") {
+  TempDir dir("cli_recordings", "png");
+  const auto png_size = [](const std::string& path) {
+    const std::string b = slurp(path);
+    REQUIRE(b.size() > 33);
+    CHECK(b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0);
+    const auto be32 = [&](std::size_t at) {
+      return (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at])) << 24) |
+             (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 1])) << 16) |
+             (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 2])) << 8) |
+             static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3]));
+    };
+    return std::make_pair(be32(16), be32(20));  // IHDR width, height
+  };
+  const std::string input = data("recordings/ros2_custom_zstd.mcap");
+  const auto one = run_cli({"cluster", input, "--quiet", "--png", dir.path("last.png")});
+  INFO(one.err);
+  REQUIRE(one.code == 0);
+  const auto [w, h] = png_size(dir.path("last.png"));
+  CHECK(std::max(w, h) >= 900);  // 900 px on the longer side of the points' extent, plus the margin
+  const auto series = run_cli({"cluster", input, "--quiet", "--window-time", "0.2", "--png", dir.path("s.png"),
+                               "--png-every", "2"});
+  REQUIRE(series.code == 0);
+  CHECK(std::filesystem::exists(dir.path("s_000000.png")));
+  CHECK(std::filesystem::exists(dir.path("s_000002.png")));
+  CHECK_FALSE(std::filesystem::exists(dir.path("s_000001.png")));
+  CHECK_FALSE(std::filesystem::exists(dir.path("s.png")));
+  png_size(dir.path("s_000002.png"));
+  CHECK(run_cli({"cluster", input, "--png", dir.path("x.png"), "--png-every", "0"}).code == 2);
+}

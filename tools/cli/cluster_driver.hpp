@@ -18,6 +18,8 @@
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/frame_clusterer.hpp>
+#include <streamclust/io/birds_eye.hpp>
+#include <streamclust/io/png_writer.hpp>
 #include <streamclust/io/reader.hpp>
 #include <streamclust/io/writers.hpp>
 #include <streamclust/partition_compare.hpp>
@@ -28,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -69,6 +72,23 @@ struct LabelledWindow {
 };
 
 inline bool stderr_is_terminal() { return ::isatty(2) == 1; }
+
+/// `path` with "_NNNNNN" (the cycle, six digits at least) before its extension.
+inline std::string numbered_path(const std::string& path, std::uint64_t cycle) {
+  const std::filesystem::path p(path);
+  std::string number = std::to_string(cycle);
+  if (number.size() < 6) number.insert(0, 6 - number.size(), '0');
+  return (p.parent_path() / (p.stem().string() + "_" + number + p.extension().string())).string();
+}
+
+/// `--png`: the bird's-eye picture of `window` (io/birds_eye.hpp).
+inline void write_picture(const std::string& path, const LabelledWindow& window) {
+  try {
+    io::write_png(path, io::render_birds_eye(window.points, window.point_labels));
+  } catch (const std::runtime_error&) {
+    throw UsageError("--png: cannot write '" + path + "'");
+  }
+}
 
 /// Accumulates wall time [us] over the clusterer's calls of one cycle.
 class CycleClock {
@@ -163,8 +183,8 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   // The window's rows (labels, point clouds, the comparison of --verify) are
   // gathered only when an output needs them: copying a window per cycle
   // would evict the clusterer's data from the caches and slow the next cycle.
-  const bool rows_wanted =
-      !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() || !o.mcap_path.empty() || o.verify;
+  const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() ||
+                           !o.mcap_path.empty() || !o.png_path.empty() || o.verify;
   std::optional<McapOutput> mcap;  // every cycle
   if (!o.mcap_path.empty()) {
     try {
@@ -316,6 +336,11 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
       mcap->write(window_out.points, window_out.point_labels, cycle_time, reader->time_origin());
       stage = Stage::clustering;
     }
+    if (o.png_every > 0 && cycle % o.png_every == 0) {
+      stage = Stage::writing;
+      write_picture(numbered_path(o.png_path, cycle), window_out);
+      stage = Stage::clustering;
+    }
     if (selection.selected(cycle) || selection.last_only()) {
       have_selected = true;
       if (labels_file.is_open() && !selection.last_only()) {
@@ -424,6 +449,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     io::write_ply(o.ply_path, kept.points, kept.point_labels, true, report.time_origin);
   if (have_selected && !o.pcd_path.empty())
     io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary", report.time_origin);
+  if (have_selected && !o.png_path.empty() && o.png_every == 0) write_picture(o.png_path, kept);
   if (mcap) {
     try {
       mcap->close();

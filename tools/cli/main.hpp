@@ -96,6 +96,9 @@ outputs:
   --pcd FILE        last selected cycle, with a label field
   --mcap FILE       every cycle for Foxglove: the window as a PointCloud coloured by label
                     and the clusters as boxes (SceneUpdate), at the stream's time
+  --png FILE        a bird's-eye picture of the last selected cycle: clusters coloured, boxes,
+                    a metre scale
+  --png-every N     instead, a picture of every N-th cycle: FILE_000000.png, FILE_0000NN.png, ...
   --verify          compare every retrieval with the batch clusterer; exit 3 on mismatch
   --quiet, -q       no progress bar, no summary line
 

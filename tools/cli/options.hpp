@@ -89,6 +89,8 @@ struct ClusterOptions {
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
   std::string mcap_path;  ///< every cycle for Foxglove (tools/cli/mcap_output.hpp)
+  std::string png_path;   ///< a bird's-eye picture of the last selected cycle
+  std::uint64_t png_every = 0;  ///< > 0: a picture of every N-th cycle instead (FILE_<cycle>.png)
   bool all_cycles = false;
   std::vector<std::uint64_t> cycle_list;  ///< empty and !all_cycles: last cycle only
   bool verify = false;
@@ -403,6 +405,13 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.pcd_path = c.value();
     } else if (a == "--mcap") {
       o.mcap_path = c.value();
+    } else if (a == "--png") {
+      o.png_path = c.value();
+    } else if (a == "--png-every") {
+      const std::string v = c.value();
+      std::int64_t n = 0;
+      if (!io::detail::parse_int64(v, n) || n < 1) throw UsageError("--png-every: expected a whole number of cycles >= 1, got '" + v + "'");
+      o.png_every = static_cast<std::uint64_t>(n);
     } else if (a == "--cycles") {
       const std::string v = c.value();
       o.all_cycles = v == "all";
