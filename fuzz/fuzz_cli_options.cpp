@@ -67,6 +67,7 @@ void check_cluster(const cli::ClusterOptions& o) {
   check_policy(o);
   require(!o.input.empty(), "cluster: an input file");
   require(!(o.verify && o.mode == cli::Mode::frame), "--verify: continuous mode only");
+  if (o.read.topic) require(!o.read.topic->empty(), "--topic: a non-empty name");
   if (o.mount_deg) {
     for (const double a : *o.mount_deg) require(std::isfinite(a) && std::abs(a) <= 360.0, "--mount: angles within +-360");
   }
