@@ -97,7 +97,7 @@ class McapReader final : public RecordingSource {
 
   const std::vector<RecordingTopic>& topics() override {
     if (!topics_known_) scan_topics();
-    return topics_;
+    return table_.topics();
   }
 
   bool next(RecordingMessage& m) override {
@@ -244,12 +244,10 @@ class McapReader final : public RecordingSource {
       }
     }
     if (counts) {
-      for (const auto& [id, n] : *counts) {
-        const auto it = channel_topic_.find(id);
-        if (it != channel_topic_.end()) topics_[it->second].messages = n;
+      for (const auto& [id, topic] : table_.ids()) {
+        const auto n = counts->find(static_cast<std::uint16_t>(id));
+        table_.topics()[topic].messages = n == counts->end() ? 0 : n->second;
       }
-      for (const auto& entry : channel_topic_)
-        if (!topics_[entry.second].messages) topics_[entry.second].messages = 0;
     }
     topics_known_ = true;
   }
@@ -301,17 +299,7 @@ class McapReader final : public RecordingSource {
       t.definition = s->second.data;
       t.definition_encoding = s->second.encoding;
     }
-    const auto known = channel_topic_.find(id);
-    if (known != channel_topic_.end()) {
-      const RecordingTopic& old = topics_[known->second];
-      if (old.name != t.name || old.type != t.type) {
-        r.fail_at(0, "channel " + std::to_string(id) + " redefined as " + t.name + " (" + t.type + "), it was " +
-                         old.name + " (" + old.type + ")");
-      }
-      return;
-    }
-    channel_topic_[id] = topics_.size();
-    topics_.push_back(std::move(t));
+    table_.add(id, std::move(t), r, "channel");
   }
 
   /// Handles a Schema, Channel or Message record; true (and fills m) for a Message.
@@ -327,20 +315,18 @@ class McapReader final : public RecordingSource {
       r.skip(4, "Message sequence");
       m.log_time_ns = r.u64("Message log_time");
       r.skip(8, "Message publish_time");
-      const auto it = channel_topic_.find(id);
-      if (it == channel_topic_.end()) {
-        r.fail_at(0, "message on channel " + std::to_string(id) + ", which no Channel record defined before it");
-      }
+      const auto topic = table_.index(id);
+      if (!topic) r.fail_at(0, "message on channel " + std::to_string(id) + ", which no Channel record defined before it");
       if (counting_) {
-        ++counted_[it->second];
+        ++counted_[*topic];
         return false;
       }
       ++message_index_;
-      m.topic = it->second;
+      m.topic = *topic;
       m.data = p + r.position();
       m.size = r.remaining();
-      m.origin = detail::BufferOrigin{path_, "message " + std::to_string(message_index_) + " on " + topics_[it->second].name +
-                                                 " (record at " + where + "), payload byte ", 0};
+      m.origin = detail::BufferOrigin{path_, "message " + std::to_string(message_index_) + " on " +
+                                                 table_.topics()[*topic].name + " (record at " + where + "), payload byte ", 0};
       return true;
     }
     return false;
@@ -417,7 +403,7 @@ class McapReader final : public RecordingSource {
     while (next(m)) {
     }
     counting_ = false;
-    for (std::size_t i = 0; i < topics_.size(); ++i) topics_[i].messages = counted_[i];
+    for (std::size_t i = 0; i < table_.topics().size(); ++i) table_.topics()[i].messages = counted_[i];
     // Rewind; records met again are checked against what the scan found.
     pos_ = pos;
     data_crc_ = crc;
@@ -436,9 +422,8 @@ class McapReader final : public RecordingSource {
   bool finished_ = false, topics_known_ = false, counting_ = false;
   std::uint64_t message_index_ = 0;
   std::map<std::uint16_t, Schema> schemas_;
-  std::map<std::uint16_t, std::size_t> channel_topic_;
+  detail::TopicTable table_;
   std::map<std::size_t, std::uint64_t> counted_;
-  std::vector<RecordingTopic> topics_;
 };
 
 }  // namespace streamclust::io

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,6 +66,42 @@ struct OpenChunk {
     return c;
   }
   bool done() const noexcept { return next >= bytes.size(); }
+};
+
+/// The topics of a container by the id its records use (a bag's connection,
+/// an MCAP channel). O(log topics) per lookup; not thread-safe.
+class TopicTable {
+ public:
+  /// Registers `t` under `id`. A container may repeat a definition (a bag's
+  /// index section, an MCAP summary): it must then name the same topic and
+  /// type, else InputError at `errors`' start. `kind`: "connection", "channel".
+  void add(std::uint32_t id, RecordingTopic t, const ByteCursor& errors, const char* kind) {
+    const auto known = ids_.find(id);
+    if (known != ids_.end()) {
+      const RecordingTopic& old = topics_[known->second];
+      if (old.name != t.name || old.type != t.type) {
+        errors.fail_at(0, std::string(kind) + " " + std::to_string(id) + " redefined as " + t.name + " (" + t.type +
+                              "), it was " + old.name + " (" + old.type + ")");
+      }
+      return;
+    }
+    ids_[id] = topics_.size();
+    topics_.push_back(std::move(t));
+  }
+  /// The topic index of `id`, or nothing when no record defined it.
+  std::optional<std::size_t> index(std::uint32_t id) const {
+    const auto it = ids_.find(id);
+    if (it == ids_.end()) return std::nullopt;
+    return it->second;
+  }
+  /// Topics in the order their ids were first defined.
+  std::vector<RecordingTopic>& topics() noexcept { return topics_; }
+  /// (id, topic index) pairs.
+  const std::map<std::uint32_t, std::size_t>& ids() const noexcept { return ids_; }
+
+ private:
+  std::map<std::uint32_t, std::size_t> ids_;
+  std::vector<RecordingTopic> topics_;
 };
 
 }  // namespace detail

@@ -117,7 +117,7 @@ class Ros1BagReader final : public RecordingSource {
 
   const std::vector<RecordingTopic>& topics() override {
     if (!topics_known_) scan_topics();
-    return topics_;
+    return table_.topics();
   }
 
   bool next(RecordingMessage& m) override {
@@ -215,37 +215,27 @@ class Ros1BagReader final : public RecordingSource {
     t.definition_encoding = "ros1msg";
     if (const auto d = fields.get("message_definition")) t.definition = std::string(*d);
     if (t.type.empty()) data.fail_at(0, "connection " + std::to_string(id) + " (" + t.name + ") without a type field");
-    const auto known = conn_topic_.find(id);
-    if (known != conn_topic_.end()) {
-      const RecordingTopic& old = topics_[known->second];
-      if (old.name != t.name || old.type != t.type) {
-        data.fail_at(0, "connection " + std::to_string(id) + " redefined as " + t.name + " (" + t.type + "), it was " +
-                            old.name + " (" + old.type + ")");
-      }
-      return;
-    }
-    conn_topic_[id] = topics_.size();
-    topics_.push_back(std::move(t));
+    table_.add(id, std::move(t), data, "connection");
   }
 
   bool message(const Record& r, const std::string& where, RecordingMessage& m) {
     const std::uint32_t id = r.fields->integer<std::uint32_t>("conn", *r.cursor, 0);
     const std::uint64_t time = r.fields->integer<std::uint64_t>("time", *r.cursor, 0);
-    const auto it = conn_topic_.find(id);
-    if (it == conn_topic_.end()) {
+    const auto topic = table_.index(id);
+    if (!topic) {
       r.cursor->fail_at(0, "message on connection " + std::to_string(id) + ", which no connection record defined before it");
     }
     const std::uint64_t sec = time & 0xFFFFFFFFu, nsec = time >> 32;
     if (counting_) {
-      ++counted_[it->second];
+      ++counted_[*topic];
       return false;
     }
     ++message_index_;
-    m.topic = it->second;
+    m.topic = *topic;
     m.log_time_ns = sec * 1000000000u + nsec;
     m.data = r.data;
     m.size = r.data_size;
-    m.origin = detail::BufferOrigin{path_, "message " + std::to_string(message_index_) + " on " + topics_[it->second].name +
+    m.origin = detail::BufferOrigin{path_, "message " + std::to_string(message_index_) + " on " + table_.topics()[*topic].name +
                                                " (record at " + where + "), payload byte ", 0};
     return true;
   }
@@ -314,9 +304,10 @@ class Ros1BagReader final : public RecordingSource {
       at = r.end;
     }
     data_end_ = saved_end;
-    for (const auto& [conn, topic] : conn_topic_) {
+    for (const auto& [conn, topic] : table_.ids()) {
+      auto& messages = table_.topics()[topic].messages;
       const auto it = counts.find(conn);
-      topics_[topic].messages = (topics_[topic].messages ? *topics_[topic].messages : 0) + (it == counts.end() ? 0 : it->second);
+      messages = messages.value_or(0) + (it == counts.end() ? 0 : it->second);
     }
     topics_known_ = true;
   }
@@ -328,7 +319,7 @@ class Ros1BagReader final : public RecordingSource {
     while (next(m)) {
     }
     counting_ = false;
-    for (std::size_t i = 0; i < topics_.size(); ++i) topics_[i].messages = counted_[i];
+    for (std::size_t i = 0; i < table_.topics().size(); ++i) table_.topics()[i].messages = counted_[i];
     pos_ = pos;
     chunk_.open = false;
     topics_known_ = true;
@@ -341,9 +332,8 @@ class Ros1BagReader final : public RecordingSource {
   detail::BufferOrigin header_origin_, chunk_header_origin_;
   bool topics_known_ = false, counting_ = false;
   std::uint64_t message_index_ = 0;
-  std::map<std::uint32_t, std::size_t> conn_topic_;
+  detail::TopicTable table_;
   std::map<std::size_t, std::uint64_t> counted_;
-  std::vector<RecordingTopic> topics_;
 };
 
 }  // namespace streamclust::io
