@@ -22,6 +22,7 @@
 #include <streamclust/io/input_stream.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -119,12 +120,15 @@ inline void livox_spherical(std::uint32_t depth_mm, std::uint16_t theta, std::ui
 
 }  // namespace detail
 
+/// Returns per firing of the richest data type (triple return).
+inline constexpr std::size_t max_livox_returns = 3;
+
 /// Decodes the struct at `p` (`type.struct_bytes` bytes) into `type.returns`
-/// points written to `out` (room for 3); returns how many. Every bit pattern
+/// points written to `out` (room for max_livox_returns); returns how many. Every bit pattern
 /// decodes (float coordinates may be NaN or infinite). O(1); thread-safe.
 inline std::size_t decode_livox_struct(const LivoxDataType& type, const unsigned char* p, LivoxReturn* out) noexcept {
   using detail::load_le;
-  const std::size_t n = type.returns;
+  const std::size_t n = std::min<std::size_t>(type.returns, max_livox_returns);  // the caller's room
   switch (type.coordinates) {
     case LivoxCoordinates::none: return 0;
     case LivoxCoordinates::cartesian_mm: {

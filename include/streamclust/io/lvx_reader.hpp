@@ -596,7 +596,7 @@ class LvxReader final : public PointReader {
   std::uint32_t interval_ns_ = 0;
   detail::LvxPackage package_;
   std::uint64_t next_struct_ = 0;
-  LivoxReturn pending_[3];
+  LivoxReturn pending_[max_livox_returns];
   std::size_t returns_ = 0, next_return_ = 0;
   std::uint64_t pending_ns_ = 0;
   bool done_ = false;
