@@ -48,7 +48,8 @@ TEST_CASE("any format: missing file, directory, empty file, unknown format") {
     expect_error(tmp.path(std::string("missing") + ext), "byte 0", "cannot open");
     expect_error(tmp.file(std::string("empty") + ext, ""), "byte 0", "empty file");
   }
-  expect_error(tmp.dir.string(), "byte 0", "cannot open");
+  // A directory is read as a rosbag2 bag folder: without metadata.yaml it is none.
+  expect_error(tmp.dir.string(), "directory", "a directory is read as a rosbag2 bag folder: expected metadata.yaml");
   expect_error(tmp.file("mystery.xyz", std::string("\x7f" "ELF\x01\x02", 6)), "header", "unknown format");
   io::ReadOptions forced = with_rate();
   forced.format = io::Format::pcd;

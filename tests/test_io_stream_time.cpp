@@ -130,6 +130,17 @@ TEST_CASE("TimeDecoder: a stream and its copy shifted by whole seconds decode to
   }
   CHECK(ns_epoch.origin() == io::TimeOrigin{kEpoch});
 
+  // Integer nanoseconds decode to the same double as their decimal text in
+  // seconds (a recording and its CSV export): 150000000 ns is 0.15, not the
+  // 0.15000000000000002 that 150000000 x 1e-9 gives.
+  io::TimeDecoder from_ns(io::TimeUnit::ns), from_text;
+  for (std::uint64_t k = 0; k < 20000; ++k) {
+    const std::uint64_t ns = k * 5000;  // a 200 kHz stream's 5 us grid
+    const std::string text = std::to_string(ns / 1000000000u) + "." + std::string(9 - std::to_string(ns % 1000000000u).size(), '0') +
+                             std::to_string(ns % 1000000000u);
+    REQUIRE(from_ns.from_unsigned(ns) == from_text.from_text(text, parse(text)));
+  }
+
   // A double at epoch scale keeps what it has (0.24 us): no worse than that.
   io::TimeDecoder real;
   const double first = real.from_real(1700000000.0);
@@ -239,7 +250,8 @@ TEST_CASE("readers: epoch times in CSV, PCD and PLY read as the same stream shif
         f.write(reinterpret_cast<const char*>(&ns), sizeof ns);
       }
     }
-    const io::ReadOptions ns{std::nullopt, io::TimeUnit::ns, std::nullopt, std::nullopt};
+    io::ReadOptions ns;
+    ns.time_unit = io::TimeUnit::ns;
     io::TimeOrigin origin;
     const auto a = read_all(zero, ns), b = read_all(epoch, ns, &origin);
     CHECK(origin == io::TimeOrigin{kEpoch});

@@ -137,17 +137,21 @@ inline std::size_t shift_decimal(std::string_view s, std::int64_t shift, char (&
 /// (`parsed` minus the origin).
 inline double relative_seconds_of_text(std::string_view s, double parsed, double seconds_per_unit,
                                        std::int64_t units_per_second, TimeOrigin origin) {
-  if (origin.seconds == 0) return parsed * seconds_per_unit;
+  // Divided by the units per second, not multiplied by seconds per unit: the
+  // quotient is correctly rounded, so "150000000" ns reads as "0.15" s does.
+  (void)seconds_per_unit;
+  const auto per_second = static_cast<double>(units_per_second);
+  if (origin.seconds == 0) return parsed / per_second;
   char shifted[detail::shifted_decimal_capacity];
   std::int64_t shift = 0;
   if (!__builtin_mul_overflow(origin.seconds, units_per_second, &shift)) {
     if (const std::size_t len = detail::shift_decimal(s, shift, shifted)) {
       double v = 0.0;
       const auto r = std::from_chars(shifted, shifted + len, v);
-      if (r.ec == std::errc() && r.ptr == shifted + len) return v * seconds_per_unit;
+      if (r.ec == std::errc() && r.ptr == shifted + len) return v / per_second;
     }
   }
-  return parsed * seconds_per_unit - static_cast<double>(origin.seconds);
+  return parsed / per_second - static_cast<double>(origin.seconds);
 }
 
 /// The absolute time of stream time `t` as a double [s], correctly rounded

@@ -42,11 +42,13 @@ class TimeDecoder {
   /// A value stored as a signed integer.
   double from_integer(std::int64_t raw) noexcept {
     find(static_cast<double>(raw));
+    // Divided, not multiplied by 1e-9: the quotient is correctly rounded, the
+    // same double as the decimal text of the value (150000000 ns -> 0.15).
     std::int64_t shift = 0, relative = 0;
-    if (origin_.seconds == 0) return static_cast<double>(raw) * seconds_per_unit_;
+    if (origin_.seconds == 0) return static_cast<double>(raw) / static_cast<double>(units_per_second_);
     if (!__builtin_mul_overflow(origin_.seconds, units_per_second_, &shift) &&
         !__builtin_sub_overflow(raw, shift, &relative))
-      return static_cast<double>(relative) * seconds_per_unit_;
+      return static_cast<double>(relative) / static_cast<double>(units_per_second_);
     return from_real(static_cast<double>(raw));
   }
 
@@ -61,7 +63,7 @@ class TimeDecoder {
   /// (a double at epoch scale has no bits below what the result can hold).
   double from_real(double raw) noexcept {
     find(raw);
-    return raw * seconds_per_unit_ - static_cast<double>(origin_.seconds);
+    return raw / static_cast<double>(units_per_second_) - static_cast<double>(origin_.seconds);
   }
 
  private:
