@@ -91,7 +91,7 @@ inline void describe_each(const InfoOptions& o, const std::vector<std::string>& 
 
 /// A recording: its topics (type, messages), then each point-cloud topic
 /// (or the one --topic names) described as a point stream.
-inline int describe_recording(const InfoOptions& o, io::Format format, const io::ReadOptions& read, std::ostream& out) {
+inline int describe_recording(const InfoOptions& o, io::Format format, std::ostream& out) {
   const auto source = io::detail::open_recording(o.input, format);
   const std::vector<io::RecordingTopic>& topics = source->topics();
   out << "file:      " << o.input << "\n";
@@ -103,7 +103,7 @@ inline int describe_recording(const InfoOptions& o, io::Format format, const io:
         << (t.messages ? std::to_string(*t.messages) : std::string("?")) << " messages\n";
     if (io::ros::point_message_kind(t.type)) clouds.push_back(t.name);
   }
-  describe_each(o, read.topic ? std::vector<std::string>{*read.topic} : clouds, "topic", out);
+  describe_each(o, o.read.topic ? std::vector<std::string>{*o.read.topic} : clouds, "topic", out);
   return kOk;
 }
 
@@ -132,7 +132,7 @@ inline int run_info_reading(const InfoOptions& o, std::ostream& out) {
   if (!read.point_rate) read.point_rate = 1.0;
   const io::Format format = read.format ? *read.format : io::detect_format(o.input);
   if (format == io::Format::ros1_bag || format == io::Format::rosbag2_sqlite || format == io::Format::mcap) {
-    return describe_recording(o, format, o.read, out);  // messages carry times; no rate forced
+    return describe_recording(o, format, out);  // messages carry times; no rate forced
   }
   if (format == io::Format::lvx) return describe_lvx(o, out);
   auto reader = io::open_reader(o.input, read);

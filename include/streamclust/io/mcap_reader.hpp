@@ -85,7 +85,6 @@ class McapReader final : public RecordingSource {
     data_crc_ = detail::crc32(b.data(), b.size());
     data_crc_ = crc_record(data_crc_, op, length, record_);
     pos_ += mcap::record_prefix_bytes + length;
-    data_start_ = pos_;
     if (summary_start_ != 0) read_summary();
   }
 
@@ -414,7 +413,7 @@ class McapReader final : public RecordingSource {
 
   detail::BinaryFile file_;
   std::string profile_, library_;
-  std::uint64_t footer_at_ = 0, summary_start_ = 0, summary_offset_start_ = 0, data_end_ = 0, data_start_ = 0;
+  std::uint64_t footer_at_ = 0, summary_start_ = 0, summary_offset_start_ = 0, data_end_ = 0;
   std::uint32_t summary_crc_ = 0, data_crc_ = 0;
   std::uint64_t pos_ = 0;
   std::vector<std::uint8_t> prefix_, record_;

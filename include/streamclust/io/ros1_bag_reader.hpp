@@ -179,7 +179,7 @@ class Ros1BagReader final : public RecordingSource {
     }
     file_.read_at(data_at, data_len, data_, what);
     header_origin_ = detail::BufferOrigin{path_, "byte ", at + 4};
-    return parse(header_.data(), header_len, data_.data(), data_len, header_origin_, data_at, at);
+    return parse(header_.data(), header_len, data_.data(), data_len, header_origin_, data_at);
   }
 
   std::uint64_t data_end_or_size() const noexcept { return data_end_ != 0 ? data_end_ : file_.size(); }
@@ -189,7 +189,7 @@ class Ros1BagReader final : public RecordingSource {
   }
 
   static Record parse(const std::uint8_t* header, std::size_t header_len, const std::uint8_t* data, std::size_t data_len,
-                      const detail::BufferOrigin& origin, std::uint64_t data_at, std::uint64_t at) {
+                      const detail::BufferOrigin& origin, std::uint64_t data_at) {
     Record r;
     r.cursor.emplace(header, header_len, origin);
     r.fields.emplace(header, header_len, *r.cursor, 0);
@@ -198,7 +198,6 @@ class Ros1BagReader final : public RecordingSource {
     r.data_size = data_len;
     r.data_at = data_at;
     r.end = data_at + data_len;
-    (void)at;
     return r;
   }
 
@@ -268,7 +267,7 @@ class Ros1BagReader final : public RecordingSource {
       const std::uint8_t* data = c.bytes(data_len, "record data in chunk");
       chunk_.next = c.position();
       chunk_header_origin_ = detail::BufferOrigin{path_, chunk_.origin.prefix, at + 4};
-      Record r = parse(header, header_len, data, data_len, chunk_header_origin_, data_at, at);
+      Record r = parse(header, header_len, data, data_len, chunk_header_origin_, data_at);
       if (r.op == ros1_bag::connection) {
         connection(r);
       } else if (r.op == ros1_bag::message_data) {

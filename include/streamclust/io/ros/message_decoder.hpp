@@ -228,12 +228,11 @@ class MessageDecoder {
     c.skip(pad, "alignment padding");
   }
 
-  std::uint32_t count(detail::ByteCursor& c, const std::string& path) const {
+  std::uint32_t count(detail::ByteCursor& c) const {
     if (encoding_ == Encoding::cdr) align(c, 4);
     const std::uint8_t* p = c.bytes(4, "sequence length");
     std::uint32_t n = 0;
     for (std::size_t i = 0; i < 4; ++i) n |= static_cast<std::uint32_t>(p[i]) << (big_endian_ ? 8 * (3 - i) : 8 * i);
-    (void)path;
     return n;
   }
 
@@ -242,7 +241,7 @@ class MessageDecoder {
     leaf.path = path;
     leaf.primitive = p;
     if (p == Primitive::string) {
-      const std::uint32_t n = count(c, path);
+      const std::uint32_t n = count(c);
       const std::string what = "string " + path;
       const std::uint8_t* s = c.bytes(n, what.c_str());
       std::size_t len = n;
@@ -338,7 +337,7 @@ class MessageDecoder {
       }
       return;
     }
-    const std::size_t n = f.array == FieldDefinition::Array::fixed ? f.fixed_length : count(c, path);
+    const std::size_t n = f.array == FieldDefinition::Array::fixed ? f.fixed_length : count(c);
     if (f.primitive && *f.primitive != Primitive::string && *f.primitive != Primitive::time &&
         *f.primitive != Primitive::duration) {
       Leaf leaf;
