@@ -448,7 +448,9 @@ TEST_CASE("CDR: the points of a CustomMsg start where the frame_id length puts t
   // "livox_frame" and "lidar", 56 for "mid360_front"), stride 20.
   const std::pair<const char*, std::size_t> cases[] = {
       {"ros2_custom_lz4.mcap", 48}, {"ros2_custom_zstd.mcap", 48}, {"ros2_custom_db3", 56}};
-  for (const auto& [name, first] : cases) {
+  for (const auto& test_case : cases) {
+    const char* const name = test_case.first;
+    const std::size_t first = test_case.second;
     INFO(name);
     auto source = io::detail::open_recording(fixture(name), io::detect_format(fixture(name)));
     io::RecordingMessage m;
