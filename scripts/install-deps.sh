@@ -9,8 +9,9 @@ PACKAGES=(
   libboost-graph-dev libeigen3-dev librange-v3-dev
   doctest-dev libbenchmark-dev
   nlohmann-json3-dev
-  # the recording readers (ROS 1 bags, rosbag2, MCAP): chunk codecs and SQLite
-  liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
+  # the recording readers (ROS 1 bags, rosbag2, MCAP): chunk codecs and SQLite;
+  # zlib for the PNG writer
+  liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev zlib1g-dev
   # the fuzz targets (-DSTREAMCLUST_FUZZ=ON, scripts/fuzz.sh): clang-14's libFuzzer runtime
   libclang-rt-14-dev
   # the Python module (-DSTREAMCLUST_PYTHON=ON, docs/python.md), its tests and example
