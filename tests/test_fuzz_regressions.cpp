@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <streamclust/io/error.hpp>
+#include <streamclust/io/reader.hpp>
 #include <streamclust/io/tum.hpp>
 #include <streamclust/motion/trajectory.hpp>
 #include <streamclust/motion/tum_poses.hpp>
@@ -35,6 +36,19 @@ std::string fuzz_input(const char* name) {
 std::string tum_error(const std::string& path) {
   try {
     sc::PoseTrajectory trajectory(sc::to_stamped_poses(io::read_tum(path)));
+  } catch (const io::InputError& e) {
+    return e.where() + ": " + e.what_expected();
+  }
+  return "";
+}
+
+/// The InputError reading every record of `path` throws, as "where: expected" ("" if none).
+std::string read_error(const std::string& path) {
+  try {
+    auto reader = io::open_reader(path);
+    std::vector<io::Record> chunk;
+    while (chunk.clear(), reader->read(chunk, 4096) > 0) {
+    }
   } catch (const io::InputError& e) {
     return e.where() + ": " + e.what_expected();
   }
@@ -110,4 +124,18 @@ TEST_CASE("fuzz_cli_options: a positive value that rounds to 0 as a float is ref
   const auto r = sc::test::run_cli({"evaluate", "--objects", "--height", "1e-60"});
   CHECK(r.code == 2);
   CHECK(r.err == "streamclust: --height: expected a positive number, got '1e-60'\n");
+}
+
+TEST_CASE("fuzz_bag: a PointCloud2 of width 0 and height 2e9 is checked against its data, not looped over") {
+  // Message 3 declares height 2013265921, width 0, row_step 3120 and 3120
+  // bytes of data. The data-size check skipped clouds of width 0, and the
+  // point loop then ran 2e9 empty rows (15 s under the fuzzer's sanitizers).
+  const std::string path = fuzz_input("bag_cloud_tall_and_empty.bag");
+  const std::string expected =
+      "message 3 on /livox/lidar (record at byte 8622 (chunk), decompressed byte 1582), payload byte 171: "
+      "data holds 3120 bytes: expected height x row_step = 2013265921 x 3120";
+  CHECK(read_error(path) == expected);
+  const auto r = sc::test::run_cli({"cluster", path, "--quiet"});
+  CHECK(r.code == 4);
+  CHECK(r.err == "streamclust: input error: " + path + ": " + expected + "\n");
 }

@@ -441,6 +441,46 @@ TEST_CASE("message definitions: comments, constants, defaults, arrays, nested ty
   CHECK_THROWS_AS(ros::MessageDefinitions("a/B", "uint8[x] v\n"), std::invalid_argument);
 }
 
+TEST_CASE("message definitions: nested fixed arrays that unroll beyond the bound are refused, quickly") {
+  namespace ros = io::ros;
+  // 1000 x (1 + 1000 x (1 + 1)) fields: the decoder would visit 2 million per message.
+  CHECK_THROWS_WITH_AS(ros::MessageDefinitions("a/A", "B[1000] b\nMSG: a/B\nC[1000] c\nMSG: a/C\nuint8 x\n"),
+                       "message definition of a/A: type a/A has more than 65536 fields with its fixed arrays of "
+                       "messages unrolled",
+                       std::invalid_argument);
+  // A primitive array is one field, however long.
+  CHECK_NOTHROW(ros::MessageDefinitions("a/A", "B[100] b\nMSG: a/B\nfloat32[100000000] v\n"));
+  // Forty types, each holding the next twice: 2^40 fields, found without
+  // visiting them (each type is counted once).
+  std::string text = "T1 a\nT1 b\n";
+  for (int k = 1; k < 40; ++k)
+    text += "MSG: a/T" + std::to_string(k) + "\nT" + std::to_string(k + 1) + " a\nT" + std::to_string(k + 1) + " b\n";
+  text += "MSG: a/T40\nuint8 x\n";
+  CHECK_THROWS_WITH_AS(ros::MessageDefinitions("a/T0", text),
+                       "message definition of a/T0: type a/T25 has more than 65536 fields with its fixed arrays of "
+                       "messages unrolled",
+                       std::invalid_argument);
+}
+
+TEST_CASE("message decoder: an array element with more than 4096 primitive fields is an input error") {
+  namespace ros = io::ros;
+  // A primitive array inside an array element is unrolled into the
+  // element's layout, once per message.
+  const ros::MessageDefinitions defs("a/Cloud", "P[] points\nMSG: a/P\nfloat32[5000] v\n");
+  ros::MessageDecoder decoder(defs, ros::Encoding::ros1);
+  const std::uint8_t payload[4] = {0, 0, 0, 0};  // no points
+  io::detail::BufferOrigin origin;
+  origin.file = "cloud.bag";
+  ros::DecodedMessage decoded;
+  CHECK_THROWS_WITH_AS(decoder.decode(payload, sizeof payload, origin, decoded),
+                       "cloud.bag: byte 4: array points: an element of a/P has more than 4096 primitive fields "
+                       "(fixed arrays unrolled): not a point type",
+                       io::InputError);
+  const ros::MessageDefinitions small("a/Cloud", "P[] points\nMSG: a/P\nfloat32[4096] v\n");
+  ros::MessageDecoder fits(small, ros::Encoding::ros1);
+  CHECK_NOTHROW(fits.decode(payload, sizeof payload, origin, decoded));
+}
+
 TEST_CASE("CDR: the points of a CustomMsg start where the frame_id length puts them") {
   namespace ros = io::ros;
   // The first lidar message of each CustomMsg fixture, decoded in place: the

@@ -299,8 +299,30 @@ class MessageDecoder {
     return l;
   }
 
+  /// Primitive leaves of one `t` with its fixed arrays unrolled, saturating
+  /// above `limit` (nested fixed arrays multiply: 1e8 x 1e8 stays cheap).
+  std::size_t leaf_count(const TypeDefinition& t, std::size_t limit, std::size_t depth = 0) const {
+    std::size_t total = 0;
+    for (const FieldDefinition& f : t.fields) {
+      const std::size_t n = f.array == FieldDefinition::Array::fixed ? f.fixed_length : 1;
+      const bool pair = f.primitive && (*f.primitive == Primitive::time || *f.primitive == Primitive::duration);
+      const std::size_t each = f.primitive ? (pair ? 2 : 1) : depth > 32 ? limit + 1 : leaf_count(definitions_->type(f.type_name), limit, depth + 1);
+      if (each != 0 && n > (limit + 1 - total) / each) return limit + 1;
+      total += n * each;
+    }
+    return total;
+  }
+
+  /// An element type with more primitive fields than this is refused: point
+  /// types have a handful, and each message unrolls its element's layout.
+  static constexpr std::size_t kMaxElementLeaves = 4096;
+
   void struct_array(detail::ByteCursor& c, const TypeDefinition& t, std::size_t n, const std::string& path,
                     DecodedMessage& out) const {
+    if (leaf_count(t, kMaxElementLeaves) > kMaxElementLeaves) {
+      c.fail("array " + path + ": an element of " + t.name + " has more than " + std::to_string(kMaxElementLeaves) +
+             " primitive fields (fixed arrays unrolled): not a point type");
+    }
     StructArray a;
     a.path = path;
     a.count = n;

@@ -20,6 +20,7 @@
 /// Parsing gives each type its ordered fields; constants (`uint8 FOO=1`),
 /// comments and ROS 2 default values are skipped.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -70,9 +71,15 @@ struct TypeDefinition {
 /// parsing; thread-safe to share.
 class MessageDefinitions {
  public:
+  /// A type whose fields, with its nested fixed arrays of messages unrolled,
+  /// number more than this is refused: decoding visits each of them per
+  /// message, and a few nested `T[100000]` would make that unbounded.
+  static constexpr std::size_t kMaxUnrolledFields = 65536;
+
   /// Parses `text` for the message type `main_type` ("pkg/Type" or ROS 2's
   /// "pkg/msg/Type"). Throws std::invalid_argument naming the line when the
-  /// text is malformed or a used type is not defined in it.
+  /// text is malformed, or naming the type when a used type is not defined in
+  /// it, contains itself or unrolls to more than kMaxUnrolledFields fields.
   MessageDefinitions(std::string_view main_type, std::string_view text) : main_(normalize(main_type)) {
     std::string current = main_;
     types_[current].name = current;
@@ -176,27 +183,46 @@ class MessageDefinitions {
     types_[owner].fields.push_back(std::move(f));
   }
 
-  /// Checks that every message type used is defined and that no type
-  /// contains itself. O(types + fields).
+  /// Checks that every message type used is defined, that no type contains
+  /// itself and that none unrolls to more than kMaxUnrolledFields fields.
+  /// O(types + fields).
   void resolve() const {
-    std::map<std::string, int> state;  // 1 visiting, 2 done
-    for (const auto& entry : types_) visit(entry.first, state);
+    std::map<std::string, int> state;              // 1 visiting, 2 done
+    std::map<std::string, std::size_t> unrolled;   // of the done types, saturating
+    for (const auto& entry : types_) visit(entry.first, state, unrolled);
   }
 
-  void visit(const std::string& name, std::map<std::string, int>& state) const {
+  /// Visits `name` after the types it uses; returns its unrolled field count
+  /// (a primitive or a primitive array is one field, a message field one plus
+  /// its own, times the length of a fixed array).
+  std::size_t visit(const std::string& name, std::map<std::string, int>& state,
+                    std::map<std::string, std::size_t>& unrolled) const {
     int& s = state[name];
-    if (s == 2) return;
+    if (s == 2) return unrolled.at(name);
     if (s == 1) throw std::invalid_argument("message definition of " + main_ + ": type " + name + " contains itself");
     s = 1;
+    constexpr std::size_t kOver = kMaxUnrolledFields + 1;
+    std::size_t total = 0;
     for (const FieldDefinition& f : types_.at(name).fields) {
-      if (f.primitive) continue;
-      if (types_.count(f.type_name) == 0) {
-        throw std::invalid_argument("message definition of " + main_ + ": type " + f.type_name + " (field " + name +
-                                    "." + f.name + ") is used but not defined");
+      std::size_t each = 1;
+      if (!f.primitive) {
+        if (types_.count(f.type_name) == 0) {
+          throw std::invalid_argument("message definition of " + main_ + ": type " + f.type_name + " (field " + name +
+                                      "." + f.name + ") is used but not defined");
+        }
+        each = 1 + visit(f.type_name, state, unrolled);
       }
-      visit(f.type_name, state);
+      const std::size_t n = f.array == FieldDefinition::Array::fixed && !f.primitive ? f.fixed_length : 1;
+      total = n > (kOver - std::min(total, kOver)) / each ? kOver : total + n * each;
+    }
+    if (total > kMaxUnrolledFields) {
+      throw std::invalid_argument("message definition of " + main_ + ": type " + name + " has more than " +
+                                  std::to_string(kMaxUnrolledFields) +
+                                  " fields with its fixed arrays of messages unrolled");
     }
     state[name] = 2;
+    unrolled[name] = total;
+    return total;
   }
 
   std::string main_;

@@ -244,15 +244,19 @@ class PointMessageDecoder {
       }
     }
     time_field_ = ft != nullptr ? ft->name : std::string();
-    // Geometry of the data block.
-    if (width != 0 && point_step != 0 && row_step < width * point_step) {
+    // Geometry of the data block, without overflow: width x point_step <=
+    // row_step and height x row_step == the data's size, so the points read
+    // below are at most the data's bytes (an empty cloud reads no point,
+    // however large its other side).
+    if (width > 0 && (point_step == 0 || width > row_step / point_step)) {
       at.fail_at(data.offset, "row_step " + std::to_string(row_step) + " is less than width x point_step = " +
                                   std::to_string(width) + " x " + std::to_string(point_step));
     }
-    if (height > 0 && width > 0 && (point_step == 0 || row_step > data.count / height || data.count != row_step * height)) {
+    if (height > 0 ? row_step > data.count / height || data.count != row_step * height : data.count != 0) {
       at.fail_at(data.offset, "data holds " + std::to_string(data.count) + " bytes: expected height x row_step = " +
                                   std::to_string(height) + " x " + std::to_string(row_step));
     }
+    if (width == 0 || height == 0) return;
     const std::uint64_t stamp = stamp_ns(at);
     const DecodedMessage view = with_order(big_endian);
     const auto value = [&](const CloudField& f, std::size_t base) { return view.real(f.type, base + f.offset); };
