@@ -16,7 +16,7 @@
 # Environment:
 #   STREAMCLUST_STAGES="gcc clang fuzz"     stages to run (arguments win over it)
 #   SKIP_GCC=1 SKIP_CLANG=1 SKIP_FUZZ=1     drop a stage
-#   SKIP_DEPS=1                             do not run scripts/install-deps.sh
+#   SKIP_DEPS=1                             do not run scripts/install-deps.sh nor install the npm test tools
 #   JOBS=2                                  parallel build and test jobs
 #   BUILD_ROOT=build                        where the build directories go
 #   CMAKE_GENERATOR                         honoured by CMake itself (e.g. Ninja)
@@ -35,6 +35,18 @@ fi
 
 if [[ -z "${SKIP_DEPS:-}" ]]; then
   bash scripts/install-deps.sh
+  # The npm packages of the optional mcap_foxglove test (the reference MCAP
+  # reader): tried once, for at most two minutes, into a scratch folder moved
+  # into place only when complete. Without node, npm or the registry the test
+  # reports itself skipped.
+  if command -v npm >/dev/null && [[ ! -d build/npm/node_modules/@mcap/core ]]; then
+    rm -rf build/npm.partial
+    if timeout 120 bash scripts/install-npm-tools.sh build/npm.partial >/dev/null 2>&1; then
+      rm -rf build/npm && mv build/npm.partial build/npm
+    else
+      echo "test.sh: the npm packages could not be installed; mcap_foxglove will be skipped"
+    fi
+  fi
 fi
 
 declare -a SUMMARY=()
