@@ -43,7 +43,11 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # The message definitions of the recording fixtures (the driver's .msg files).
-MSG_ROOT = os.path.normpath(os.path.join(HERE, "..", "..", "tests", "data", "recordings", "msg"))
+FIXTURES = os.path.normpath(os.path.join(HERE, "..", "..", "tests", "data", "recordings"))
+MSG_ROOT = os.path.join(FIXTURES, "msg")
+# The rosbag2 SQLite schema (version 4), as the .db3 fixtures are written.
+sys.path.insert(0, FIXTURES)
+from write_db3 import NEW_SCHEMA  # noqa: E402
 
 TOPIC = "/livox/lidar"
 FRAME_ID = "livox_frame"
@@ -171,16 +175,6 @@ class Ros1Writer:
         self.bag.close()
 
 
-NEW_SCHEMA = [  # rosbag2_storage_sqlite3/sqlite_storage.cpp (schema version 4)
-    "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY,ros_distro TEXT NOT NULL);",
-    "CREATE TABLE metadata(id INTEGER PRIMARY KEY,metadata_version INTEGER NOT NULL,metadata TEXT NOT NULL);",
-    "CREATE TABLE topics(id INTEGER PRIMARY KEY,name TEXT NOT NULL,type TEXT NOT NULL,"
-    "serialization_format TEXT NOT NULL,offered_qos_profiles TEXT NOT NULL,type_description_hash TEXT NOT NULL);",
-    "CREATE TABLE message_definitions(id INTEGER PRIMARY KEY,topic_type TEXT NOT NULL,encoding TEXT NOT NULL,"
-    "encoded_message_definition TEXT NOT NULL,type_description_hash TEXT NOT NULL);",
-    "CREATE TABLE messages(id INTEGER PRIMARY KEY,topic_id INTEGER NOT NULL,timestamp INTEGER NOT NULL, data BLOB NOT NULL);",
-    "CREATE INDEX timestamp_idx ON messages (timestamp ASC);",
-]
 
 
 class Db3Writer:
