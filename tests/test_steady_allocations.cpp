@@ -278,3 +278,36 @@ TEST_CASE("reserve(): a window growing to a new maximum within the reservation a
   CHECK(allocations_while_the_window_grows<Config>(3000) == 0);
   CHECK(allocations_while_the_window_grows<Config>(0) > 0);  // the control: the rings had to grow
 }
+
+TEST_CASE("bucket grid: a spill bucket is born with room for a cell of 16 handles") {
+  using Grid = sc::BucketGrid;
+  static_assert(Grid::kInlineCapacity + Grid::kMinSpillCapacity == 16);
+  Grid grid{{}};
+  grid.reset(sc::GridShape{1, 4, false});
+  sc::PointHandle next = 0;
+  for (std::uint32_t i = 0; i < Grid::kInlineCapacity; ++i) grid.insert(1, next++);
+  std::uint64_t first_spill = 0;
+  {
+    CountingScope scope;
+    grid.insert(1, next++);  // the cell's 7th handle: the first spill bucket
+    first_spill = scope.allocations();
+  }
+  CHECK(first_spill > 0);
+  CHECK(grid.spilled_cells() == 1);
+  CountingScope scope;
+  while (grid.cell_size(1) < 16) grid.insert(1, next++);  // climbing to 16: the bucket does not grow
+  CHECK(scope.allocations() == 0);
+  // A sliding cell of 16 (remove the oldest, insert the newest) for a long
+  // while, and a second crowded cell taking the pooled bucket: nothing new.
+  for (int i = 0; i < 1000; ++i) {
+    grid.remove(1, next - 16);
+    grid.insert(1, next++);
+  }
+  while (grid.cell_size(1) > 0) grid.remove(1, next - static_cast<sc::PointHandle>(grid.cell_size(1)));
+  CHECK(grid.spilled_cells() == 0);
+  for (int i = 0; i < 16; ++i) grid.insert(3, next++);
+  CHECK(grid.spilled_cells() == 1);
+  CHECK(scope.allocations() == 0);
+  grid.insert(3, next++);  // the 17th handle: past the reserved room, the bucket grows
+  CHECK(scope.allocations() == 1);
+}

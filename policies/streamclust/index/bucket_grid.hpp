@@ -36,7 +36,11 @@ namespace streamclust {
 /// no-op. `for_each` visits a cell in insertion order.
 ///
 /// Memory: 32 bytes per cell, plus per spill bucket in use or pooled
-/// 32 bytes and 4 bytes per handle of capacity. Spill buckets keep their
+/// 32 bytes and 4 bytes per handle of capacity (at least
+/// `kMinSpillCapacity`: a bucket is born with room for a cell of 16 handles,
+/// so the few mildly crowded cells of an ordinary scan never grow one; a
+/// bucket grown from empty would allocate at 1, 2, 4 and 8 spilled handles,
+/// whenever a cell of the window reached a new peak). Spill buckets keep their
 /// capacity when released (`remove`, `clear`, `reset`), a full spill
 /// with removed handles at its front is compacted instead of grown, and a
 /// cell that spills takes the pooled bucket of the largest capacity (the
@@ -61,11 +65,14 @@ class BucketGrid {
  public:
   /// Handles a cell holds without a spill bucket.
   static constexpr std::uint32_t kInlineCapacity = 6;
+  /// [handles] capacity a new spill bucket reserves: with the inline
+  /// handles, a cell of 16 (where the engine's crowded-cell chains start).
+  static constexpr std::uint32_t kMinSpillCapacity = 10;
 
   struct Params {
     /// [handles] expected handles of a crowded cell: a spill bucket reserves
-    /// room for `reserve_per_cell - kInlineCapacity` handles when it is first
-    /// created (0 or <= kInlineCapacity: grow on demand).
+    /// room for `reserve_per_cell - kInlineCapacity` handles, and at least
+    /// `kMinSpillCapacity`, when it is first created.
     std::uint32_t reserve_per_cell = 0;
   };
 
@@ -254,7 +261,8 @@ class BucketGrid {
     // The pool never holds more than every bucket: sized with them, so a
     // release never allocates.
     if (free_spills_.capacity() < spills_.capacity()) free_spills_.reserve(spills_.capacity());
-    if (params_.reserve_per_cell > kInlineCapacity) spills_.back().items.reserve(params_.reserve_per_cell - kInlineCapacity);
+    const std::uint32_t wanted = params_.reserve_per_cell > kInlineCapacity ? params_.reserve_per_cell - kInlineCapacity : 0;
+    spills_.back().items.reserve(std::max(wanted, kMinSpillCapacity));
     return static_cast<std::uint32_t>(spills_.size() - 1);
   }
 
