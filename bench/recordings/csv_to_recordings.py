@@ -175,8 +175,6 @@ class Ros1Writer:
         self.bag.close()
 
 
-
-
 class Db3Writer:
     COMMIT_EVERY = 50  # messages per transaction
 
