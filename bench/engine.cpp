@@ -23,6 +23,9 @@
 // PosedMotion) gets the simulator's 100 Hz sensor poses and its sensor
 // height, so its placement and ground phases are in the insertion cost.
 //
+//   BM_CycleLatency<Config>/<scenario>/T_B:500  the benchmark kit's cycle
+//                                        latency (median, P99 per cycle)
+//
 // Measure with (min_time in seconds, a plain number on Google Benchmark 1.7):
 //   build/perf/bench/bench_engine --benchmark_min_time=2
 // Streams: STREAMCLUST_BENCH_SECONDS seconds of each scenario (default 2;
@@ -31,6 +34,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <streamclust/benchmarking/cycle_latency.hpp>
+#include <streamclust/benchmarking/main.hpp>
 #include <streamclust/sim/scenes.hpp>
 #include <streamclust/sim/sensors/avia_model.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
@@ -47,18 +52,13 @@
 
 namespace sc = streamclust;
 namespace sim = streamclust::sim;
+namespace bk = streamclust::benchmarking;
 
 namespace {
 
-/// Set by main() when --benchmark_min_time is below 0.05 s (CTest's smoke
-/// run): 0.7 s streams (one full 0.5 s window plus a few cycles) keep it short.
-bool g_smoke = false;
-
-double stream_seconds() {
-  const char* env = std::getenv("STREAMCLUST_BENCH_SECONDS");
-  const double s = env != nullptr ? std::atof(env) : (g_smoke ? 0.7 : 2.0);
-  return s > 0.6 ? s : 0.6;
-}
+/// [s] each scenario's stream: 2 s, 0.7 s in a smoke run (the kit's
+/// STREAMCLUST_BENCHMARK_MAIN), or $STREAMCLUST_BENCH_SECONDS; at least 0.6 s.
+double stream_seconds() { return bk::cycle_stream_seconds(0.3); }
 
 template <class Sensor>
 typename sim::Simulator<Sensor>::Params sim_params() {
@@ -205,62 +205,7 @@ void BM_Insert(benchmark::State& state) {
 
 // ---------------------------------------------- 20 Hz cycle vs batch
 
-/// Drives an engine over a stream in 50 ms slices, wrapping around.
-template <class Config>
-class CycleDriver {
- public:
-  CycleDriver(const std::vector<sim::SimPoint>& points, const sc::ClustererParams<Config>& params)
-      : points_(points), params_(params), engine_(params) {
-    restart();
-  }
-
-  /// Inserts the next 50 ms slice and retrieves; returns the slice's points.
-  std::size_t cycle() {
-    const std::size_t n = insert_slice();
-    engine_.retrieve();
-    return n;
-  }
-  /// Inserts the next 50 ms slice without retrieving: point by point with
-  /// insert(), or with insert_batch on packets of `packet` points (96: a
-  /// Livox packet). Returns the slice's points.
-  std::size_t insert_slice(std::size_t packet = 0) {
-    const double end = slice_end_;
-    std::size_t last = i_;
-    while (last < points_.size() && points_[last].t < end) ++last;
-    const std::size_t n = last - i_;
-    if (packet == 0) {
-      for (; i_ < last; ++i_) engine_.insert(points_[i_]);
-    } else {
-      for (; i_ < last; i_ = std::min(last, i_ + packet)) {
-        engine_.insert_batch(points_.begin() + static_cast<std::ptrdiff_t>(i_),
-                             points_.begin() + static_cast<std::ptrdiff_t>(std::min(last, i_ + packet)));
-      }
-    }
-    slice_end_ += 0.05;
-    return n;
-  }
-  /// True when the next slice would run past the stream.
-  bool exhausted() const { return slice_end_ > points_.back().t; }
-  /// A fresh engine with one full window inserted before the first
-  /// retrieval (untimed warm-up: the adaptive resolution calibrates on it).
-  void restart() {
-    engine_ = sc::StreamClusterer<Config>(params_);
-    i_ = 0;
-    slice_end_ = 0.05;
-    const double fill = params_.window.duration + 0.1;
-    for (; i_ < points_.size() && points_[i_].t < fill; ++i_) engine_.insert(points_[i_]);
-    while (slice_end_ < fill) slice_end_ += 0.05;
-    cycle();
-  }
-  sc::StreamClusterer<Config>& engine() { return engine_; }
-
- private:
-  const std::vector<sim::SimPoint>& points_;
-  sc::ClustererParams<Config> params_;
-  sc::StreamClusterer<Config> engine_;
-  std::size_t i_ = 0;
-  double slice_end_ = 0.05;
-};
+using bk::CycleDriver;
 
 template <class Config, class Scenario>
 void BM_CycleVsBatch(benchmark::State& state) {
@@ -460,18 +405,25 @@ SC_RETRIEVE(CArcConfig);
 SC_RETRIEVE(CArcFastConfig);
 SC_RETRIEVE(CArcRebuildConfig);
 
-// BENCHMARK_MAIN() plus the smoke detection: a min time below 0.05 s (CTest
-// passes 0.01) means a smoke run, which uses 0.7 s streams unless
-// STREAMCLUST_BENCH_SECONDS says otherwise. Full runs are unchanged.
-int main(int argc, char** argv) {
-  const std::string key = "--benchmark_min_time=";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a.compare(0, key.size(), key) == 0 && std::atof(a.c_str() + key.size()) < 0.05) g_smoke = true;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// ------------------------------------------ cycle latency through the kit
+// The kit's cycle latency (<streamclust/benchmarking/cycle_latency.hpp>, what
+// a researcher measures their own Config with): the C-ARC preset of each
+// sensor and the objects preset, Mid-360 and Avia office, T_B = 0.5 s.
+[[maybe_unused]] const bool kit_registered = [] {
+  bk::register_cycle_latency<CArcFastConfig>("BM_CycleLatency<CArcFastConfig>", [](const bk::CycleSetup& setup) {
+    sc::CArcParams carc = setup.scenario.sensor == bk::Sensor::mid360 ? sc::carc_mid360_params() : sc::carc_avia_params();
+    carc.window_seconds = setup.window_seconds;
+    return sc::to_clusterer_params<CArcFastConfig>(carc);
+  });
+  bk::register_cycle_latency<ObjectsConfig>("BM_CycleLatency<ObjectsConfig>", [](const bk::CycleSetup& setup) {
+    const sc::ObjectsSetup objects = objects_setup(setup.trajectory, setup.window_seconds);
+    return setup.scenario.sensor == bk::Sensor::mid360 ? sc::objects_mid360_params(objects)
+                                                       : sc::objects_avia_params(objects);
+  });
+  return true;
+}();
+
+// Google Benchmark's main plus the kit's smoke mode: a min time below 0.05 s
+// (CTest passes 0.01) simulates 0.7 s streams unless STREAMCLUST_BENCH_SECONDS
+// says otherwise. Full runs are unchanged.
+STREAMCLUST_BENCHMARK_MAIN();

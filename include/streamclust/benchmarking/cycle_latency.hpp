@@ -24,8 +24,8 @@
 ///   return true;
 /// }();
 /// ```
-/// Streams: `stream_seconds` of each scenario (default 2 s, or
-/// $STREAMCLUST_BENCH_SECONDS), cycles wrap around to a fresh engine, whose
+/// Streams: cycle_stream_seconds() of each scenario (2 s; 0.7 s in a smoke
+/// run; or $STREAMCLUST_BENCH_SECONDS), cycles wrap around to a fresh engine, whose
 /// first full window is inserted untimed before the first timed cycle.
 /// Thread-safety: as linkage_benchmarks.hpp.
 
@@ -118,11 +118,20 @@ struct CycleSetup {
   double window_seconds = 0.5;  ///< T_B [s]
 };
 
+/// [s] the stream simulated per scenario unless $STREAMCLUST_BENCH_SECONDS
+/// says otherwise: 2 s, 0.7 s in a smoke run (run_benchmarks, main.hpp).
+/// Set it before the benchmarks run. Not thread-safe.
+inline double& default_stream_seconds() {
+  static double seconds = 2.0;
+  return seconds;
+}
+
 /// [s] the stream simulated per scenario: $STREAMCLUST_BENCH_SECONDS when
-/// set, else `fallback`; at least T_B + 0.3 s (one window and a few cycles).
-inline double cycle_stream_seconds(double window_seconds, double fallback = 2.0) {
+/// set, else default_stream_seconds(); at least T_B + 0.3 s (one window and
+/// a few cycles).
+inline double cycle_stream_seconds(double window_seconds) {
   const char* env = std::getenv("STREAMCLUST_BENCH_SECONDS");
-  const double s = env != nullptr ? std::atof(env) : fallback;
+  const double s = env != nullptr ? std::atof(env) : default_stream_seconds();
   return std::max(s, window_seconds + 0.3);
 }
 
