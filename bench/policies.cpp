@@ -15,7 +15,9 @@
 // one-call path) on two sets of candidate pairs: each point of 0.1 s of the
 // simulated Mid-360 office stream against the 16 points fired before it
 // (mid360_office_back16), and against what a 5 x 5 mask offers it
-// (mid360_office_mask5). The motion policy PosedMotion is measured on its
+// (mid360_office_mask5). BM_LinkageCompare<RangeAdaptiveLinkage> times it
+// against the Euclidean linkage alternately (the kit's comparison, ratio
+// `over_reference`). The motion policy PosedMotion is measured on its
 // own (BM_PosedMotion, ns per point). Inputs and counters: the kit's headers.
 //
 // Measure with (numbers: docs/performance.md):
@@ -126,6 +128,10 @@ bool register_policy_benchmarks() {
   st::for_each_type<st::Linkages>([&](auto tag) {
     bk::register_linkage<typename decltype(tag)::type>(name("BM_Linkage", tag), {}, pairs);
   });
+  // The kit's comparison, as a researcher runs it on their own linkage: the
+  // range-adaptive linkage against the Euclidean one on the pairs a 5 x 5
+  // mask offers in the Mid-360 and Avia office streams.
+  bk::register_linkage_comparison<sc::RangeAdaptiveLinkage, sc::EuclideanLinkage>("BM_LinkageCompare<RangeAdaptiveLinkage>");
   st::for_each_type<st::Windows>([&](auto tag) {
     bk::register_window<typename decltype(tag)::type>(name("BM_Window", tag));
   });

@@ -51,7 +51,7 @@ file(GLOB _config "${_prefix}/*/cmake/streamclust/streamclustConfig.cmake"
 if(NOT _config)
   message(FATAL_ERROR "FAILED: no streamclustConfig.cmake under ${_prefix}")
 endif()
-foreach(_f streamclustConfigVersion.cmake streamclustTargets.cmake Findlz4.cmake)
+foreach(_f streamclustConfigVersion.cmake streamclustTargets.cmake Findlz4.cmake StreamclustBenchmark.cmake)
   get_filename_component(_dir "${_config}" DIRECTORY)
   if(NOT EXISTS "${_dir}/${_f}")
     message(FATAL_ERROR "FAILED: ${_f} missing next to ${_config}")
