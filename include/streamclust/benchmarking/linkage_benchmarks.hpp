@@ -21,7 +21,9 @@
 /// (items_per_second), `linked_share` the share of pairs linked. A
 /// comparison reports `ns_per_pair` and `reference_ns_per_pair` (medians
 /// over the iterations) and `over_reference` = their ratio: below 1 the
-/// policy is faster.
+/// policy is faster. Before timing, each path is checked to link as many
+/// pairs as the Sample path; a linkage whose paths disagree is reported as
+/// an error and STREAMCLUST_BENCHMARK_MAIN() then exits with 1.
 ///
 /// Thread-safety: registration is not thread-safe (Google Benchmark's
 /// registry); run from main or a static initialiser.
@@ -146,10 +148,35 @@ class LinkageRunner {
   std::vector<std::uint8_t> linked_;
 };
 
+/// The number of failed checks of this process's kit benchmarks (read by
+/// run_benchmarks, main.hpp, for the exit code). Not thread-safe.
+inline int& failed_checks() {
+  static int failed = 0;
+  return failed;
+}
+
+/// Before timing: the path must link as many pairs as the Sample path (the
+/// linkage contract: payload and `link_many` decide as the Sample path).
+/// Otherwise the benchmark is skipped with the counts and the failure
+/// counted. Returns true when they agree. O(pairs).
+template <class Linkage>
+bool paths_agree(benchmark::State& state, LinkageRunner<Linkage>& runner, LinkagePath path, const char* what) {
+  const std::size_t by_sample = runner.run(LinkagePath::sample);
+  const std::size_t by_path = runner.run(path);
+  if (by_path == by_sample) return true;
+  const std::string message = std::string(what) + ": the " + path_name(path) + " path links " +
+                              std::to_string(by_path) + " pairs, the sample path " + std::to_string(by_sample) +
+                              ": they must decide alike";
+  state.SkipWithError(message.c_str());
+  ++failed_checks();
+  return false;
+}
+
 /// The benchmark body: every pair of `pairs` by `path`, items = pairs.
 template <class Linkage>
 void run_linkage(benchmark::State& state, const Linkage& linkage, const CandidatePairs& pairs, LinkagePath path) {
   LinkageRunner<Linkage> runner(linkage, pairs);
+  if (!paths_agree(state, runner, path, "linkage")) return;
   std::size_t linked = 0;
   for (auto _ : state) linked += runner.run(path);
   // `linked` feeds a counter, so it is not dead code: no DoNotOptimize on it
@@ -188,6 +215,7 @@ void run_linkage_comparison(benchmark::State& state, const Policy& policy, const
                             const CandidatePairs& pairs, LinkagePath path) {
   LinkageRunner<Policy> a(policy, pairs);
   LinkageRunner<Reference> b(reference, pairs);
+  if (!paths_agree(state, a, path, "policy") || !paths_agree(state, b, path, "reference")) return;
   std::vector<double> a_s, b_s;
   std::size_t linked = 0;
   const auto seconds = [](auto t0) {
