@@ -30,7 +30,7 @@
 //   build/perf/bench/bench_engine --benchmark_min_time=2
 // Streams: STREAMCLUST_BENCH_SECONDS seconds of each scenario (default 2;
 // cycles wrap around the stream). CTest smoke-runs it with min_time 0.01,
-// which main() detects: 0.7 s streams then (about 20 s in all).
+// which main() detects: 0.8 s streams then.
 
 #include <benchmark/benchmark.h>
 
@@ -56,38 +56,13 @@ namespace bk = streamclust::benchmarking;
 
 namespace {
 
-/// [s] each scenario's stream: 2 s, 0.7 s in a smoke run (the kit's
+/// [s] each scenario's stream: 2 s, 0.8 s in a smoke run (the kit's
 /// STREAMCLUST_BENCHMARK_MAIN), or $STREAMCLUST_BENCH_SECONDS; at least 0.6 s.
 double stream_seconds() { return bk::cycle_stream_seconds(0.3); }
 
-template <class Sensor>
-typename sim::Simulator<Sensor>::Params sim_params() {
-  typename sim::Simulator<Sensor>::Params p;
-  p.velocity = Eigen::Vector3f(0.5f, 0.0f, 0.0f);  // slow ego-motion, as a hand-held sensor
-  p.seed = 7;
-  return p;
-}
-
 /// [m] the simulated sensor above the ground: its start height (the office
 /// floor and the forest ground pass through z = 0 at the origin).
-const float kSensorHeight = sim::Simulator<sim::Mid360Model>::Params{}.start_position.z();
-
-template <class Sensor>
-std::vector<sim::SimPoint> simulate(Sensor sensor, sc::sim::Scene scene) {
-  sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), sim_params<Sensor>());
-  std::vector<sim::SimPoint> out;
-  const double seconds = stream_seconds();
-  out.reserve(static_cast<std::size_t>(seconds * 250000.0));
-  while (simulator.time() < seconds) out.push_back(simulator.next());
-  return out;
-}
-
-/// The sensor's poses over the stream of `simulate` (100 Hz, as odometry).
-template <class Sensor>
-std::shared_ptr<const sc::PoseTrajectory> poses(Sensor sensor, sc::sim::Scene scene) {
-  const sim::Simulator<Sensor> simulator(std::move(sensor), std::move(scene), sim_params<Sensor>());
-  return std::make_shared<const sc::PoseTrajectory>(simulator.trajectory(0.0, stream_seconds() + 0.1, 100.0));
-}
+const float kSensorHeight = bk::simulated_sensor_height();
 
 /// Objects parameters for a scenario's stream: its poses, its sensor height, T_B.
 sc::ObjectsSetup objects_setup(std::shared_ptr<const sc::PoseTrajectory> trajectory, double window_seconds) {
@@ -103,48 +78,44 @@ sc::ObjectsSetup objects_setup(std::shared_ptr<const sc::PoseTrajectory> traject
 struct Mid360Office {
   static const char* name() { return "mid360_office"; }
   static const std::vector<sim::SimPoint>& points() {
-    static const auto pts = simulate(sim::Mid360Model{}, sim::office_scene(3));
-    return pts;
+    return bk::simulated_points({bk::Sensor::mid360, "office"}, stream_seconds());
   }
   static sc::CArcParams carc() { return sc::carc_mid360_params(); }
   static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
-    static const auto trajectory = poses(sim::Mid360Model{}, sim::office_scene(3));
+    const auto trajectory = bk::simulated_trajectory({bk::Sensor::mid360, "office"}, stream_seconds());
     return sc::objects_mid360_params(objects_setup(trajectory, window_seconds));
   }
 };
 struct Mid360Forest {
   static const char* name() { return "mid360_forest"; }
   static const std::vector<sim::SimPoint>& points() {
-    static const auto pts = simulate(sim::Mid360Model{}, sim::forest_scene(3));
-    return pts;
+    return bk::simulated_points({bk::Sensor::mid360, "forest"}, stream_seconds());
   }
   static sc::CArcParams carc() { return sc::carc_mid360_params(); }
   static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
-    static const auto trajectory = poses(sim::Mid360Model{}, sim::forest_scene(3));
+    const auto trajectory = bk::simulated_trajectory({bk::Sensor::mid360, "forest"}, stream_seconds());
     return sc::objects_mid360_params(objects_setup(trajectory, window_seconds));
   }
 };
 struct AviaOffice {
   static const char* name() { return "avia_office"; }
   static const std::vector<sim::SimPoint>& points() {
-    static const auto pts = simulate(sim::AviaModel{}, sim::office_scene(3));
-    return pts;
+    return bk::simulated_points({bk::Sensor::avia, "office"}, stream_seconds());
   }
   static sc::CArcParams carc() { return sc::carc_avia_params(); }
   static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
-    static const auto trajectory = poses(sim::AviaModel{}, sim::office_scene(3));
+    const auto trajectory = bk::simulated_trajectory({bk::Sensor::avia, "office"}, stream_seconds());
     return sc::objects_avia_params(objects_setup(trajectory, window_seconds));
   }
 };
 struct AviaForest {
   static const char* name() { return "avia_forest"; }
   static const std::vector<sim::SimPoint>& points() {
-    static const auto pts = simulate(sim::AviaModel{}, sim::forest_scene(3));
-    return pts;
+    return bk::simulated_points({bk::Sensor::avia, "forest"}, stream_seconds());
   }
   static sc::CArcParams carc() { return sc::carc_avia_params(); }
   static sc::ClustererParams<sc::ObjectsConfig> objects(double window_seconds) {
-    static const auto trajectory = poses(sim::AviaModel{}, sim::forest_scene(3));
+    const auto trajectory = bk::simulated_trajectory({bk::Sensor::avia, "forest"}, stream_seconds());
     return sc::objects_avia_params(objects_setup(trajectory, window_seconds));
   }
 };
@@ -424,6 +395,6 @@ SC_RETRIEVE(CArcRebuildConfig);
 }();
 
 // Google Benchmark's main plus the kit's smoke mode: a min time below 0.05 s
-// (CTest passes 0.01) simulates 0.7 s streams unless STREAMCLUST_BENCH_SECONDS
+// (CTest passes 0.01) simulates 0.8 s streams unless STREAMCLUST_BENCH_SECONDS
 // says otherwise. Full runs are unchanged.
 STREAMCLUST_BENCHMARK_MAIN();

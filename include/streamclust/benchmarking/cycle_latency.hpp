@@ -24,7 +24,7 @@
 ///   return true;
 /// }();
 /// ```
-/// Streams: cycle_stream_seconds() of each scenario (2 s; 0.7 s in a smoke
+/// Streams: cycle_stream_seconds() of each scenario (2 s; 0.8 s in a smoke
 /// run; or $STREAMCLUST_BENCH_SECONDS), cycles wrap around to a fresh engine, whose
 /// first full window is inserted untimed before the first timed cycle.
 /// Thread-safety: as linkage_benchmarks.hpp.
@@ -119,7 +119,7 @@ struct CycleSetup {
 };
 
 /// [s] the stream simulated per scenario unless $STREAMCLUST_BENCH_SECONDS
-/// says otherwise: 2 s, 0.7 s in a smoke run (run_benchmarks, main.hpp).
+/// says otherwise: 2 s, 0.8 s in a smoke run (run_benchmarks, main.hpp).
 /// Set it before the benchmarks run. Not thread-safe.
 inline double& default_stream_seconds() {
   static double seconds = 2.0;

@@ -4,7 +4,7 @@
 /// \file
 /// A benchmark program's main: Google Benchmark's, plus the kit's smoke
 /// mode. A run with --benchmark_min_time below 0.05 s (a CTest smoke run,
-/// e.g. 0.01) simulates 0.7 s streams for the cycle latency (one 0.5 s
+/// e.g. 0.01) simulates 0.8 s streams for the cycle latency (one 0.5 s
 /// window and a few cycles) instead of 2 s. Full runs are unchanged. The
 /// exit code is 1 when a kit check failed (a linkage whose paths disagree).
 ///
@@ -35,7 +35,7 @@ inline bool smoke_run(int argc, char** argv) {
 /// Google Benchmark's main with the smoke mode; returns the exit code: 1
 /// for unrecognised arguments or when a kit check failed (failed_checks()).
 inline int run_benchmarks(int argc, char** argv) {
-  if (smoke_run(argc, argv)) default_stream_seconds() = 0.7;
+  if (smoke_run(argc, argv)) default_stream_seconds() = 0.8;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
