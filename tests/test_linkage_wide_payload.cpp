@@ -10,10 +10,15 @@
 #include <doctest/doctest.h>
 
 #include <streamclust/batch_clusterer.hpp>
+#include <streamclust/connectivity/lazy_bfs.hpp>
 #include <streamclust/connectivity/spanning_forest.hpp>
+#include <streamclust/connectivity/union_find_rebuild.hpp>
+#include <streamclust/index/bucket_grid.hpp>
 #include <streamclust/index/capped_grid.hpp>
+#include <streamclust/index/overwrite_grid.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
+#include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/fixed.hpp>
 #include <streamclust/stream_clusterer.hpp>
@@ -143,6 +148,19 @@ static_assert(sc::detail::names_make_payload<MemberMakePayload> && !sc::has_link
 static_assert(!sc::detail::names_link_many<sc::EuclideanLinkage> && !sc::detail::names_restore_ray<Gated>);
 static_assert(sc::detail::names_Payload<Gated> && !sc::detail::names_Payload<SamplePathOnly<Gated>>);
 static_assert(sc::detail::names_gather<sc::CappedGrid> && !sc::detail::names_youngest<sc::CappedGrid>);
+// and every standard policy passes the near-miss checks
+static_assert(sc::detail::check_linkage_capabilities<sc::EuclideanLinkage>() &&
+              sc::detail::check_linkage_capabilities<sc::AngularLinkage>() &&
+              sc::detail::check_linkage_capabilities<sc::RangeAdaptiveLinkage>() &&
+              sc::detail::check_linkage_capabilities<sc::RuntimeLinkage>() &&
+              sc::detail::check_linkage_capabilities<sc::AngularOrEuclidean>() &&
+              sc::detail::check_linkage_capabilities<Gated>());
+static_assert(sc::detail::check_spatial_index_capabilities<sc::BucketGrid>() &&
+              sc::detail::check_spatial_index_capabilities<sc::CappedGrid>() &&
+              sc::detail::check_spatial_index_capabilities<sc::OverwriteGrid>());
+static_assert(sc::detail::check_connectivity_capabilities<sc::LazyBfsConnectivity>() &&
+              sc::detail::check_connectivity_capabilities<sc::UnionFindRebuildConnectivity>() &&
+              sc::detail::check_connectivity_capabilities<sc::SpanningForestConnectivity>());
 
 TEST_CASE("a composed payload decides as its children on Samples, bit for bit") {
   std::mt19937 rng(5);
