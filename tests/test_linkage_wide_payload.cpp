@@ -128,7 +128,10 @@ struct MemberMakePayload {
 static_assert(sc::has_linkage_payload_v<Gated> && sc::is_linkage_payload_valid_v<Gated>);
 static_assert(sizeof(GatedPayload) == 32 && alignof(GatedPayload) == 32);
 static_assert(std::is_trivially_copyable_v<GatedPayload>);
-static_assert(!sc::has_linkage_ray_payload_v<Gated> && !sc::has_linkage_link_many_v<Gated>);
+static_assert(!sc::has_linkage_ray_payload_v<Gated>);
+// link_many from the first child's: the range-adaptive one, not the gate's (it has none)
+static_assert(sc::has_linkage_link_many_v<Gated>);
+static_assert(!sc::has_linkage_link_many_v<sc::AnyOf<IntensityGate, sc::RangeAdaptiveLinkage>>);
 static_assert(sizeof(sc::linkage_payload_t<sc::AnyOf<IntensityGate, sc::RangeAdaptiveLinkage>>) == 32);
 // a shared payload stays the children's own (16 bytes)
 static_assert(std::is_same_v<sc::linkage_payload_t<sc::AllOf<sc::RangeAdaptiveLinkage, sc::RangeAdaptiveLinkage>>,
@@ -197,6 +200,44 @@ TEST_CASE("a composed payload decides as its children on Samples, bit for bit") 
   }
   CHECK(both > 100);    // the two criteria agree often ...
   CHECK(either > 100);  // ... and disagree often: AND and OR both exercised
+}
+
+TEST_CASE("a combinator's link_many decides as its pairwise operator, across blocks of candidates") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-3.0f, 3.0f);
+  std::uniform_real_distribution<float> level(0.0f, 60.0f);
+  std::vector<GatedPayload> ring;
+  std::vector<sc::AngularOrEuclidean::Payload> hybrid_ring;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Vector3f position(coord(rng), coord(rng), coord(rng) + 4.0f);
+    const sc::Sample s = sc::make_sample(position, position.norm(), level(rng), 0.0);
+    ring.push_back(Gated::make_payload(s));
+    hybrid_ring.push_back(sc::AngularOrEuclidean::make_payload(s));
+  }
+  const Gated gated{{{0.5f, 0.1f}, {15.0f}}};
+  const sc::AngularOrEuclidean hybrid{{{20.0f, 0.2f}, {0.4f}}};
+  std::vector<std::uint32_t> slots;
+  std::vector<std::uint8_t> linked;
+  std::size_t ones = 0;
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < ring.size(); i += 13) {
+    const std::size_t count = 1 + rng() % 200;  // up to three blocks and a partial one
+    slots.resize(count);
+    for (auto& slot : slots) slot = static_cast<std::uint32_t>(rng() % ring.size());
+    linked.assign(count + 1, 7);
+    gated.link_many(ring[i], ring.data(), slots.data(), count, linked.data());
+    for (std::size_t k = 0; k < count; ++k) REQUIRE(linked[k] == (gated(ring[i], ring[slots[k]]) ? 1u : 0u));
+    REQUIRE(linked[count] == 7);  // nothing written past count
+    for (std::size_t k = 0; k < count; ++k) ones += linked[k];
+    total += count;
+    linked.assign(count + 1, 7);
+    hybrid.link_many(hybrid_ring[i], hybrid_ring.data(), slots.data(), count, linked.data());
+    for (std::size_t k = 0; k < count; ++k)
+      REQUIRE(linked[k] == (hybrid(hybrid_ring[i], hybrid_ring[slots[k]]) ? 1u : 0u));
+    REQUIRE(linked[count] == 7);
+  }
+  CHECK(ones > total / 20);  // both outcomes occur
+  CHECK(ones < total - total / 20);
 }
 
 TEST_CASE("the wide payload path gives the Sample path's partition, equal to the batch clusterer") {

@@ -11,7 +11,9 @@
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/types.hpp>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -39,6 +41,64 @@ struct CombinatorPayload<Combined, P, void> {
 };
 template <class Combined>
 struct CombinatorPayload<Combined, void, void> {};
+
+/// Candidates per call of a combinator's first child's `link_many`: their
+/// parts are copied to a stack buffer of this many (1 KB of 16-byte parts).
+inline constexpr std::size_t kCombinatorBlock = 64;
+
+/// 0, 1, ..., kCombinatorBlock - 1: the slots of that buffer.
+struct IdentitySlots {
+  std::uint32_t slot[kCombinatorBlock];
+  constexpr IdentitySlots() : slot{} {
+    for (std::size_t k = 0; k < kCombinatorBlock; ++k) slot[k] = static_cast<std::uint32_t>(k);
+  }
+};
+inline constexpr IdentitySlots kIdentitySlots{};
+
+/// The optional `link_many` (concepts/linkage.hpp) of combinator `Derived`
+/// with payload P, when its first child has one: the first child decides
+/// every candidate at once on its parts (in blocks of kCombinatorBlock
+/// candidates copied together, or on the ring itself when the payload is
+/// the children's shared one), then the other children decide, one by one,
+/// only the candidates the first left open (AllOf: those it linked; AnyOf:
+/// those it did not). The pairwise operator's decisions bit for bit (the
+/// first child's `link_many` gives its pairwise ones, the others are the
+/// pairwise operator's remaining terms). Nothing when `Enabled` is false.
+template <class Derived, class P, bool Enabled>
+struct CombinatorLinkMany {};
+template <class Derived, class P>
+struct CombinatorLinkMany<Derived, P, true> {
+  /// linked[k] = the combinator on (a, ring[slots[k]]), for k < count. O(count).
+  void link_many(const P& a, const P* ring, const std::uint32_t* slots, std::size_t count,
+                 std::uint8_t* linked) const {
+    const Derived& self = static_cast<const Derived&>(*this);
+    const auto& first = self.template child<0>();
+    using First = std::remove_cv_t<std::remove_reference_t<decltype(first)>>;
+    using Part = linkage_payload_t<First>;
+    using Combined = typename Derived::combined;
+    if constexpr (std::is_same_v<Part, P>) {
+      first.link_many(a, ring, slots, count, linked);
+    } else {
+      Part parts[kCombinatorBlock];
+      const Part& own = Combined::template part_of<First>(a);
+      for (std::size_t done = 0; done < count; done += kCombinatorBlock) {
+        const std::size_t n = std::min(kCombinatorBlock, count - done);
+        for (std::size_t k = 0; k < n; ++k) parts[k] = Combined::template part_of<First>(ring[slots[done + k]]);
+        first.link_many(own, parts, kIdentitySlots.slot, n, linked + done);
+      }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      if ((linked[k] != 0) == Derived::kRestWhenFirstLinks) linked[k] = self.rest_decides(a, ring[slots[k]]) ? 1 : 0;
+    }
+  }
+};
+
+/// True when a combinator of Ls... with payload P gets `link_many`: it has a
+/// payload and its first child has `link_many`.
+template <class P, class... Ls>
+struct combinator_links_many : std::false_type {};
+template <class P, class L, class... Ls>
+struct combinator_links_many<P, L, Ls...> : std::bool_constant<!std::is_void_v<P> && has_linkage_link_many_v<L>> {};
 }  // namespace detail
 
 /// Links a and b iff EVERY child linkage does (short-circuit, left to right).
@@ -56,7 +116,10 @@ struct CombinatorPayload<Combined, void, void> {};
 /// of each distinct one (e.g. `AllOf<RangeAdaptiveLinkage, Gate>` with a
 /// 4-byte gate payload: 32 bytes, 32-aligned) when it fits 32 bytes; each
 /// child reads its own part. Otherwise (a child without a payload, or more
-/// than 32 bytes together) it stays on the Sample path. No `link_many`.
+/// than 32 bytes together) it stays on the Sample path. With a payload and a
+/// first child with `link_many`, AllOf has `link_many` too: the first child
+/// tests every candidate at once, the others only those it linked (put the
+/// vectorised child first).
 ///
 /// Complexity: the sum of the children's, at most. Thread safety: as the
 /// children (the standard ones are immutable and thread-safe).
@@ -67,9 +130,16 @@ struct CombinatorPayload<Combined, void, void> {};
 ///   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.2f}, {1.0f}}};
 /// \endcode
 template <class... Ls>
-class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>> {
+class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
+              public detail::CombinatorLinkMany<
+                  AllOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
+                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
   using combined = detail::CombinedPayload<Ls...>;
   using payload_type = typename combined::type;  // void: none
+  template <class, class, bool>
+  friend struct detail::CombinatorLinkMany;
+  /// link_many: the other children decide where the first linked.
+  static constexpr bool kRestWhenFirstLinks = true;
   static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
 
  public:
@@ -103,12 +173,19 @@ class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>> {
   template <std::size_t... I>
   AllOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
 
-  /// Each child on its part of the two payloads, left to right, short-circuit.
-  template <class P, std::size_t... I>
+  /// Children `Offset + I...` on their parts of the two payloads, left to
+  /// right, short-circuit.
+  template <std::size_t Offset = 0, class P, std::size_t... I>
   bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
     return (true && ... &&
-            static_cast<bool>(std::get<I>(children_)(combined::template part_of<Ls>(a),
-                                                    combined::template part_of<Ls>(b))));
+            static_cast<bool>(std::get<Offset + I>(children_)(
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
+  }
+  /// Every child but the first on the two payloads (for link_many).
+  template <class P>
+  bool rest_decides(const P& a, const P& b) const {
+    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
   }
 
   std::tuple<Ls...> children_;
@@ -133,9 +210,16 @@ class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>> {
 ///   streamclust::AnyOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.0f}, {0.1f}}};
 /// \endcode
 template <class... Ls>
-class AnyOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>> {
+class AnyOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
+              public detail::CombinatorLinkMany<
+                  AnyOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
+                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
   using combined = detail::CombinedPayload<Ls...>;
   using payload_type = typename combined::type;  // void: none
+  template <class, class, bool>
+  friend struct detail::CombinatorLinkMany;
+  /// link_many: the other children decide where the first did not link.
+  static constexpr bool kRestWhenFirstLinks = false;
   static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
 
  public:
@@ -169,12 +253,19 @@ class AnyOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>> {
   template <std::size_t... I>
   AnyOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
 
-  /// Each child on its part of the two payloads, left to right, short-circuit.
-  template <class P, std::size_t... I>
+  /// Children `Offset + I...` on their parts of the two payloads, left to
+  /// right, short-circuit.
+  template <std::size_t Offset = 0, class P, std::size_t... I>
   bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
     return (false || ... ||
-            static_cast<bool>(std::get<I>(children_)(combined::template part_of<Ls>(a),
-                                                    combined::template part_of<Ls>(b))));
+            static_cast<bool>(std::get<Offset + I>(children_)(
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
+  }
+  /// Every child but the first on the two payloads (for link_many).
+  template <class P>
+  bool rest_decides(const P& a, const P& b) const {
+    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
   }
 
   std::tuple<Ls...> children_;
