@@ -204,7 +204,7 @@ TEST_CASE("a composed payload decides as its children on Samples, bit for bit") 
 
 TEST_CASE("a combinator's link_many decides as its pairwise operator, across blocks of candidates") {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<float> coord(-3.0f, 3.0f);
+  std::uniform_real_distribution<float> coord(-0.5f, 0.5f);
   std::uniform_real_distribution<float> level(0.0f, 60.0f);
   std::vector<GatedPayload> ring;
   std::vector<sc::AngularOrEuclidean::Payload> hybrid_ring;
@@ -214,7 +214,7 @@ TEST_CASE("a combinator's link_many decides as its pairwise operator, across blo
     ring.push_back(Gated::make_payload(s));
     hybrid_ring.push_back(sc::AngularOrEuclidean::make_payload(s));
   }
-  const Gated gated{{{0.5f, 0.1f}, {15.0f}}};
+  const Gated gated{{{0.5f, 0.1f}, {30.0f}}};
   const sc::AngularOrEuclidean hybrid{{{20.0f, 0.2f}, {0.4f}}};
   std::vector<std::uint32_t> slots;
   std::vector<std::uint8_t> linked;
