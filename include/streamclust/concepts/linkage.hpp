@@ -33,7 +33,7 @@
 /// 40-byte Sample, and with a 16-byte (or smaller
 /// power-of-two) payload never a candidate straddling two cache lines.
 /// The stride is sizeof(Payload), fixed at compile time: a payload of 17 to
-/// 32 bytes (a combinator's composed payload, detail::ComposedPayload) should
+/// 32 bytes (a combinator's composed payload, detail::CombinedPayload) should
 /// be `alignas(32)` so that it too stays in one cache line. Over 32 bytes a
 /// payload would rather be a Sample (40 bytes): the engine rejects it.
 /// `has_linkage_payload_v<L>` detects the capability, `linkage_payload_t<L>`
