@@ -71,8 +71,10 @@ std::size_t require_same_decisions(const Link& link, const P& a, const std::vect
 static_assert(sc::has_linkage_link_many_v<sc::AngularLinkage>);
 static_assert(sc::has_linkage_link_many_v<sc::RangeAdaptiveLinkage>);
 static_assert(!sc::has_linkage_link_many_v<sc::EuclideanLinkage>);
-static_assert(!sc::has_linkage_link_many_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
-static_assert(!sc::has_linkage_link_many_v<sc::AngularOrEuclidean>);
+// combinators: when their first child has it (tests/test_linkage_wide_payload.cpp)
+static_assert(sc::has_linkage_link_many_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
+static_assert(sc::has_linkage_link_many_v<sc::AngularOrEuclidean>);
+static_assert(!sc::has_linkage_link_many_v<sc::AnyOf<sc::EuclideanLinkage, sc::AngularLinkage>>);
 static_assert(!sc::has_linkage_link_many_v<sc::RuntimeLinkage>);
 
 TEST_CASE("AngularLinkage::link_many decides as the pairwise operator on random rays") {

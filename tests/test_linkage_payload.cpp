@@ -65,14 +65,14 @@ void require_same_sample(const sc::Sample& a, const sc::Sample& b) {
   REQUIRE(a.time == b.time);
 }
 
-/// A payload over the 16-byte limit: detected, but invalid.
+/// A payload over the 32-byte limit: detected, but invalid.
 struct WidePayloadLinkage {
   struct Params {};
   struct Payload {
-    float v[5];
+    float v[9];
   };
   explicit WidePayloadLinkage(const Params&) {}
-  static Payload make_payload(const sc::Sample& s) { return Payload{{s.position.x(), 0.0f, 0.0f, 0.0f, 0.0f}}; }
+  static Payload make_payload(const sc::Sample& s) { return Payload{{s.position.x()}}; }
   bool operator()(const Payload& a, const Payload& b) const { return a.v[0] == b.v[0]; }
   bool operator()(const sc::Sample& a, const sc::Sample& b) const { return (*this)(make_payload(a), make_payload(b)); }
 };
@@ -129,10 +129,11 @@ static_assert(sizeof(sc::AngularLinkage::Payload) == 16 && alignof(sc::AngularLi
 static_assert(sizeof(sc::EuclideanLinkage::Payload) == 16 && alignof(sc::EuclideanLinkage::Payload) == 16);
 static_assert(std::is_trivially_copyable_v<sc::AngularLinkage::Payload>);
 static_assert(std::is_trivially_copyable_v<sc::EuclideanLinkage::Payload>);
-// combinators: only children sharing one payload type
+// combinators: children sharing one payload type, or different ones composed
+// (tests/test_linkage_wide_payload.cpp)
 static_assert(sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, sc::AngularLinkage>>);
 static_assert(sc::has_linkage_payload_v<sc::AnyOf<sc::EuclideanLinkage>>);
-static_assert(!sc::has_linkage_payload_v<sc::AngularOrEuclidean>);
+static_assert(sc::has_linkage_payload_v<sc::AngularOrEuclidean>);
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, SampleOnlyAngular>>);
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<>>);
 static_assert(!sc::has_linkage_payload_v<sc::RuntimeLinkage>);

@@ -80,8 +80,9 @@ namespace streamclust {
 /// NoGround (the default) skips the stage.
 ///
 /// Memory (`memory_usage()` by part): the point ring (PointRing: 40 bytes of
-/// Sample, or 24 with a payload carrying the ray, 16 of payload with a
-/// payload linkage, 8 + the strategy's PointState per point; the peak window
+/// Sample, or 24 with a payload carrying the ray, sizeof(Payload) (16; 32
+/// for a combinator's composed payload) with a payload linkage, 8 + the
+/// strategy's PointState per point; the peak window
 /// plus 1/8), the index, the strategy's edges (12 bytes per stored edge, or
 /// 8 per forest and new edge for the spanning forest), the crowded-cell
 /// chain starts (4 bytes per grid cell, with a bucket grid: CellChains),

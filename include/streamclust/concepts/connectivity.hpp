@@ -19,7 +19,7 @@
 /// | `C c{params}`                    |                        | construct; throws std::invalid_argument if bad           |            |
 /// | `typename C::PointState`         | trivially copyable     | the strategy's per-point bookkeeping, default-constructed when a point enters the window; the point ring keeps it beside each point (`ring.record(h).state`) | |
 /// | `C::stores_point_edges`          | `static constexpr bool`| the point-level edges can be walked (`s.edges()`, a PointEdges): the engine's neighbour accessors and the Boost.Graph point view need it | compile time |
-/// | `C::prune_witnesses()` (optional)| std::uint32_t          | witnesses of the neighbour search's redundant-edge filter (0 or absent: every edge is handed over; only for a strategy that needs the components alone) | O(1) |
+/// | `c.prune_witnesses()` (optional)| std::uint32_t          | witnesses of the neighbour search's redundant-edge filter (0 or absent: every edge is handed over; only for a strategy that needs the components alone); a member of that name with another signature (not const, not an integer) stops compilation (`STREAMCLUST_CONNECTIVITY_CAPABILITY_INVALID`) | O(1) |
 /// | `typename C::template State<R>`  | class S                | the strategy's state for a point ring of type R          |            |
 /// | `S s(c)`                         |                        | an empty window                                          | O(1)       |
 /// | `s.on_link(ctx, h, nb, count)`   | void                   | point h was appended and its `count` older neighbours `nb` found (the engine inserts h into the index afterwards) | the strategy's |
@@ -48,6 +48,7 @@
 
 #include <streamclust/clustering.hpp>
 #include <streamclust/concepts/visitor.hpp>
+#include <streamclust/detail/member_named.hpp>
 #include <streamclust/engine/component_result.hpp>
 #include <streamclust/engine/retrieval_stats.hpp>
 #include <streamclust/types.hpp>
@@ -106,7 +107,11 @@ struct is_connectivity_policy<C, std::void_t<typename C::Params, decltype(C{std:
 template <class C, class = void>
 struct has_prune_witnesses : std::false_type {};
 template <class C>
-struct has_prune_witnesses<C, std::void_t<decltype(std::declval<const C&>().prune_witnesses())>> : std::true_type {};
+struct has_prune_witnesses<C, std::void_t<decltype(std::declval<const C&>().prune_witnesses())>>
+    : std::bool_constant<std::is_integral_v<decltype(std::declval<const C&>().prune_witnesses())> &&
+                         !std::is_same_v<decltype(std::declval<const C&>().prune_witnesses()), bool>> {};
+
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(prune_witnesses);
 
 /// The members a strategy's State must have for a context type Ctx.
 template <class S, class Ctx, class = void>
@@ -143,6 +148,22 @@ inline constexpr bool is_connectivity_policy_v = detail::is_connectivity_policy<
 template <class S, class Ctx>
 inline constexpr bool is_connectivity_state_v = detail::is_connectivity_state<S, Ctx>::value;
 
+namespace detail {
+/// A member of connectivity `C` named like its optional capability has its
+/// signature (a near miss stops here). True, or a failed static_assert.
+/// Used by STREAMCLUST_CHECK_CONNECTIVITY_POLICY.
+template <class C>
+constexpr bool check_connectivity_capabilities() {
+  if constexpr (is_connectivity_policy_v<C>) {
+    static_assert(!names_prune_witnesses<C> || has_prune_witnesses<C>::value,
+                  "STREAMCLUST_CONNECTIVITY_CAPABILITY_INVALID: `prune_witnesses` is not the optional "
+                  "redundant-edge filter: expected `std::uint32_t prune_witnesses() const` "
+                  "(see docs/policies.md, Connectivity)");
+  }
+  return true;
+}
+}  // namespace detail
+
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class C>
 concept ConnectivityPolicy = is_connectivity_policy_v<C>;
@@ -154,4 +175,6 @@ concept ConnectivityPolicy = is_connectivity_policy_v<C>;
   static_assert(::streamclust::is_connectivity_policy_v<C>,                                                     \
                 "STREAMCLUST_CONNECTIVITY_POLICY_INVALID: the connectivity slot needs a nested Params "          \
                 "aggregate, a constructor from Params, a trivially copyable `PointState`, `static constexpr " \
-                "bool stores_point_edges` and a `State<Ring>` template (see concepts/connectivity.hpp)")
+                "bool stores_point_edges` and a `State<Ring>` template (see concepts/connectivity.hpp)");         \
+  static_assert(::streamclust::detail::check_connectivity_capabilities<C>(),                                   \
+                "STREAMCLUST_CONNECTIVITY_CAPABILITY_INVALID")

@@ -19,7 +19,7 @@
 ///
 /// | expression               | type     | meaning                                                        | complexity |
 /// |--------------------------|----------|----------------------------------------------------------------|------------|
-/// | `typename L::Payload`    | struct   | what the predicate reads of a point; trivially copyable, <= 16 bytes | |
+/// | `typename L::Payload`    | struct   | what the predicate reads of a point; trivially copyable, <= 32 bytes | |
 /// | `L::make_payload(s)`     | Payload  | static: the payload of Sample `s` (a pure function of `s`)     | O(1)       |
 /// | `l(pa, pb)`              | bool     | the predicate on two payloads (const Payload&)                 | O(1)       |
 ///
@@ -27,15 +27,20 @@
 /// `l(L::make_payload(a), L::make_payload(b))`, so that both decide the same
 /// bit for bit by construction (the batch oracle calls the Sample version,
 /// the engine the payload one). The engine then keeps a ring of payloads
-/// beside its ring of Samples (16 bytes per point, counted in
-/// `MemoryUsage::point_ring`) and reads candidates from it: 16 dense bytes per
-/// candidate instead of a 40-byte Sample, and with a 16-byte (or smaller
+/// beside its ring of Samples (sizeof(Payload) bytes per point, counted in
+/// `MemoryUsage::point_ring`) and reads candidates from it: sizeof(Payload)
+/// dense bytes per candidate (16 for the standard linkages) instead of a
+/// 40-byte Sample, and with a 16-byte (or smaller
 /// power-of-two) payload never a candidate straddling two cache lines.
+/// The stride is sizeof(Payload), fixed at compile time: a payload of 17 to
+/// 32 bytes (a combinator's composed payload, detail::CombinedPayload) should
+/// be `alignas(32)` so that it too stays in one cache line. Over 32 bytes a
+/// payload would rather be a Sample (40 bytes): the engine rejects it.
 /// `has_linkage_payload_v<L>` detects the capability, `linkage_payload_t<L>`
 /// names the payload (`detail::NoPayload` without it).
 /// `make_payload` is static so that the payload does not depend on the
-/// parameters: combinators can share it between children (AllOf/AnyOf of
-/// children with the same Payload type have the capability too).
+/// parameters: combinators can build theirs from their children's (AllOf/AnyOf
+/// of children with payloads have the capability too).
 ///
 /// Optional refinement: a payload that carries the ray (detected with
 /// `has_linkage_ray_payload_v<L>`).
@@ -61,7 +66,14 @@
 /// std::uint32_t*, `linked`: std::uint8_t*.) Contract: the same decisions
 /// as the pairwise operator, bit for bit. The engine's neighbour search and
 /// the batch clusterer then call it once per point with all its candidates.
+///
+/// Near misses: a linkage with a member NAMED like one of these
+/// (`Payload`, `make_payload`, `restore_ray`, `link_many`) that does not
+/// have the signature above stops compilation where the engine starts
+/// (`STREAMCLUST_LINKAGE_CAPABILITY_INVALID`, naming the expected signature)
+/// instead of running on the slower path without a word.
 
+#include <streamclust/detail/member_named.hpp>
 #include <streamclust/types.hpp>
 
 #include <cstddef>
@@ -145,8 +157,9 @@ inline constexpr bool has_linkage_link_many_v = detail::has_linkage_link_many<L>
 template <class L>
 using linkage_payload_t = typename detail::linkage_payload<L>::type;
 
-/// Largest payload the engine accepts [bytes].
-inline constexpr std::size_t kMaxLinkagePayloadBytes = 16;
+/// Largest payload the engine accepts [bytes]: a wider one would cost more
+/// than the 40-byte Sample it stands for.
+inline constexpr std::size_t kMaxLinkagePayloadBytes = 32;
 
 /// True when `L` has no payload, or a payload the engine can store densely:
 /// trivially copyable and at most kMaxLinkagePayloadBytes bytes.
@@ -154,6 +167,43 @@ template <class L>
 inline constexpr bool is_linkage_payload_valid_v =
     !has_linkage_payload_v<L> || (std::is_trivially_copyable_v<linkage_payload_t<L>> &&
                                   sizeof(linkage_payload_t<L>) <= kMaxLinkagePayloadBytes);
+
+namespace detail {
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(Payload);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(make_payload);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(restore_ray);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(link_many);
+
+/// The optional capabilities of linkage `L` are whole or absent: a member
+/// named like one must have its signature (near misses stop here, each with
+/// the signature it needs), and a payload must be storable. True, or a
+/// failed static_assert. Compile time only; used by
+/// STREAMCLUST_CHECK_LINKAGE_POLICY and by the combinators for their children.
+template <class L>
+constexpr bool check_linkage_capabilities() {
+  if constexpr (is_linkage_policy_v<L>) {
+    static_assert(!(names_Payload<L> || names_make_payload<L>) || has_linkage_payload_v<L>,
+                  "STREAMCLUST_LINKAGE_CAPABILITY_INVALID: a linkage with a member named `Payload` or "
+                  "`make_payload` declares the optional compact payload and needs all three of `struct Payload` "
+                  "(trivially copyable, <= 32 bytes), `static Payload make_payload(const Sample&)` (static, "
+                  "returning exactly Payload) and `bool operator()(const Payload&, const Payload&) const` "
+                  "(see docs/policies.md, Linkage)");
+    static_assert(is_linkage_payload_valid_v<L>,
+                  "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: a linkage's optional Payload must be trivially "
+                  "copyable and at most 32 bytes (or drop Payload/make_payload to stay on the Sample path)");
+    static_assert(!names_restore_ray<L> || has_linkage_ray_payload_v<L>,
+                  "STREAMCLUST_LINKAGE_CAPABILITY_INVALID: `restore_ray` is not the optional ray payload: "
+                  "expected `static void restore_ray(const Payload&, Sample&)` beside the compact payload "
+                  "(see docs/policies.md, Linkage)");
+    static_assert(!names_link_many<L> || has_linkage_link_many_v<L>,
+                  "STREAMCLUST_LINKAGE_CAPABILITY_INVALID: `link_many` is not the optional one-against-many test: "
+                  "expected `void link_many(const Payload& a, const Payload* ring, const std::uint32_t* slots, "
+                  "std::size_t count, std::uint8_t* linked) const` beside the compact payload "
+                  "(see docs/policies.md, Linkage)");
+  }
+  return true;
+}
+}  // namespace detail
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class L>
@@ -167,6 +217,4 @@ concept LinkagePolicy = is_linkage_policy_v<L>;
                 "STREAMCLUST_LINKAGE_POLICY_INVALID: the linkage slot needs a nested Params aggregate, a "     \
                 "constructor from Params and `bool operator()(const Sample&, const Sample&) const` "           \
                 "(see docs/policies.md)");                                                                   \
-  static_assert(::streamclust::is_linkage_payload_valid_v<L>,                                                \
-                "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: a linkage's optional Payload must be trivially "         \
-                "copyable and at most 16 bytes (or drop Payload/make_payload to stay on the Sample path)")
+  static_assert(::streamclust::detail::check_linkage_capabilities<L>(), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID")

@@ -41,7 +41,15 @@
 /// it can only no longer be found by later points. The engine removes points
 /// in insertion order (oldest first), which indexes may exploit.
 /// Not thread-safe: one writer, no concurrent readers.
+///
+/// Near misses: an index with a member NAMED like an optional capability
+/// (`prefetch`, `heap_bytes`, `max_cell_size`, `gather`, `youngest`,
+/// `gather_older`) without the signature above stops compilation where the
+/// engine starts (`STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID`, naming the
+/// expected signature) instead of being ignored. `youngest` and
+/// `gather_older` come together.
 
+#include <streamclust/detail/member_named.hpp>
 #include <streamclust/types.hpp>
 
 #include <cstddef>
@@ -144,6 +152,43 @@ inline constexpr bool has_spatial_index_chain_v = detail::has_spatial_index_chai
 template <class I>
 inline constexpr bool has_spatial_index_prefetch_v = detail::has_spatial_index_prefetch<I>::value;
 
+namespace detail {
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(prefetch);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(heap_bytes);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(max_cell_size);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(gather);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(youngest);
+STREAMCLUST_DETAIL_MEMBER_NAME_TRAIT(gather_older);
+
+/// A member of index `I` named like an optional capability has its
+/// signature (near misses stop here, each with the signature it needs).
+/// True, or a failed static_assert. Used by STREAMCLUST_CHECK_SPATIAL_INDEX_POLICY.
+template <class I>
+constexpr bool check_spatial_index_capabilities() {
+  if constexpr (is_spatial_index_policy_v<I>) {
+    static_assert(!names_prefetch<I> || has_spatial_index_prefetch_v<I>,
+                  "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID: `prefetch` is not the optional prefetch hint: "
+                  "expected `void prefetch(CellIndex) const` (see docs/policies.md, SpatialIndex)");
+    static_assert(!names_heap_bytes<I> || is_spatial_index_heap_reporting_v<I>,
+                  "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID: `heap_bytes` is not the optional memory report: "
+                  "expected `std::size_t heap_bytes() const` (see docs/policies.md, SpatialIndex)");
+    static_assert(!names_max_cell_size<I> || has_spatial_index_cell_bound_v<I>,
+                  "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID: `max_cell_size` is not the optional cell bound: "
+                  "expected `std::size_t max_cell_size() const` (see docs/policies.md, SpatialIndex)");
+    static_assert(!names_gather<I> || has_spatial_index_gather_v<I>,
+                  "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID: `gather` is not the optional branch-free read: "
+                  "expected `std::size_t gather(CellIndex cell, PointHandle* out, std::size_t room) const` "
+                  "(see docs/policies.md, SpatialIndex)");
+    static_assert(!(names_youngest<I> || names_gather_older<I>) || has_spatial_index_chain_v<I>,
+                  "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID: `youngest` / `gather_older` are not the optional "
+                  "crowded-cell chain: expected both `PointHandle youngest(CellIndex) const` and `std::size_t "
+                  "gather_older(CellIndex cell, PointHandle bound, PointHandle* out, std::size_t room) const` "
+                  "(see docs/policies.md, SpatialIndex)");
+  }
+  return true;
+}
+}  // namespace detail
+
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class I>
 concept SpatialIndexPolicy = is_spatial_index_policy_v<I>;
@@ -156,4 +201,6 @@ concept SpatialIndexPolicy = is_spatial_index_policy_v<I>;
                 "STREAMCLUST_SPATIAL_INDEX_POLICY_INVALID: the spatial_index slot needs a nested Params "       \
                 "aggregate, a constructor from Params, reset(GridShape), clear(), "                              \
                 "`PointHandle insert(CellIndex, PointHandle)`, remove(CellIndex, PointHandle), "                 \
-                "`for_each(CellIndex, F) const` and `size() const` (see docs/policies.md)")
+                "`for_each(CellIndex, F) const` and `size() const` (see docs/policies.md)");                   \
+  static_assert(::streamclust::detail::check_spatial_index_capabilities<I>(),                                   \
+                "STREAMCLUST_SPATIAL_INDEX_CAPABILITY_INVALID")

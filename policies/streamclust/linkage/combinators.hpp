@@ -7,50 +7,98 @@
 
 #include <streamclust/concepts/linkage.hpp>
 #include <streamclust/linkage/angular.hpp>
+#include <streamclust/linkage/combined_payload.hpp>
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/types.hpp>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <tuple>
 #include <type_traits>
 #include <utility>
 
 namespace streamclust {
 namespace detail {
-/// The payload shared by linkages `Ls...`: their common `Payload` type when
-/// every one has the compact-payload capability with the SAME payload type
-/// (then `make_payload` is the same static function of the Sample for all),
-/// else void. `first` is the first linkage (void for none).
-template <class... Ls>
-struct common_linkage_payload {
-  using type = void;
-  using first = void;
-};
-template <class L, class... Ls>
-struct common_linkage_payload<L, Ls...> {
-  static constexpr bool shared = (has_linkage_payload_v<L> && ... && has_linkage_payload_v<Ls>)&&(
-      std::is_same_v<linkage_payload_t<L>, linkage_payload_t<Ls>> && ...);
-  using type = std::conditional_t<shared, linkage_payload_t<L>, void>;
-  using first = L;
-};
-
-/// Declares `Payload` and `make_payload` for a combinator whose children
-/// share payload type P (nothing when P is void: the combinator then stays
-/// on the Sample path).
-template <class P, class First>
+/// Declares `Payload`, `make_payload` and, when the payload carries the ray,
+/// `restore_ray` for a combinator of linkages Ls... (combined_payload.hpp);
+/// nothing when they have no payload (the combinator then stays on the
+/// Sample path). Only members with the capabilities' exact signatures: no
+/// near miss (concepts/linkage.hpp).
+template <class Combined, class P = typename Combined::type, class Ray = typename Combined::ray_linkage>
 struct CombinatorPayload {
   using Payload = P;
-  /// The children's common payload of `s`. O(1).
-  static Payload make_payload(const Sample& s) { return First::make_payload(s); }
-  /// The ray back from the payload, when the children's payload carries it
-  /// (`has_linkage_ray_payload_v`). O(1).
-  template <class F = First>
-  static auto restore_ray(const Payload& p, Sample& s) -> decltype(F::restore_ray(p, s)) {
-    F::restore_ray(p, s);
+  /// The children's payloads of `s`. O(1).
+  static Payload make_payload(const Sample& s) { return Combined::make(s); }
+  /// The ray back from the payload (the first child with a ray payload). O(1).
+  static void restore_ray(const Payload& p, Sample& s) { Ray::restore_ray(Combined::template part_of<Ray>(p), s); }
+};
+template <class Combined, class P>
+struct CombinatorPayload<Combined, P, void> {
+  using Payload = P;
+  /// The children's payloads of `s`. O(1).
+  static Payload make_payload(const Sample& s) { return Combined::make(s); }
+};
+template <class Combined>
+struct CombinatorPayload<Combined, void, void> {};
+
+/// Candidates per call of a combinator's first child's `link_many`: their
+/// parts are copied to a stack buffer of this many (1 KB of 16-byte parts).
+inline constexpr std::size_t kCombinatorBlock = 64;
+
+/// 0, 1, ..., kCombinatorBlock - 1: the slots of that buffer.
+struct IdentitySlots {
+  std::uint32_t slot[kCombinatorBlock];
+  constexpr IdentitySlots() : slot{} {
+    for (std::size_t k = 0; k < kCombinatorBlock; ++k) slot[k] = static_cast<std::uint32_t>(k);
   }
 };
-template <class First>
-struct CombinatorPayload<void, First> {};
+inline constexpr IdentitySlots kIdentitySlots{};
+
+/// The optional `link_many` (concepts/linkage.hpp) of combinator `Derived`
+/// with payload P, when its first child has one: the first child decides
+/// every candidate at once on its parts (in blocks of kCombinatorBlock
+/// candidates copied together, or on the ring itself when the payload is
+/// the children's shared one), then the other children decide, one by one,
+/// only the candidates the first left open (AllOf: those it linked; AnyOf:
+/// those it did not). The pairwise operator's decisions bit for bit (the
+/// first child's `link_many` gives its pairwise ones, the others are the
+/// pairwise operator's remaining terms). Nothing when `Enabled` is false.
+template <class Derived, class P, bool Enabled>
+struct CombinatorLinkMany {};
+template <class Derived, class P>
+struct CombinatorLinkMany<Derived, P, true> {
+  /// linked[k] = the combinator on (a, ring[slots[k]]), for k < count. O(count).
+  void link_many(const P& a, const P* ring, const std::uint32_t* slots, std::size_t count,
+                 std::uint8_t* linked) const {
+    const Derived& self = static_cast<const Derived&>(*this);
+    const auto& first = self.template child<0>();
+    using First = std::remove_cv_t<std::remove_reference_t<decltype(first)>>;
+    using Part = linkage_payload_t<First>;
+    using Combined = typename Derived::combined;
+    if constexpr (std::is_same_v<Part, P>) {
+      first.link_many(a, ring, slots, count, linked);
+    } else {
+      Part parts[kCombinatorBlock];
+      const Part& own = Combined::template part_of<First>(a);
+      for (std::size_t done = 0; done < count; done += kCombinatorBlock) {
+        const std::size_t n = std::min(kCombinatorBlock, count - done);
+        for (std::size_t k = 0; k < n; ++k) parts[k] = Combined::template part_of<First>(ring[slots[done + k]]);
+        first.link_many(own, parts, kIdentitySlots.slot, n, linked + done);
+      }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      if ((linked[k] != 0) == Derived::kRestWhenFirstLinks) linked[k] = self.rest_decides(a, ring[slots[k]]) ? 1 : 0;
+    }
+  }
+};
+
+/// True when a combinator of Ls... with payload P gets `link_many`: it has a
+/// payload and its first child has `link_many`.
+template <class P, class... Ls>
+struct combinator_links_many : std::false_type {};
+template <class P, class L, class... Ls>
+struct combinator_links_many<P, L, Ls...> : std::bool_constant<!std::is_void_v<P> && has_linkage_link_many_v<L>> {};
 }  // namespace detail
 
 /// Links a and b iff EVERY child linkage does (short-circuit, left to right).
@@ -61,10 +109,17 @@ struct CombinatorPayload<void, First> {};
 /// own and throws std::invalid_argument). Symmetric if every child is.
 /// `AllOf<>` links everything.
 ///
-/// Compact payload: when every child has it with the same `Payload` type
-/// (e.g. `AllOf<AngularLinkage, AngularLinkage>`), AllOf has it too and its
-/// Sample operator is its payload operator on the two payloads; otherwise
-/// (mixed payloads, or a child without one) it stays on the Sample path.
+/// Compact payload: when every child has one, AllOf has one too and its
+/// Sample operator is its payload operator on the two payloads: the
+/// children's shared `Payload` type (e.g. `AllOf<AngularLinkage,
+/// AngularLinkage>`, 16 bytes), or for different types a composed payload
+/// of each distinct one (e.g. `AllOf<RangeAdaptiveLinkage, Gate>` with a
+/// 4-byte gate payload: 32 bytes, 32-aligned) when it fits 32 bytes; each
+/// child reads its own part. Otherwise (a child without a payload, or more
+/// than 32 bytes together) it stays on the Sample path. With a payload and a
+/// first child with `link_many`, AllOf has `link_many` too: the first child
+/// tests every candidate at once, the others only those it linked (put the
+/// vectorised child first).
 ///
 /// Complexity: the sum of the children's, at most. Thread safety: as the
 /// children (the standard ones are immutable and thread-safe).
@@ -75,9 +130,17 @@ struct CombinatorPayload<void, First> {};
 ///   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.2f}, {1.0f}}};
 /// \endcode
 template <class... Ls>
-class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_payload<Ls...>::type,
-                                               typename detail::common_linkage_payload<Ls...>::first> {
-  using payload_type = typename detail::common_linkage_payload<Ls...>::type;  // void: none
+class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
+              public detail::CombinatorLinkMany<
+                  AllOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
+                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
+  using combined = detail::CombinedPayload<Ls...>;
+  using payload_type = typename combined::type;  // void: none
+  template <class, class, bool>
+  friend struct detail::CombinatorLinkMany;
+  /// link_many: the other children decide where the first linked.
+  static constexpr bool kRestWhenFirstLinks = true;
+  static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
 
  public:
   using Params = std::tuple<typename Ls::Params...>;
@@ -93,11 +156,11 @@ class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_p
     }
   }
 
-  /// True iff all children link the two payloads. Short-circuits. Only when
-  /// the children share a payload type P.
+  /// True iff all children link the two payloads (each its part).
+  /// Short-circuits. Only with a payload.
   template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
   bool operator()(const P& a, const P& b) const {
-    return std::apply([&](const auto&... l) { return (true && ... && static_cast<bool>(l(a, b))); }, children_);
+    return on_payloads(a, b, std::index_sequence_for<Ls...>{});
   }
 
   /// The I-th child linkage.
@@ -110,6 +173,21 @@ class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_p
   template <std::size_t... I>
   AllOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
 
+  /// Children `Offset + I...` on their parts of the two payloads, left to
+  /// right, short-circuit.
+  template <std::size_t Offset = 0, class P, std::size_t... I>
+  bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
+    return (true && ... &&
+            static_cast<bool>(std::get<Offset + I>(children_)(
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
+  }
+  /// Every child but the first on the two payloads (for link_many).
+  template <class P>
+  bool rest_decides(const P& a, const P& b) const {
+    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
+  }
+
   std::tuple<Ls...> children_;
 };
 
@@ -120,10 +198,10 @@ class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_p
 /// brace-constructible. Children held by value. Symmetric if every child is.
 /// `AnyOf<>` links nothing.
 ///
-/// Compact payload: as AllOf (only when every child has one, of the same
-/// type). `AngularOrEuclidean` mixes two payloads (direction + range,
-/// position): together 28 bytes, over the 16-byte limit, so it stays on the
-/// Sample path.
+/// Compact payload: as AllOf (shared, or composed up to 32 bytes).
+/// `AngularOrEuclidean` composes the angular payload (direction + range, a
+/// ray payload) and the Euclidean one (position): 32 bytes, and the engine
+/// keeps 24-byte samples beside it.
 ///
 /// Complexity: the sum of the children's, at most. Thread safety: as the children.
 ///
@@ -132,9 +210,17 @@ class AllOf : public detail::CombinatorPayload<typename detail::common_linkage_p
 ///   streamclust::AnyOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.0f}, {0.1f}}};
 /// \endcode
 template <class... Ls>
-class AnyOf : public detail::CombinatorPayload<typename detail::common_linkage_payload<Ls...>::type,
-                                               typename detail::common_linkage_payload<Ls...>::first> {
-  using payload_type = typename detail::common_linkage_payload<Ls...>::type;  // void: none
+class AnyOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
+              public detail::CombinatorLinkMany<
+                  AnyOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
+                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
+  using combined = detail::CombinedPayload<Ls...>;
+  using payload_type = typename combined::type;  // void: none
+  template <class, class, bool>
+  friend struct detail::CombinatorLinkMany;
+  /// link_many: the other children decide where the first did not link.
+  static constexpr bool kRestWhenFirstLinks = false;
+  static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
 
  public:
   using Params = std::tuple<typename Ls::Params...>;
@@ -150,11 +236,11 @@ class AnyOf : public detail::CombinatorPayload<typename detail::common_linkage_p
     }
   }
 
-  /// True iff at least one child links the two payloads. Short-circuits.
-  /// Only when the children share a payload type P.
+  /// True iff at least one child links the two payloads (each its part).
+  /// Short-circuits. Only with a payload.
   template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
   bool operator()(const P& a, const P& b) const {
-    return std::apply([&](const auto&... l) { return (false || ... || static_cast<bool>(l(a, b))); }, children_);
+    return on_payloads(a, b, std::index_sequence_for<Ls...>{});
   }
 
   /// The I-th child linkage.
@@ -167,6 +253,21 @@ class AnyOf : public detail::CombinatorPayload<typename detail::common_linkage_p
   template <std::size_t... I>
   AnyOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
 
+  /// Children `Offset + I...` on their parts of the two payloads, left to
+  /// right, short-circuit.
+  template <std::size_t Offset = 0, class P, std::size_t... I>
+  bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
+    return (false || ... ||
+            static_cast<bool>(std::get<Offset + I>(children_)(
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
+                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
+  }
+  /// Every child but the first on the two payloads (for link_many).
+  template <class P>
+  bool rest_decides(const P& a, const P& b) const {
+    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
+  }
+
   std::tuple<Ls...> children_;
 };
 
@@ -178,8 +279,8 @@ class AnyOf : public detail::CombinatorPayload<typename detail::common_linkage_p
 /// EuclideanLinkage default and is large for this purpose: pick a few times
 /// the range noise, e.g.
 /// `AngularOrEuclidean{{{10.0f, 0.0f}, {0.1f}}}` (theta 10 deg, no alpha floor,
-/// 10 cm). The angular child is evaluated first. No compact payload (the
-/// children's payloads differ, 28 bytes together): the Sample path.
+/// 10 cm). The angular child is evaluated first. A composed payload of 32
+/// bytes (the angular and the Euclidean ones), which carries the ray.
 using AngularOrEuclidean = AnyOf<AngularLinkage, EuclideanLinkage>;
 
 }  // namespace streamclust
@@ -189,8 +290,10 @@ static_assert(streamclust::is_linkage_policy_v<streamclust::AngularOrEuclidean>,
 static_assert(streamclust::is_linkage_policy_v<
                   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage>>,
               "STREAMCLUST_LINKAGE_POLICY_INVALID: AllOf");
-static_assert(!streamclust::has_linkage_payload_v<streamclust::AngularOrEuclidean>,
-              "AngularOrEuclidean mixes two payloads: the Sample path");
+static_assert(streamclust::has_linkage_ray_payload_v<streamclust::AngularOrEuclidean> &&
+                  sizeof(streamclust::linkage_payload_t<streamclust::AngularOrEuclidean>) == 32 &&
+                  alignof(streamclust::linkage_payload_t<streamclust::AngularOrEuclidean>) == 32,
+              "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: AngularOrEuclidean composes a 32-byte payload");
 static_assert(streamclust::has_linkage_payload_v<
                   streamclust::AllOf<streamclust::AngularLinkage, streamclust::AngularLinkage>>,
               "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: AllOf of one payload type");
