@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Example 2: a custom linkage metric in about ten lines, combined with a
-// standard one, plugged into a C-ARC configuration.
+// standard one, plugged into a C-ARC configuration that keeps the Mid-360
+// preset's parameters (rebind_params).
 
 #include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/streamclust.hpp>
@@ -26,11 +27,12 @@ struct MyConfig : streamclust::CArcFixedConfig {
 };
 
 int main() {
-  streamclust::ClustererParams<MyConfig> params;
-  std::get<0>(params.linkage).theta_deg = 30.0f;
-  std::get<1>(params.linkage).factor = 0.05f;
-  params.resolution = {48, 720};
-  params.window.duration = 0.1;
+  // The paper's Mid-360 preset (theta 30 deg, its field of view, T_B 0.1 s,
+  // w 5) carried to MyConfig: every slot and engine parameter kept, the
+  // linkage given (the preset's angular Params and the custom metric's).
+  const auto preset = streamclust::to_clusterer_params<streamclust::CArcFixedConfig>(streamclust::carc_mid360_params());
+  auto params = streamclust::rebind_params<MyConfig>(preset, MyConfig::linkage::Params{preset.linkage, {0.05f}});
+  params.resolution = {48, 720};  // the fixed grid [rows, cols]
   streamclust::StreamClusterer<MyConfig> engine(params);
 
   streamclust::SyntheticStream stream;

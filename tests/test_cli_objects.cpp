@@ -1,19 +1,27 @@
 // SPDX-License-Identifier: MIT
 // `streamclust cluster` with structure removal and poses, in-process: the
-// objects presets, --ground with the labels -2/-3 and the report's ground
-// fields, --poses/--mount with --verify, the mount and sensor height
-// estimated from the first window, and the usage and input errors.
+// objects presets (the same labels as the library's presets), --ground with
+// the labels -2/-3 and the report's ground fields, --poses/--mount with
+// --verify, the mount and sensor height estimated from the first window,
+// and the usage and input errors.
 
 #include <doctest/doctest.h>
 
 #include "cli/main.hpp"
+
+#include <streamclust/io/reader.hpp>
+#include <streamclust/objects_presets.hpp>
+#include <streamclust/retrieval_schedule.hpp>
+#include <streamclust/stream_clusterer.hpp>
 
 #include <nlohmann/json.hpp>
 
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -47,7 +55,60 @@ std::map<long long, std::size_t> label_histogram(const fs::path& path) {
   return counts;
 }
 
-/// Simulates `seconds` of a Mid-360 scene into dir/name.csv (and its .tum).
+/// cycle -> stream index -> label of the rows of a labels file written with
+/// --cycles all (rejected rows, -1, left out).
+using CycleLabels = std::map<std::uint64_t, std::map<std::uint64_t, long long>>;
+CycleLabels labels_by_cycle(const fs::path& path) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  REQUIRE(line == "cycle,time,index,label");
+  CycleLabels rows;
+  while (std::getline(f, line)) {
+    std::istringstream s(line);
+    std::string cycle, time, index, label;
+    std::getline(s, cycle, ',');
+    std::getline(s, time, ',');
+    std::getline(s, index, ',');
+    std::getline(s, label, ',');
+    if (std::stoll(label) != -1) rows[std::stoull(cycle)][std::stoull(index)] = std::stoll(label);
+  }
+  return rows;
+}
+
+/// The same rows from the library's objects engine on the records of
+/// `input`, retrieved at 20 Hz of stream time as the tool retrieves (its
+/// final cycle after the last record left out): objects by component,
+/// ground -2, ceiling -3.
+CycleLabels library_labels(const fs::path& input, const streamclust::ClustererParams<streamclust::ObjectsConfig>& params) {
+  namespace sc = streamclust;
+  sc::StreamClusterer<sc::ObjectsConfig> engine(params);
+  sc::RetrievalSchedule schedule(20.0);
+  auto reader = sc::io::open_reader(input.string());
+  std::vector<sc::io::Record> chunk;
+  CycleLabels rows;
+  std::uint64_t cycle = 0;
+  while (reader->read(chunk, 65536) > 0) {
+    for (const sc::io::Record& r : chunk) {
+      if (const auto due = schedule.on_record(r.t)) {
+        engine.advance_to(*due);
+        if (!engine.calibrating()) {
+          auto& row = rows[cycle++];
+          for (const sc::PointLabel& p : engine.retrieve().points) row[p.stream_index] = static_cast<long long>(p.label);
+          engine.for_each_structure_point([&](const sc::StructureEntry& e) {
+            row[e.stream_index] = e.surface == sc::SurfaceClass::ceiling ? -3 : -2;
+          });
+        }
+      }
+      engine.insert(r);
+    }
+    chunk.clear();
+  }
+  return rows;
+}
+
+/// Simulates `seconds` of a scene into dir/name.csv (and its .tum); a
+/// Mid-360 unless `extra` names another sensor.
 fs::path simulate(const fs::path& dir, const std::string& name, const std::vector<std::string>& extra, double seconds) {
   std::vector<std::string> args{"simulate", "--sensor", "mid360", "--duration", std::to_string(seconds), "--out",
                                 (dir / (name + ".csv")).string(), "--quiet"};
@@ -79,6 +140,52 @@ TEST_CASE("cluster --preset objects-mid360: ground rows -2, ceiling rows -3, ver
   CHECK(last.at("structure_size").get<std::size_t>() > 1000);
   CHECK(last.at("latency_us").at("ground").get<double>() > 0.0);
   CHECK(last.at("latency_us").at("ground").get<double>() < last.at("latency_us").at("total").get<double>());
+}
+
+TEST_CASE("cluster --preset objects*: with a mount and a height, the labels of the library's preset") {
+  namespace sc = streamclust;
+  struct Case {
+    const char* preset;
+    std::vector<std::string> scenario;  // simulate's options
+    std::array<double, 3> mount_deg;    // roll, pitch, yaw
+    sc::SphericalProjection::Params sensor_fov;
+  };
+  const std::vector<Case> cases{
+      {"objects-mid360", {"--scene", "office"}, {0.0, 0.0, 0.0}, sc::field_of_view_of(sc::livox_mid360)},
+      {"objects-mid360", {"--scene", "street", "--mount", "0,15,0"}, {0.0, 15.0, 0.0}, sc::field_of_view_of(sc::livox_mid360)},
+      {"objects", {"--scene", "office"}, {0.0, 0.0, 0.0}, sc::SphericalProjection::Params{}},
+      {"objects-avia", {"--sensor", "avia", "--scene", "office", "--mount", "0,10,0"}, {0.0, 10.0, 0.0},
+       sc::field_of_view_of(sc::livox_avia)},
+  };
+  const streamclust::test::TempDir tmp("cli", "preset_labels");
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    CAPTURE(c.preset);
+    CAPTURE(k);
+    const fs::path input = simulate(tmp.dir, "scene" + std::to_string(k), c.scenario, 0.8);
+    const std::string mount = std::to_string(c.mount_deg[0]) + "," + std::to_string(c.mount_deg[1]) + "," +
+                              std::to_string(c.mount_deg[2]);
+    const fs::path labels = tmp.dir / ("labels" + std::to_string(k) + ".csv");
+    const auto r = run_cli({"cluster", input.string(), "--preset", c.preset, "--mount", mount, "--sensor-height", "1",
+                            "--cycles", "all", "--labels", labels.string(), "--quiet"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const CycleLabels tool = labels_by_cycle(labels);
+
+    sc::ObjectsSetup setup;
+    setup.mount = sc::mount_from_roll_pitch_yaw_deg(c.mount_deg[0], c.mount_deg[1], c.mount_deg[2]);
+    setup.sensor_height = 1.0f;
+    const CycleLabels library = library_labels(input, sc::objects_params(c.sensor_fov, setup));
+    REQUIRE(library.size() >= 5);
+    std::size_t ground = 0;
+    for (const auto& [cycle, rows] : library) {
+      CAPTURE(cycle);
+      REQUIRE(tool.count(cycle) == 1);
+      CHECK(tool.at(cycle) == rows);
+      for (const auto& row : rows) ground += row.second == -2 ? 1 : 0;
+    }
+    CHECK(ground > 1000);  // the structure removal ran
+  }
 }
 
 TEST_CASE("cluster --ground without a mount or height estimates both from the first window") {

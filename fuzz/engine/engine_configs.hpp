@@ -3,7 +3,7 @@
 
 /// \file
 /// The compiled configurations fuzz_engine runs: those the tool's presets
-/// select (cli/options.hpp apply_preset, cli/engine_config.hpp), each with
+/// select (cli/presets.hpp apply_preset, cli/engine_config.hpp), each with
 /// the default connectivity (spanning forest) and `--connectivity
 /// lazy-bfs`, a time window and `--window-count`, plus the capped and the
 /// overwrite index under C-ARC's linkage and one Euclidean, cylindrical

@@ -14,7 +14,7 @@
 /// |--------------------------|-------------------------|-------|
 /// | objects_mid360_params    | 360 x -7..52 (Mid-360)  | 0.5 s |
 /// | objects_avia_params      | 70.4 x 77.2 (Avia)      | 0.5 s |
-/// | objects_params           | any SensorFacts         | 0.5 s |
+/// | objects_params           | any SensorFacts, or any projection bounds (full sphere: any sensor) | 0.5 s |
 ///
 /// \code
 /// streamclust::ObjectsSetup setup;
@@ -85,14 +85,21 @@ inline float lowest_ray_elevation_deg(const SphericalProjection::Params& sensor_
   return world_field_of_view(sensor_fov, rotations, 0.0f).elevation_min_deg;
 }
 
-/// Objects parameters for `sensor` carried as `setup`: the projection
-/// bounds hold the sensor's FOV in world orientation (world_field_of_view),
-/// the ground model knows the sensor's height and its lowest ray in world
-/// orientation. Throws std::invalid_argument from the policies.
-inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, const ObjectsSetup& setup = {}) {
+/// Objects parameters for a sensor whose rays the projection bounds
+/// `sensor_fov` hold (sensor frame: field_of_view_of(sensor), the sensor's
+/// field of view widened by kFieldOfViewMarginDeg; SphericalProjection's
+/// default, the full sphere, for any sensor) carried as `setup`: the
+/// projection bounds hold those rays in world orientation
+/// (world_field_of_view), the ground model knows the sensor's height and the
+/// lowest ray in world orientation, that of ray_field_of_view(sensor_fov)
+/// (a level Mid-360: -7 deg, the spec sheet's; docs/design-decisions.md).
+/// The command-line tool places the sensor with this function too. Throws
+/// std::invalid_argument from the policies.
+inline ClustererParams<ObjectsConfig> objects_params(const SphericalProjection::Params& sensor_fov,
+                                                     const ObjectsSetup& setup = {}) {
   ClustererParams<ObjectsConfig> p = to_clusterer_params<ObjectsConfig>(CArcParams{});
   const std::vector<Eigen::Quaterniond> rotations = sensor_rotations(setup.mount, setup.trajectory.get());
-  p.projection = world_field_of_view(field_of_view_of(sensor), rotations);
+  p.projection = world_field_of_view(sensor_fov, rotations);
   p.window.duration = setup.window_seconds;
   // A coarser grid than C-ARC's (T_M 2): the linkage's radius (0.2 m and
   // more) spans more cells of a T_B = 0.5 s grid than a 5 x 5 mask reaches
@@ -103,14 +110,14 @@ inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, 
   p.motion.trajectory = setup.trajectory;
   p.ground.sensor_height = setup.sensor_height;
   if (setup.sensor_height > 0.0f) {
-    SphericalProjection::Params raw;  // the sensor's rays, without the projection's margin
-    raw.azimuth_min_deg = sensor.projection_azimuth_min_deg(0.0);
-    raw.azimuth_max_deg = sensor.projection_azimuth_max_deg(0.0);
-    raw.elevation_min_deg = sensor.projection_elevation_min_deg(0.0);
-    raw.elevation_max_deg = sensor.projection_elevation_max_deg(0.0);
-    p.ground.lowest_ray_elevation_deg = lowest_ray_elevation_deg(raw, rotations);
+    p.ground.lowest_ray_elevation_deg = lowest_ray_elevation_deg(ray_field_of_view(sensor_fov), rotations);
   }
   return p;
+}
+
+/// objects_params for a sensor of the table in sensors.hpp.
+inline ClustererParams<ObjectsConfig> objects_params(const SensorFacts& sensor, const ObjectsSetup& setup = {}) {
+  return objects_params(field_of_view_of(sensor), setup);
 }
 
 /// objects_params for the Livox Mid-360.

@@ -142,6 +142,23 @@ inline SphericalProjection::Params field_of_view_of(const SensorFacts& sensor) {
   return fov;
 }
 
+/// The rays' field of view of a sensor whose projection bounds are
+/// `projection_fov` (the inverse of field_of_view_of): each bound narrowed by
+/// kFieldOfViewMarginDeg, except a full azimuth circle and an elevation
+/// bound within the margin of a pole, which stay. For the Mid-360's bounds,
+/// elevation -7 to 52 degrees, the spec sheet's lowest ray.
+inline SphericalProjection::Params ray_field_of_view(const SphericalProjection::Params& projection_fov) {
+  constexpr auto margin = static_cast<float>(kFieldOfViewMarginDeg);
+  SphericalProjection::Params rays = projection_fov;
+  if (projection_fov.azimuth_max_deg - projection_fov.azimuth_min_deg < 360.0f - 2.0f * margin) {
+    rays.azimuth_min_deg += margin;
+    rays.azimuth_max_deg -= margin;
+  }
+  if (projection_fov.elevation_min_deg > -90.0f + margin) rays.elevation_min_deg += margin;
+  if (projection_fov.elevation_max_deg < 90.0f - margin) rays.elevation_max_deg -= margin;
+  return rays;
+}
+
 /// The Livox Mid-360 (livox_mid360: 360 x 59 degrees, elevation -7 to 52;
 /// projection -7.5 to 52.5), theta = 30 degrees as in the paper.
 inline CArcParams carc_mid360_params() {
@@ -157,6 +174,16 @@ inline CArcParams carc_avia_params() {
   CArcParams p;
   p.theta_deg = 80.0f;
   p.field_of_view = field_of_view_of(livox_avia);
+  return p;
+}
+
+/// The frame-based baseline of the paper's comparison (Bogoslavskyi and
+/// Stachniss's range image): FrameBaselineConfig in a FrameClusterer (or
+/// BatchClusterer in BatchMode::range_image) with C-ARC's parameters and a
+/// 3 x 3 mask (w = 3, as the paper compares both).
+inline CArcParams baseline_params() {
+  CArcParams p;
+  p.mask_size = 3;
   return p;
 }
 

@@ -21,6 +21,7 @@
 #include <streamclust/point_traits.hpp>
 #include <streamclust/presets.hpp>
 #include <streamclust/projection/cylindrical.hpp>
+#include <streamclust/rebind_params.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/resolution/fixed.hpp>

@@ -110,6 +110,34 @@ def test_every_cycle_equals_the_cli(tool, stream_csv, tmp_path, preset, options)
         assert any((r.labels == streamclust.GROUND).any() for r in ours), "ground rows were compared"
 
 
+# Every preset; those that place the sensor with an explicit mount and height
+# (the frame-mode baseline takes neither).
+PLACED = {"mount": (0, 20, 0), "sensor_height": 1.0}
+EVERY_PRESET = [("carc", {"mount": (0, 20, 0)}), ("carc-mid360", {"mount": (0, 20, 0)}),
+                ("carc-avia", {"mount": (0, 20, 0)}), ("baseline", {}), ("objects", PLACED),
+                ("objects-mid360", PLACED), ("objects-avia", PLACED)]
+
+
+@pytest.mark.parametrize("preset,options", EVERY_PRESET)
+def test_every_preset_gives_the_cli_labels(tool, stream_csv, tmp_path, preset, options):
+    """The module's presets are the CLI's, which are the library's
+    (tests/test_cli_objects.cpp compares the CLI with the library's engine):
+    the same label values, row for row, not only the same partition."""
+    data = streamclust.read(stream_csv)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset=preset, rate=20, **options)
+    theirs = cli_cycles(tool, stream_csv, preset, options, 20, tmp_path)
+    assert [r.cycle for r in ours] == sorted(theirs)
+    assert len(ours) >= 10
+    for r in ours:
+        c = theirs[r.cycle]
+        assert np.array_equal(r.index, np.asarray(c["index"], dtype=np.int64)), f"cycle {r.cycle}: rows"
+        assert np.array_equal(r.labels, np.asarray(c["label"], dtype=np.int64)), f"cycle {r.cycle}: labels"
+    assert any((r.labels >= 0).sum() > 1000 for r in ours), "object rows were compared"
+    if preset.startswith("objects"):
+        assert any((r.labels == streamclust.GROUND).sum() > 1000 for r in ours), "ground rows were compared"
+
+
 @pytest.mark.parametrize("preset", ["carc-mid360", "objects-mid360", "baseline"])
 def test_packets_and_schedule_by_hand_equal_cluster_stream(stream_csv, preset):
     """Clusterer.insert in packets + retrieve(time) on the schedule == cluster_stream

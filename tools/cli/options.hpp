@@ -2,12 +2,11 @@
 #pragma once
 
 /// \file
-/// Command-line options of the `streamclust` tool: parsing, presets and
-/// validation. Every bad option becomes a UsageError (exit code 2).
+/// Command-line options of the `streamclust` tool: parsing and validation
+/// (the presets: cli/presets.hpp). Every bad option becomes a UsageError (exit code 2).
 
 #include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/record.hpp>
-#include <streamclust/sensors.hpp>
 
 #include <array>
 #include <cmath>
@@ -135,47 +134,9 @@ inline std::uint64_t parse_count(std::string_view option, const std::string& val
   return static_cast<std::uint64_t>(v);
 }
 
-/// Applies a named preset to `o` (before the other options override it).
-inline void apply_preset(const std::string& name, ClusterOptions& o) {
-  if (name == "carc") return;  // the defaults above: theta 10, w 5, T_M 2
-  if (name == "objects" || name == "objects-mid360" || name == "objects-avia") {
-    // Structure removal, the range-adaptive linkage, the spanning forest, T_B = 0.5 s.
-    o.ground = true;
-    o.linkage = LinkageKind::range_adaptive;
-    o.connectivity = ConnectivityKind::spanning_forest;
-    o.window_seconds = 0.5;
-    o.index = IndexKind::capped;  // K = 4, ObjectsConfig's
-    o.mask = 5;                  // kObjectsMaskSize
-    o.max_multiplicity = 4.0f;   // kObjectsMaxMultiplicity
-    if (name == "objects") return;  // any sensor: the full sphere
-    const SensorFacts& sensor = name == "objects-mid360" ? livox_mid360 : livox_avia;
-    o.azimuth_min = sensor.projection_azimuth_min_deg();
-    o.azimuth_max = sensor.projection_azimuth_max_deg();
-    o.elevation_min = sensor.projection_elevation_min_deg();
-    o.elevation_max = sensor.projection_elevation_max_deg();
-    return;
-  }
-  if (name == "carc-mid360") {
-    o.theta_deg = 30.0f;
-    o.elevation_min = livox_mid360.projection_elevation_min_deg();
-    o.elevation_max = livox_mid360.projection_elevation_max_deg();
-  } else if (name == "carc-avia") {
-    o.theta_deg = 80.0f;
-    o.azimuth_min = livox_avia.projection_azimuth_min_deg();
-    o.azimuth_max = livox_avia.projection_azimuth_max_deg();
-    o.elevation_min = livox_avia.projection_elevation_min_deg();
-    o.elevation_max = livox_avia.projection_elevation_max_deg();
-  } else if (name == "baseline") {
-    o.index = IndexKind::overwrite;
-    o.mode = Mode::frame;
-    o.mask = 3;
-    o.theta_deg = 10.0f;
-  } else {
-    throw UsageError(
-        "--preset: expected carc, carc-mid360, carc-avia, baseline, objects, objects-mid360 or objects-avia, got '" +
-        name + "'");
-  }
-}
+/// Applies a named preset to `o` (before the other options override it):
+/// cli/presets.hpp, included at the end of this header.
+inline void apply_preset(const std::string& name, ClusterOptions& o);
 
 /// Walks an argument list: the current option, its value, a value from a
 /// fixed set. Every problem is a UsageError naming the option.
@@ -476,3 +437,5 @@ inline InfoOptions parse_info_options(const std::vector<std::string>& args) {
 }
 
 }  // namespace streamclust::cli
+
+#include "cli/presets.hpp"  // apply_preset, which needs ClusterOptions above

@@ -14,7 +14,6 @@
 #include <streamclust/io/reader.hpp>
 #include <streamclust/motion/gravity_estimate.hpp>
 #include <streamclust/motion/runtime_motion.hpp>
-#include <streamclust/motion/world_field_of_view.hpp>
 #include <streamclust/objects_presets.hpp>
 
 #include <Eigen/Core>
@@ -109,18 +108,26 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
              "(give --mount and --sensor-height)\n";
     }
   }
-  if (s.motion.enabled && o.projection == ProjectionKind::spherical) {
-    SphericalProjection::Params sensor_fov;
+  if (o.projection == ProjectionKind::spherical) {
+    SphericalProjection::Params sensor_fov;  // the projection's bounds in the sensor frame
     sensor_fov.azimuth_min_deg = o.azimuth_min;
     sensor_fov.azimuth_max_deg = o.azimuth_max;
     sensor_fov.elevation_min_deg = o.elevation_min;
     sensor_fov.elevation_max_deg = o.elevation_max;
     sensor_fov.min_range = o.min_range;
-    const auto rotations = sensor_rotations(s.motion.posed.mount, s.motion.posed.trajectory.get());
-    s.world_fov = world_field_of_view(sensor_fov, rotations);
-    if (g.sensor_height > 0.0f) g.lowest_ray_elevation_deg = lowest_ray_elevation_deg(sensor_fov, rotations);
-  } else if (o.projection == ProjectionKind::spherical && g.sensor_height > 0.0f) {
-    g.lowest_ray_elevation_deg = o.elevation_min;
+    if (s.motion.enabled) {
+      // The library's objects presets place the sensor: the bounds in world
+      // orientation and the lowest ray objects_params gives the library's engine.
+      ObjectsSetup placement;
+      placement.mount = s.motion.posed.mount;
+      placement.trajectory = s.motion.posed.trajectory;
+      placement.sensor_height = g.sensor_height;
+      const ClustererParams<ObjectsConfig> placed = objects_params(sensor_fov, placement);
+      s.world_fov = placed.projection;
+      g.lowest_ray_elevation_deg = placed.ground.lowest_ray_elevation_deg;
+    } else if (g.sensor_height > 0.0f) {
+      g.lowest_ray_elevation_deg = ray_field_of_view(sensor_fov).elevation_min_deg;  // a level sensor's
+    }
   }
   return s;
 }
