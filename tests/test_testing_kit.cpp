@@ -157,7 +157,7 @@ TEST_CASE("test kit: a connectivity that forgets an edge fails the exactness law
   const kit::LawResult r = kit::check_connectivity<ForgetfulConnectivity>(options);
   CHECK_FALSE(r.passed);
   INFO(r.message);
-  CHECK(contains(r.message, "exactness of ConnectivityProbe<"));
+  CHECK(contains(r.message, "exactness of PolicyCombo<"));
   CHECK(contains(r.message, "ForgetfulConnectivity"));
   CHECK(contains(r.message, "differs from the batch partition of its window"));
 }

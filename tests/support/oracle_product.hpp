@@ -30,6 +30,7 @@
 
 #include <streamclust/testing/doctest.hpp>
 #include <streamclust/testing/exactness_run.hpp>
+#include <streamclust/testing/policy_combo.hpp>
 #include <streamclust/testing/random_params.hpp>
 
 #include "policy_hooks.hpp"
@@ -48,19 +49,11 @@
 namespace streamclust::test {
 
 /// A configuration of the oracle: the five listed policies on a FixedResolution grid.
-template <class Projection, class Index, class Linkage, class Window, class Connectivity>
-struct Combo {
-  using projection = Projection;
-  using spatial_index = Index;
-  using linkage = Linkage;
-  using window = Window;
-  using resolution = FixedResolution;
-  using connectivity = Connectivity;
-};
+using ::streamclust::testing::PolicyCombo;
 
 /// Every combination of the policy lists.
 using OracleCombos =
-    apply_each_t<Combo, tuple_product_t<Projections, SpatialIndexes, Linkages, Windows, Connectivities>>;
+    apply_each_t<PolicyCombo, tuple_product_t<Projections, SpatialIndexes, Linkages, Windows, Connectivities>>;
 
 /// The slice `K` (0, 1 or 2) of OracleCombos.
 template <std::size_t K>

@@ -20,8 +20,8 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/projection/spherical.hpp>
-#include <streamclust/resolution/fixed.hpp>
 #include <streamclust/testing/exactness_run.hpp>
+#include <streamclust/testing/policy_combo.hpp>
 #include <streamclust/testing/random_params.hpp>
 #include <streamclust/testing/type_product.hpp>
 #include <streamclust/window/count_window.hpp>
@@ -33,18 +33,6 @@
 #include <vector>
 
 namespace streamclust::testing {
-
-/// A configuration that runs connectivity `C` with the given index, linkage
-/// and window on a spherical projection and a FixedResolution grid.
-template <class Index, class Linkage, class Window, class C>
-struct ConnectivityProbe {
-  using projection = SphericalProjection;
-  using spatial_index = Index;
-  using linkage = Linkage;
-  using window = Window;
-  using resolution = FixedResolution;
-  using connectivity = C;
-};
 
 template <class C>
 struct ConnectivityLawOptions {
@@ -80,9 +68,9 @@ LawResult check_connectivity(const ConnectivityLawOptions<C>& options = {}) {
     }
     return law_passed();
   };
-  LawResult r = run(type_tag<ConnectivityProbe<BucketGrid, EuclideanLinkage, TimeWindow, C>>{});
+  LawResult r = run(type_tag<PolicyCombo<SphericalProjection, BucketGrid, EuclideanLinkage, TimeWindow, C>>{});
   if (!r) return r;
-  r = run(type_tag<ConnectivityProbe<CappedGrid, AngularLinkage, CountWindow, C>>{});
+  r = run(type_tag<PolicyCombo<SphericalProjection, CappedGrid, AngularLinkage, CountWindow, C>>{});
   if (!r) return r;
   return law_passed("connectivity " + type_name<C>() + ": " + std::to_string(compared) + " retrievals compared");
 }

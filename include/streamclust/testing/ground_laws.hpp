@@ -90,31 +90,21 @@ template <class G>
 LawResult check_ground(const GroundLawOptions<G>& options = {}) {
   static_assert(is_ground_policy_v<G>, "check_ground: G does not model the ground concept (concepts/ground.hpp)");
   const std::string name = "ground " + type_name<G>();
-  try {
-    const G defaults{typename G::Params{}};
-    (void)defaults;
-  } catch (const std::exception& e) {
-    return law_failed(name + ": the default Params do not construct: " + e.what());
-  }
+  if (const std::string failure = internal::default_params_failure<G>(name); !failure.empty())
+    return law_failed(failure);
   const std::vector<GroundInput> points =
       options.points.empty()
           ? level_sensor_inputs(simulated_livox_stream(LivoxSensor::mid360, "office", 1, 12000, 200000.0), 1.0f)
           : options.points;
-  const std::vector<typename G::Params> sets =
-      options.params.empty() ? std::vector<typename G::Params>(1) : options.params;
+  const std::vector<typename G::Params> sets = internal::parameter_sets(options.params);
   const std::size_t half = points.size() / 2;
   const std::size_t window = options.window == 0 ? 1 : options.window;
   std::size_t structure = 0;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const std::string context = name + ", parameter set " + std::to_string(k) + ": ";
     std::optional<G> a, b, c;
-    try {
-      a.emplace(sets[k]);
-      b.emplace(sets[k]);
-      c.emplace(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(context + "the parameters do not construct: " + e.what());
-    }
+    if (const std::string thrown = internal::construct_from(sets[k], a, b, c); !thrown.empty())
+      return law_failed(context + "the parameters do not construct: " + thrown);
     const auto first = internal::classify_through_window(*a, points, 0, points.size(), window, true);
     const auto replay = internal::classify_through_window(*b, points, 0, points.size(), window, true);
     for (std::size_t i = 0; i < first.size(); ++i) {

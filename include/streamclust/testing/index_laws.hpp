@@ -173,17 +173,13 @@ LawResult check_index(const IndexLawOptions<I>& options = {}) {
   static_assert(is_spatial_index_policy_v<I>,
                 "check_index: I does not model the spatial index concept (concepts/spatial_index.hpp)");
   const std::string name = "index " + type_name<I>();
-  const std::vector<typename I::Params> sets =
-      options.params.empty() ? std::vector<typename I::Params>(1) : options.params;
+  const std::vector<typename I::Params> sets = internal::parameter_sets(options.params);
   std::size_t operations = 0;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const std::string context = name + ", parameter set " + std::to_string(k);
     std::optional<I> holder;
-    try {
-      holder.emplace(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(context + ": the parameters do not construct: " + e.what());
-    }
+    if (const std::string thrown = internal::construct_from(sets[k], holder); !thrown.empty())
+      return law_failed(context + ": the parameters do not construct: " + thrown);
     I& index = *holder;
     internal::IndexModelCells model;
     if constexpr (has_spatial_index_cell_bound_v<I>) {

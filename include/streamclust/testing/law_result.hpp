@@ -10,11 +10,14 @@
 #include <streamclust/point_traits.hpp>
 #include <streamclust/types.hpp>
 
+#include <exception>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace streamclust::testing {
 
@@ -28,6 +31,35 @@ struct LawResult {
 
 inline LawResult law_passed(std::string summary = {}) { return LawResult{true, std::move(summary)}; }
 inline LawResult law_failed(std::string message) { return LawResult{false, std::move(message)}; }
+
+namespace internal {
+
+/// The parameter sets a check runs: `given`, or the defaults alone.
+template <class Params>
+std::vector<Params> parameter_sets(const std::vector<Params>& given) {
+  return given.empty() ? std::vector<Params>(1) : given;
+}
+
+/// Constructs every `out` from `params`: "" or what a constructor threw.
+template <class Params, class... Policies>
+std::string construct_from(const Params& params, std::optional<Policies>&... out) {
+  try {
+    (out.emplace(params), ...);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+/// The law "the default Params construct": "" or the failure, for `name`.
+template <class Policy>
+std::string default_params_failure(const std::string& name) {
+  std::optional<Policy> p;
+  const std::string thrown = construct_from(typename Policy::Params{}, p);
+  return thrown.empty() ? thrown : name + ": the default Params do not construct: " + thrown;
+}
+
+}  // namespace internal
 
 /// A Sample as text, every float with enough digits to rebuild it bit for
 /// bit (max_digits10): paste it into a regression test.

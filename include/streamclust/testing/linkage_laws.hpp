@@ -36,7 +36,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
-#include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -179,12 +179,8 @@ LawResult check_linkage(const LinkageLawOptions<L>& options = {}) {
   static_assert(is_linkage_policy_v<L>, "check_linkage: L does not model the linkage concept (concepts/linkage.hpp)");
   const std::string name = "linkage " + type_name<L>();
   // Params: the defaults construct, the invalid ones throw std::invalid_argument
-  try {
-    const L defaults{typename L::Params{}};
-    (void)defaults;
-  } catch (const std::exception& e) {
-    return law_failed(name + ": the default Params do not construct: " + e.what());
-  }
+  if (const std::string failure = internal::default_params_failure<L>(name); !failure.empty())
+    return law_failed(failure);
   for (std::size_t k = 0; k < options.invalid_params.size(); ++k) {
     try {
       const L bad{options.invalid_params[k]};
@@ -213,18 +209,14 @@ LawResult check_linkage(const LinkageLawOptions<L>& options = {}) {
     for (auto& p : livox_candidate_pairs(options.livox_pairs, options.seed)) pairs.push_back(p);
   }
   pairs.insert(pairs.end(), options.pairs.begin(), options.pairs.end());
-  const std::vector<typename L::Params> sets =
-      options.params.empty() ? std::vector<typename L::Params>(1) : options.params;
+  const std::vector<typename L::Params> sets = internal::parameter_sets(options.params);
   std::mt19937 rng(options.seed + 1);
   std::size_t linked = 0;
   std::size_t decided = 0;
   for (std::size_t k = 0; k < sets.size(); ++k) {
-    std::unique_ptr<L> link;
-    try {
-      link = std::make_unique<L>(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(internal::linkage_context<L>(k) + ": the parameters do not construct: " + e.what());
-    }
+    std::optional<L> link;
+    if (const std::string thrown = internal::construct_from(sets[k], link); !thrown.empty())
+      return law_failed(internal::linkage_context<L>(k) + ": the parameters do not construct: " + thrown);
     std::vector<std::pair<Sample, Sample>> all = pairs;
     for (auto& p : boundary_pairs(*link, pairs, options.boundary_pairs)) all.push_back(p);
     const std::string failure = internal::linkage_laws_on(*link, sets[k], all, linked, rng);

@@ -44,12 +44,8 @@ template <class M>
 LawResult check_motion(const MotionLawOptions<M>& options = {}) {
   static_assert(is_motion_policy_v<M>, "check_motion: M does not model the motion concept (concepts/motion.hpp)");
   const std::string name = "motion " + type_name<M>();
-  try {
-    const M defaults{typename M::Params{}};
-    (void)defaults;
-  } catch (const std::exception& e) {
-    return law_failed(name + ": the default Params do not construct: " + e.what());
-  }
+  if (const std::string failure = internal::default_params_failure<M>(name); !failure.empty())
+    return law_failed(failure);
   std::vector<Point> points = options.points;
   if (points.empty()) {
     std::mt19937_64 rng(options.seed);
@@ -59,18 +55,13 @@ LawResult check_motion(const MotionLawOptions<M>& options = {}) {
       points.push_back(Point{x, y, z, 0.0f, 2.0 * i / 5000.0});
     }
   }
-  const std::vector<typename M::Params> sets =
-      options.params.empty() ? std::vector<typename M::Params>(1) : options.params;
+  const std::vector<typename M::Params> sets = internal::parameter_sets(options.params);
   std::size_t accepted = 0;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const std::string context = name + ", parameter set " + std::to_string(k) + ": ";
     std::optional<M> all, every_other;
-    try {
-      all.emplace(sets[k]);
-      every_other.emplace(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(context + "the parameters do not construct: " + e.what());
-    }
+    if (const std::string thrown = internal::construct_from(sets[k], all, every_other); !thrown.empty())
+      return law_failed(context + "the parameters do not construct: " + thrown);
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Eigen::Vector3f p(points[i].x, points[i].y, points[i].z);
       const double t = points[i].t;

@@ -43,8 +43,7 @@ LawResult check_projection(const ProjectionLawOptions<P>& options = {}) {
   static_assert(is_projection_policy_v<P>,
                 "check_projection: P does not model the projection concept (concepts/projection.hpp)");
   const std::string name = "projection " + type_name<P>();
-  const std::vector<typename P::Params> sets =
-      options.params.empty() ? std::vector<typename P::Params>(1) : options.params;
+  const std::vector<typename P::Params> sets = internal::parameter_sets(options.params);
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   constexpr float kInf = std::numeric_limits<float>::infinity();
   std::mt19937_64 rng(options.seed);
@@ -60,11 +59,8 @@ LawResult check_projection(const ProjectionLawOptions<P>& options = {}) {
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const std::string context = name + ", parameter set " + std::to_string(k) + ": ";
     std::optional<P> holder;
-    try {
-      holder.emplace(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(context + "the parameters do not construct: " + e.what());
-    }
+    if (const std::string thrown = internal::construct_from(sets[k], holder); !thrown.empty())
+      return law_failed(context + "the parameters do not construct: " + thrown);
     const P& proj = *holder;
     if (!std::isfinite(proj.fov_aspect()) || !(proj.fov_aspect() > 0.0f))
       return law_failed(context + "fov_aspect() = " + std::to_string(proj.fov_aspect()) + ", expected finite > 0");

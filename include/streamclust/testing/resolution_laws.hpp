@@ -52,8 +52,7 @@ LawResult check_resolution(const ResolutionLawOptions<R>& options = {}) {
   static_assert(is_resolution_policy_v<R>,
                 "check_resolution: R does not model the resolution concept (concepts/resolution.hpp)");
   const std::string name = "resolution " + type_name<R>();
-  const std::vector<typename R::Params> sets =
-      options.params.empty() ? std::vector<typename R::Params>(1) : options.params;
+  const std::vector<typename R::Params> sets = internal::parameter_sets(options.params);
   const auto valid = [](GridSize g) { return g.rows >= 1 && g.cols >= 1; };
   const auto text = [](GridSize g) { return std::to_string(g.rows) + "x" + std::to_string(g.cols); };
   for (std::size_t k = 0; k < sets.size(); ++k) {
@@ -62,14 +61,9 @@ LawResult check_resolution(const ResolutionLawOptions<R>& options = {}) {
         const std::string context = name + ", parameter set " + std::to_string(k) + ", " + std::to_string(n) +
                                     " points, aspect " + std::to_string(aspect) + ": ";
         const std::vector<Projected> cloud = uniform_projected_cloud(n, options.seed + static_cast<std::uint32_t>(n));
-        std::optional<R> a;
-        std::optional<R> b;
-        try {
-          a.emplace(sets[k]);
-          b.emplace(sets[k]);
-        } catch (const std::exception& e) {
-          return law_failed(context + "the parameters do not construct: " + e.what());
-        }
+        std::optional<R> a, b;
+        if (const std::string thrown = internal::construct_from(sets[k], a, b); !thrown.empty())
+          return law_failed(context + "the parameters do not construct: " + thrown);
         if (!a->needs_calibration() && !valid(a->grid())) return law_failed(context + "grid() is " + text(a->grid()));
         const GridSize chosen = a->calibrate(cloud, aspect);
         if (!valid(chosen)) return law_failed(context + "calibrate chose " + text(chosen));

@@ -41,18 +41,14 @@ template <class W>
 LawResult check_window(const WindowLawOptions<W>& options = {}) {
   static_assert(is_window_policy_v<W>, "check_window: W does not model the window concept (concepts/window.hpp)");
   const std::string name = "window " + type_name<W>();
-  const std::vector<typename W::Params> sets =
-      options.params.empty() ? std::vector<typename W::Params>(1) : options.params;
+  const std::vector<typename W::Params> sets = internal::parameter_sets(options.params);
   std::mt19937_64 rng(options.seed);
   std::exponential_distribution<double> gap(options.rate);  // [s]
   std::size_t evictions = 0;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     std::optional<W> holder;
-    try {
-      holder.emplace(sets[k]);
-    } catch (const std::exception& e) {
-      return law_failed(name + ", parameter set " + std::to_string(k) + ": the parameters do not construct: " + e.what());
-    }
+    if (const std::string thrown = internal::construct_from(sets[k], holder); !thrown.empty())
+      return law_failed(name + ", parameter set " + std::to_string(k) + ": the parameters do not construct: " + thrown);
     const W& window = *holder;
     std::deque<double> times;
     double t = 3.0;
