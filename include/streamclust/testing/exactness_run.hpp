@@ -41,6 +41,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -95,7 +96,7 @@ struct ExactnessOptions {
 /// The check's result: a LawResult, and what was compared (a check that
 /// compared nothing proves nothing; the caller may require counts).
 struct ExactnessReport : LawResult {
-  std::uint64_t comparisons = 0;  ///< retrievals compared with the batch clusterer
+  std::uint64_t comparisons = 0;  ///< retrievals compared with the batch clusterer (not those while calibrating)
   std::uint64_t folds = 0;        ///< RetrievalStats::forest_folds summed over every retrieval
 };
 
@@ -127,6 +128,32 @@ std::string compare_retrieval(const StreamClusterer<Config>& engine, BatchCluste
   }
 }
 
+/// The report of a failing seed: the configuration, the seed, the stream,
+/// how it was fed, the first mismatching retrieval and, when `shrunk`, the
+/// smallest failing stream found (listed when it has at most 40 points).
+inline std::string exactness_failure_message(const std::string& config, std::uint64_t seed,
+                                             const std::string& source, std::size_t length, std::size_t packet_max,
+                                             const ExactnessRun& run, bool shrunk, const std::vector<Point>& small,
+                                             const ExactnessRun& small_run) {
+  std::ostringstream os;
+  os << "exactness of " << config << ": seed " << seed << ", stream '" << source << "' of " << length << " points, "
+     << (packet_max == 0 ? std::string("point by point")
+                         : "through insert_batch in packets of at most " + std::to_string(packet_max))
+     << ": retrieval " << run.retrieval << " (after point " << run.after_point
+     << ") differs from the batch partition of its window: " << run.mismatch;
+  if (!run.state.empty()) os << " [" << run.state << "]";
+  if (shrunk) {
+    os << "\n  shrunk to " << small.size() << " points (same parameters and schedule): retrieval "
+       << small_run.retrieval << " (after point " << small_run.after_point << "): " << small_run.mismatch;
+    if (!small_run.state.empty()) os << " [" << small_run.state << "]";
+    if (small.size() <= 40) {
+      os << "\n  points {x, y, z, intensity, t}:";
+      for (const Point& p : small) os << "\n    " << describe(p);
+    }
+  }
+  return os.str();
+}
+
 }  // namespace internal
 
 /// Runs `stream` through a StreamClusterer<Config> built from `params`,
@@ -152,16 +179,16 @@ ExactnessRun run_exactness(const ClustererParams<Config>& params, const std::vec
       engine.retrieve();
       ++run.retrieval;
       run.folds += engine.last_stats().forest_folds;
+      const bool calibrating = engine.calibrating();  // no labels yet: nothing to compare
       run.mismatch = internal::compare_retrieval(engine, batch, stream);
       if (!run.mismatch.empty()) {
         run.after_point = offered - 1;
-        std::ostringstream state;
-        state << "grid " << engine.grid().rows << "x" << engine.grid().cols << ", mask " << params.mask_size
-              << ", window " << engine.size() << " points";
-        run.state = state.str();
+        run.state = "grid " + std::to_string(engine.grid().rows) + "x" + std::to_string(engine.grid().cols) +
+                    ", mask " + std::to_string(params.mask_size) + ", window " + std::to_string(engine.size()) +
+                    " points";
         return run;
       }
-      ++run.comparisons;
+      run.comparisons += calibrating ? 0u : 1u;
       next_retrieval += schedule == ExactnessSchedule::every_point ? 1 : 1 + rng() % gap;
     }
   } catch (const std::exception& e) {
@@ -243,27 +270,15 @@ ExactnessReport check_exactness_on(Draw&& draw, const ExactnessOptions& options)
     report.folds += run.folds;
     if (run.mismatch.empty()) continue;
 
-    std::ostringstream os;
-    os << "exactness of " << type_name<Config>() << ": seed " << seed << ", stream '" << source.name << "' of "
-       << stream.size() << " points, "
-       << (packet_max == 0 ? std::string("point by point")
-                           : "through insert_batch in packets of at most " + std::to_string(packet_max))
-       << ": retrieval " << run.retrieval << " (after point " << run.after_point
-       << ") differs from the batch partition of its window: " << run.mismatch;
-    if (!run.state.empty()) os << " [" << run.state << "]";
+    std::vector<Point> small;
+    ExactnessRun small_run;
     if (options.shrink) {
-      const auto [small, small_run] = shrink_exactness_failure<Config>(
+      std::tie(small, small_run) = shrink_exactness_failure<Config>(
           params, stream, run, options.schedule, packet_max, rng, options.max_retrieval_gap, options.max_shrink_runs);
-      os << "\n  shrunk to " << small.size() << " points (same parameters and schedule): retrieval "
-         << small_run.retrieval << " (after point " << small_run.after_point << "): " << small_run.mismatch;
-      if (!small_run.state.empty()) os << " [" << small_run.state << "]";
-      if (small.size() <= 40) {
-        os << "\n  points {x, y, z, intensity, t}:";
-        for (const Point& p : small) os << "\n    " << describe(p);
-      }
     }
+    report.message = internal::exactness_failure_message(type_name<Config>(), seed, source.name, stream.size(),
+                                                         packet_max, run, options.shrink, small, small_run);
     report.passed = false;
-    report.message = os.str();
     return report;
   }
   report.message = "exactness of " + type_name<Config>() + ": " + std::to_string(options.seeds) + " seeds, " +
