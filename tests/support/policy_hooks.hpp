@@ -5,7 +5,7 @@
 // default that fits a new policy with default Params, so a policy added to a
 // list is tested at once; a specialisation here sharpens the test (random
 // parameters for the oracle, pairs known to link at the defaults, the
-// capacity model of an index).
+// parameters of an index's laws).
 
 #include <streamclust/connectivity/spanning_forest.hpp>
 #include <streamclust/index/bucket_grid.hpp>

@@ -76,7 +76,7 @@ LawResult check_projection(const ProjectionLawOptions<P>& options = {}) {
         }
       }
     }
-    for (const Eigen::Vector3f origin : {Eigen::Vector3f(0.0f, 0.0f, 0.0f), Eigen::Vector3f(-0.0f, 0.0f, -0.0f)}) {
+    for (const Eigen::Vector3f& origin : {Eigen::Vector3f(0.0f, 0.0f, 0.0f), Eigen::Vector3f(-0.0f, 0.0f, -0.0f)}) {
       if (proj.project(origin).reason != RejectReason::too_close)
         return law_failed(context + "the origin " + text(origin) + " is not rejected too_close");
     }
