@@ -26,6 +26,7 @@
 /// (one call per thread).
 
 #include <streamclust/batch_clusterer.hpp>
+#include <streamclust/detail/hints.hpp>
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/testing/law_result.hpp>
 #include <streamclust/testing/oracle.hpp>
@@ -160,9 +161,10 @@ inline std::string exactness_failure_message(const std::string& config, std::uin
 /// comparing every retrieval with the batch clusterer; stops at the first
 /// mismatch. `packet_max` 0 offers point by point. `rng` draws the
 /// retrieval gaps and packet sizes. An exception from either clusterer is a
-/// mismatch that quotes it.
+/// mismatch that quotes it. Not inlined: the check and the shrinking share
+/// one copy of the engine loop per configuration (compile time).
 template <class Config>
-ExactnessRun run_exactness(const ClustererParams<Config>& params, const std::vector<Point>& stream,
+STREAMCLUST_NOINLINE ExactnessRun run_exactness(const ClustererParams<Config>& params, const std::vector<Point>& stream,
                            ExactnessSchedule schedule, std::size_t packet_max, std::mt19937_64 rng,
                            std::size_t max_retrieval_gap = 40) {
   ExactnessRun run;
