@@ -53,7 +53,8 @@ TEST_CASE_TEMPLATE_DEFINE("projection contract: the test kit's projection laws h
   streamclust::testing::ProjectionLawOptions<P> options;
   std::mt19937_64 rng(8);
   options.params.resize(6);
-  for (std::size_t k = 1; k < options.params.size(); ++k) streamclust::test::RandomParams<P>::draw(options.params[k], rng);
+  for (std::size_t k = 1; k < options.params.size(); ++k)
+    streamclust::test::RandomParams<P>::draw(options.params[k], rng);
   options.expect_rejections = true;
   STREAMCLUST_CHECK_LAW(streamclust::testing::check_projection<P>(options));
 }

@@ -46,7 +46,8 @@ TEST_CASE_TEMPLATE_DEFINE("window contract: the test kit's window laws hold", W,
   streamclust::testing::WindowLawOptions<W> options;
   std::mt19937_64 rng(31);
   options.params.resize(12);
-  for (std::size_t k = 1; k < options.params.size(); ++k) streamclust::test::RandomParams<W>::draw(options.params[k], rng);
+  for (std::size_t k = 1; k < options.params.size(); ++k)
+    streamclust::test::RandomParams<W>::draw(options.params[k], rng);
   STREAMCLUST_CHECK_LAW(streamclust::testing::check_window<W>(options));
 }
 

@@ -76,7 +76,8 @@ inline Sample sample_between(const Sample& a, const Sample& b, float t) {
 /// the first split point; both pairs are returned. At most `max_pairs`.
 /// O(pairs x 40) predicate calls.
 template <class L>
-std::vector<std::pair<Sample, Sample>> boundary_pairs(const L& link, const std::vector<std::pair<Sample, Sample>>& pairs,
+std::vector<std::pair<Sample, Sample>> boundary_pairs(const L& link,
+                                                      const std::vector<std::pair<Sample, Sample>>& pairs,
                                                       std::size_t max_pairs) {
   std::vector<std::pair<Sample, Sample>> out;
   for (const auto& [a, b] : pairs) {

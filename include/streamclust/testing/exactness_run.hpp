@@ -124,7 +124,8 @@ std::string compare_retrieval(const StreamClusterer<Config>& engine, BatchCluste
   if constexpr (compares_on_input_v<Config>) {
     return compare_with_batch_on_input(engine, batch, stream);
   } else {
-    if (engine.calibrating()) return engine.last_result().points.empty() ? "" : "labels while the first window is buffered";
+    if (engine.calibrating())
+      return engine.last_result().points.empty() ? "" : "labels while the first window is buffered";
     return compare_with_batch(engine, batch);
   }
 }

@@ -120,7 +120,8 @@ std::string index_cell_laws(const I& index, CellIndex c, const std::vector<Point
       const std::size_t count = index.gather(c, buffer.data(), room);
       if (count != n) return "cell " + std::to_string(c) + ": gather reports " + std::to_string(count) +
                              " handles, for_each lists " + std::to_string(n);
-      if (buffer.back() != kGuard) return "cell " + std::to_string(c) + ": gather wrote past its room " + std::to_string(room);
+      if (buffer.back() != kGuard)
+        return "cell " + std::to_string(c) + ": gather wrote past its room " + std::to_string(room);
       buffer.resize(n);
       if (buffer != got)
         return "cell " + std::to_string(c) + ": gather hands over " + handles_text(buffer) + ", for_each lists " +
