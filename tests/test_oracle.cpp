@@ -32,7 +32,7 @@ namespace st = streamclust::test;
 
 TEST_CASE_TEMPLATE_APPLY(oracle_id, st::OracleSlice<0>);
 
-using st::Combo;
+using st::PolicyCombo;
 using SphB = sc::SphericalProjection;
 using Cyl = sc::CylindricalProjection;
 using SF = sc::SpanningForestConnectivity;
@@ -42,15 +42,12 @@ using SF = sc::SpanningForestConnectivity;
 // retrieval at the end (everything before it by folds without labelling,
 // threshold 1: a fold whenever the new edges outnumber the window's points).
 TEST_CASE_TEMPLATE("spanning forest: retrieval after every point and only at the end agree with the batch clusterer",
-                   Config, Combo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
-                   Combo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
-                   Combo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
-                   Combo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>) {
-  std::uint64_t folds = 0;
-  for (std::uint64_t seed = 0; seed < 100; ++seed) {
-    st::run_oracle<Config>(seed, st::Schedule::every_point, 1);
-    folds += st::run_oracle<Config>(seed, st::Schedule::at_end, 1);
-  }
+                   Config, PolicyCombo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
+                   PolicyCombo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
+                   PolicyCombo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
+                   PolicyCombo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>) {
+  st::run_oracle<Config>(0, 100, st::Schedule::every_point, 1);
+  const std::uint64_t folds = st::run_oracle<Config>(0, 100, st::Schedule::at_end, 1);
   CHECK(folds > 100);
 }
 

@@ -9,9 +9,11 @@
 #include <streamclust/index/capped_grid.hpp>
 #include <streamclust/index/overwrite_grid.hpp>
 
+#include <streamclust/testing/doctest.hpp>
+#include <streamclust/testing/index_laws.hpp>
+
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
-#include "support/type_name.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -33,38 +35,8 @@ using streamclust::PointHandle;
 
 namespace {
 
-/// How each index is built in the tests and the per-cell capacity its model
-/// uses: support/policy_hooks.hpp.
+/// The parameters each index is tested with: support/policy_hooks.hpp.
 using streamclust::test::IndexModel;
-
-/// Brute-force model: one std::vector per cell in insertion order; a full cell
-/// drops its oldest handle (capacity = max for an unbounded bucket).
-struct Model {
-  std::vector<std::vector<PointHandle>> cells;
-  std::size_t capacity = 0;
-
-  void reset(std::size_t n) { cells.assign(n, {}); }
-  PointHandle insert(CellIndex c, PointHandle h) {
-    auto& v = cells[c];
-    PointHandle displaced = kNoPoint;
-    if (v.size() == capacity) {
-      displaced = v.front();
-      v.erase(v.begin());
-    }
-    v.push_back(h);
-    return displaced;
-  }
-  void remove(CellIndex c, PointHandle h) {
-    auto& v = cells[c];
-    const auto it = std::find(v.begin(), v.end(), h);
-    if (it != v.end()) v.erase(it);
-  }
-  std::size_t size() const {
-    std::size_t n = 0;
-    for (const auto& v : cells) n += v.size();
-    return n;
-  }
-};
 
 template <class I>
 std::vector<PointHandle> contents(const I& index, CellIndex c) {
@@ -99,92 +71,16 @@ std::vector<PointHandle> gathered(const I& index, CellIndex c) {
   return first;
 }
 
-template <class I>
-void check_equal(const I& index, const Model& model) {
-  REQUIRE(index.size() == model.size());
-  for (CellIndex c = 0; c < model.cells.size(); ++c) {
-    REQUIRE(contents(index, c) == model.cells[c]);
-    if constexpr (streamclust::has_spatial_index_gather_v<I>) REQUIRE(gathered(index, c) == model.cells[c]);
-  }
-}
-
 }  // namespace
 
-TEST_CASE_TEMPLATE_DEFINE("spatial index matches the brute-force model on random operation sequences", I,
-                          index_model_id) {
-  INFO("index " << streamclust::test::type_name<I>());
-  I index = IndexModel<I>::make();
-  Model model;
-  model.capacity = IndexModel<I>::capacity;
-  std::mt19937 rng(12345);
-  for (const GridShape shape : {GridShape{4, 5, true}, GridShape{2, 3, false}, GridShape{8, 16, true}}) {
-    index.reset(shape);
-    model.reset(shape.cell_count());
-    check_equal(index, model);
-    const auto cells = static_cast<std::uint32_t>(shape.cell_count());
-    std::uniform_int_distribution<std::uint32_t> pick_cell(0, cells - 1);
-    std::uniform_int_distribution<int> percent(0, 99);
-    std::deque<std::pair<PointHandle, CellIndex>> window;  // live points, oldest first
-    // start near the wrap of the 32-bit sequence number: handles are opaque to the index
-    PointHandle next = 0xFFFFFF00u;
-    for (int op = 0; op < 20000; ++op) {
-      const int dice = percent(rng);
-      if (dice < 55 || window.empty()) {
-        const PointHandle h = next++;
-        if (h == kNoPoint) continue;  // the sentinel is never a handle
-        const CellIndex c = pick_cell(rng);
-        const PointHandle displaced = index.insert(c, h);
-        REQUIRE(displaced == model.insert(c, h));
-        window.emplace_back(h, c);
-      } else if (dice < 92) {
-        // the engine's common case: remove the oldest point (even if displaced earlier)
-        const auto [h, c] = window.front();
-        window.pop_front();
-        index.remove(c, h);
-        model.remove(c, h);
-      } else if (dice < 98) {
-        // an arbitrary point of the window
-        std::uniform_int_distribution<std::size_t> pick(0, window.size() - 1);
-        const std::size_t i = pick(rng);
-        const auto [h, c] = window[i];
-        window.erase(window.begin() + static_cast<std::ptrdiff_t>(i));
-        index.remove(c, h);
-        model.remove(c, h);
-      } else {
-        // absent handle / wrong cell: a no-op
-        const CellIndex c = pick_cell(rng);
-        index.remove(c, next + 1000u);
-        model.remove(c, next + 1000u);
-        if (!window.empty()) {
-          const auto [h, hc] = window.back();
-          const CellIndex other = (hc + 1) % cells;
-          index.remove(other, h);
-          model.remove(other, h);
-        }
-      }
-      REQUIRE(index.size() == model.size());
-      if (op % 97 == 0) check_equal(index, model);
-    }
-    check_equal(index, model);
-    // drain in insertion order
-    while (!window.empty()) {
-      index.remove(window.front().second, window.front().first);
-      model.remove(window.front().second, window.front().first);
-      window.pop_front();
-    }
-    check_equal(index, model);
-    CHECK(index.size() == 0);
-    // clear after refilling
-    for (PointHandle h = 0; h < 3 * cells; ++h) {
-      const CellIndex c = h % cells;
-      REQUIRE(index.insert(c, h) == model.insert(c, h));
-    }
-    check_equal(index, model);
-    index.clear();
-    model.reset(shape.cell_count());
-    check_equal(index, model);
-    CHECK(index.size() == 0);
-  }
+// The test kit's index laws (<streamclust/testing/index_laws.hpp>): the
+// brute-force model on random operation sequences (its capacity the index's
+// max_cell_size), gather, youngest / gather_older and prefetch against
+// for_each, on the hooks' parameters (a bucket grid that spills early).
+TEST_CASE_TEMPLATE_DEFINE("spatial index: the test kit's index laws hold", I, index_laws_id) {
+  streamclust::testing::IndexLawOptions<I> options;
+  options.params = {IndexModel<I>::params()};
+  STREAMCLUST_CHECK_LAW(streamclust::testing::check_index<I>(options));
 }
 
 TEST_CASE("CappedGrid: a full cell's newest point displaces the oldest") {
@@ -470,22 +366,4 @@ static_assert(streamclust::has_spatial_index_prefetch_v<BucketGrid> &&
               streamclust::has_spatial_index_prefetch_v<CappedGrid> &&
               streamclust::has_spatial_index_prefetch_v<OverwriteGrid>);
 
-TEST_CASE_TEMPLATE_DEFINE("an index's optional prefetch hint changes nothing", I, index_prefetch_id) {
-  INFO("index " << streamclust::test::type_name<I>());
-  if constexpr (!streamclust::has_spatial_index_prefetch_v<I>) {
-    MESSAGE("no prefetch hint");
-    return;
-  }
-  I index = IndexModel<I>::make();
-  index.reset(GridShape{3, 4, true});
-  for (PointHandle h = 0; h < 40; ++h) index.insert(h % 12, h);
-  std::vector<std::vector<PointHandle>> before;
-  for (CellIndex c = 0; c < 12; ++c) before.push_back(contents(index, c));
-  if constexpr (streamclust::has_spatial_index_prefetch_v<I>) {
-    for (CellIndex c = 0; c < 12; ++c) index.prefetch(c);
-  }
-  for (CellIndex c = 0; c < 12; ++c) CHECK(contents(index, c) == before[c]);
-}
-
-TEST_CASE_TEMPLATE_APPLY(index_model_id, streamclust::test::SpatialIndexes);
-TEST_CASE_TEMPLATE_APPLY(index_prefetch_id, streamclust::test::SpatialIndexes);
+TEST_CASE_TEMPLATE_APPLY(index_laws_id, streamclust::test::SpatialIndexes);

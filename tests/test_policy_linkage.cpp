@@ -1,17 +1,20 @@
 // SPDX-License-Identifier: MIT
 // Unit tests of the linkage policies. First the contract every linkage of
 // the Linkages list (support/policy_lists.hpp) must keep, generated per
-// linkage: exact symmetry, the compact payload and link_many deciding as the
-// Sample operator, known values at the default parameters. Then each
+// linkage by the test kit's linkage laws: exact symmetry, no state, the
+// compact payload and link_many deciding as the Sample operator, known
+// values at the default parameters. Then each
 // linkage's own properties: thresholds, known beta values, the
 // near-coincident-ray remedy, the range-adaptive radius and the combinators.
 
 #include <doctest/doctest.h>
 
+#include <streamclust/testing/doctest.hpp>
+#include <streamclust/testing/linkage_laws.hpp>
+
 #include "support/invalid_argument.hpp"
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
-#include "support/type_name.hpp"
 
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
@@ -77,34 +80,9 @@ struct Fixed {
 
 void reset_calls() { Fixed<0>::calls = Fixed<1>::calls = Fixed<2>::calls = 0; }
 
-/// Random pairs of Samples of the kinds a mask search meets: anything,
-/// neighbours, revisits of almost the same ray with range noise, equal
-/// ranges, and the same point twice.
+/// Random pairs of Samples of the kinds a mask search meets (the test kit's).
 std::vector<std::pair<Sample, Sample>> random_pairs(std::uint32_t seed, int count) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> az(-180.0, 180.0);
-  std::uniform_real_distribution<double> el(-30.0, 30.0);
-  std::uniform_real_distribution<double> range(0.5, 80.0);
-  std::uniform_real_distribution<double> small(-2.0, 2.0);
-  std::uniform_real_distribution<double> tiny(-0.02, 0.02);
-  std::vector<std::pair<Sample, Sample>> pairs;
-  for (int i = 0; i < count; ++i) {
-    // draw in a fixed order (argument evaluation order is unspecified)
-    const double az0 = az(rng), el0 = el(rng), r0 = range(rng);
-    const double x1 = az(rng), x2 = el(rng), x3 = range(rng);
-    const double s1 = small(rng), s2 = small(rng), s3 = small(rng), t1 = tiny(rng);
-    const Sample a = ray(az0, el0, r0);
-    Sample b;
-    switch (i % 5) {
-      case 0: b = ray(x1, x2, x3); break;
-      case 1: b = ray(az0 + 0.1 * s1, el0 + 0.1 * s2, r0 * (1.0 + 0.01 * s3)); break;
-      case 2: b = ray(az0 + 0.01 * s1, el0 + 0.01 * s2, r0 + t1); break;
-      case 3: b = ray(az0 + s1, el0, r0); b.range = a.range; break;
-      default: b = a; break;
-    }
-    pairs.emplace_back(a, b);
-  }
-  return pairs;
+  return streamclust::testing::random_candidate_pairs(seed, static_cast<std::size_t>(count));
 }
 
 /// The linkage's default parameters, then `draws` random ones (RandomParams).
@@ -124,84 +102,19 @@ std::vector<typename L::Params> params_to_test(int draws) {
 
 // ------------------------------------------------ the contract of every linkage
 
-TEST_CASE_TEMPLATE_DEFINE("linkage contract: exactly symmetric", L, linkage_symmetry) {
-  INFO("linkage " << streamclust::test::type_name<L>());
-  const auto pairs = random_pairs(2024, 20000);
-  std::size_t linked = 0;
-  for (const auto& params : params_to_test<L>(8)) {
-    const L link{params};
-    for (const auto& [a, b] : pairs) {
-      const bool ab = link(a, b);
-      REQUIRE(ab == link(b, a));
-      linked += ab ? 1u : 0u;
-    }
-  }
-  // both decisions occur, or the symmetry would be vacuous
-  CHECK(linked > 0);
-  CHECK(linked < pairs.size() * 9);
+// The test kit's linkage laws (<streamclust/testing/linkage_laws.hpp>):
+// symmetry, statelessness, the payload and link_many against the Sample
+// operator, Params, on random, simulated Livox and threshold pairs; at the
+// defaults and 8 random parameter sets, with the known pairs of the hooks.
+TEST_CASE_TEMPLATE_DEFINE("linkage contract: the test kit's linkage laws hold", L, linkage_laws) {
+  streamclust::testing::LinkageLawOptions<L> options;
+  options.params = params_to_test<L>(8);
+  options.must_link.push_back(streamclust::test::KnownPairs<L>::linked());
+  options.must_split.push_back(streamclust::test::KnownPairs<L>::split());
+  STREAMCLUST_CHECK_LAW(streamclust::testing::check_linkage<L>(options));
 }
 
-TEST_CASE_TEMPLATE_DEFINE("linkage contract: the payload and link_many decide as the Sample operator", L,
-                          linkage_payload) {
-  INFO("linkage " << streamclust::test::type_name<L>());
-  if constexpr (!streamclust::has_linkage_payload_v<L>) {
-    MESSAGE("no compact payload: the Sample path only");
-  } else {
-    static_assert(streamclust::is_linkage_payload_valid_v<L>);
-    using Payload = streamclust::linkage_payload_t<L>;
-    const auto pairs = random_pairs(5, 6000);
-    std::mt19937 rng(9);
-    for (const auto& params : params_to_test<L>(6)) {
-      const L link{params};
-      std::vector<Payload> ring;
-      for (const auto& [a, b] : pairs) {
-        const Payload pa = L::make_payload(a);
-        const Payload pb = L::make_payload(b);
-        REQUIRE(link(pa, pb) == link(a, b));
-        REQUIRE(link(pb, pa) == link(b, a));
-        if constexpr (streamclust::has_linkage_ray_payload_v<L>) {
-          Sample restored;
-          L::restore_ray(pa, restored);
-          for (int c = 0; c < 3; ++c) REQUIRE(restored.direction[c] == a.direction[c]);
-          REQUIRE(restored.range == a.range);
-        }
-        ring.push_back(pb);
-      }
-      if constexpr (streamclust::has_linkage_link_many_v<L>) {
-        // each pair's first Sample against 1-40 candidates of the ring, in
-        // random slots; a guard byte after `count` must stay untouched
-        std::vector<std::uint32_t> slots;
-        std::vector<std::uint8_t> linked;
-        for (std::size_t i = 0; i < pairs.size(); i += 7) {
-          const Payload a = L::make_payload(pairs[i].first);
-          const std::size_t count = 1 + rng() % 40;
-          slots.resize(count);
-          for (auto& slot : slots) slot = static_cast<std::uint32_t>(rng() % ring.size());
-          slots[0] = static_cast<std::uint32_t>(i);  // its own partner: near pairs link
-          linked.assign(count + 1, 7);
-          link.link_many(a, ring.data(), slots.data(), count, linked.data());
-          for (std::size_t k = 0; k < count; ++k) REQUIRE(linked[k] == (link(a, ring[slots[k]]) ? 1u : 0u));
-          REQUIRE(linked[count] == 7);
-        }
-      }
-    }
-  }
-}
-
-TEST_CASE_TEMPLATE_DEFINE("linkage contract: known pairs at the default parameters", L, linkage_known) {
-  INFO("linkage " << streamclust::test::type_name<L>());
-  const L link{typename L::Params{}};
-  const auto [a, b] = streamclust::test::KnownPairs<L>::linked();
-  CHECK(link(a, b));
-  CHECK(link(b, a));
-  const auto [c, d] = streamclust::test::KnownPairs<L>::split();
-  CHECK_FALSE(link(c, d));
-  CHECK_FALSE(link(d, c));
-}
-
-TEST_CASE_TEMPLATE_APPLY(linkage_symmetry, streamclust::test::Linkages);
-TEST_CASE_TEMPLATE_APPLY(linkage_payload, streamclust::test::Linkages);
-TEST_CASE_TEMPLATE_APPLY(linkage_known, streamclust::test::Linkages);
+TEST_CASE_TEMPLATE_APPLY(linkage_laws, streamclust::test::Linkages);
 
 // ------------------------------------------------------ each linkage's own
 

@@ -6,10 +6,12 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/testing/doctest.hpp>
+#include <streamclust/testing/projection_laws.hpp>
+
 #include "support/invalid_argument.hpp"
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
-#include "support/type_name.hpp"
 
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
@@ -44,55 +46,17 @@ Eigen::Vector3f direction_deg(double az, double el) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE_DEFINE("projection contract: coordinates in [0, 1], the range, the rejections", P,
-                          projection_contract_id) {
-  INFO("projection " << streamclust::test::type_name<P>());
+// The test kit's projection laws (<streamclust/testing/projection_laws.hpp>)
+// at the defaults and 5 random parameter sets (narrower fields of view:
+// some points rejected).
+TEST_CASE_TEMPLATE_DEFINE("projection contract: the test kit's projection laws hold", P, projection_contract_id) {
+  streamclust::testing::ProjectionLawOptions<P> options;
   std::mt19937_64 rng(8);
-  std::uniform_real_distribution<float> coord(-30.0f, 30.0f);
-  std::size_t accepted = 0;
-  std::size_t rejected = 0;
-  for (int draw = 0; draw < 6; ++draw) {
-    typename P::Params params{};
-    if (draw > 0) streamclust::test::RandomParams<P>::draw(params, rng);
-    const P proj{params};
-    CHECK(std::isfinite(proj.fov_aspect()));
-    CHECK(proj.fov_aspect() > 0.0f);
-    // NaN or inf in any coordinate, also where the point would be too close;
-    // the origin has no direction: too close whatever the minimum range
-    for (int c = 0; c < 3; ++c) {
-      for (const float bad : {kNaN, kInf, -kInf}) {
-        Eigen::Vector3f x(1.0f, 2.0f, 0.5f);
-        x[c] = bad;
-        CHECK(proj.project(x).reason == RejectReason::non_finite);
-        x = Eigen::Vector3f::Zero();
-        x[c] = bad;
-        CHECK(proj.project(x).reason == RejectReason::non_finite);
-      }
-    }
-    CHECK(proj.project(Eigen::Vector3f(0.0f, 0.0f, 0.0f)).reason == RejectReason::too_close);
-    CHECK(proj.project(Eigen::Vector3f(-0.0f, 0.0f, -0.0f)).reason == RejectReason::too_close);
-    for (int k = 0; k < 20000; ++k) {
-      const Eigen::Vector3f x(coord(rng), coord(rng), 0.2f * coord(rng));
-      const Projected p = proj.project(x);
-      const Projected again = proj.project(x);
-      REQUIRE(p.reason == again.reason);  // deterministic
-      if (!p.accepted()) {
-        REQUIRE(p.reason != RejectReason::non_finite);  // the input was finite
-        ++rejected;
-        continue;
-      }
-      ++accepted;
-      REQUIRE(p.u == again.u);
-      REQUIRE(p.v == again.v);
-      REQUIRE(p.u >= 0.0f);
-      REQUIRE(p.u <= 1.0f);
-      REQUIRE(p.v >= 0.0f);
-      REQUIRE(p.v <= 1.0f);
-      REQUIRE(p.range == doctest::Approx(x.norm()).epsilon(1e-5));
-    }
-  }
-  CHECK(accepted > 1000);
-  CHECK(rejected > 0);  // the drawn FOVs reject something
+  options.params.resize(6);
+  for (std::size_t k = 1; k < options.params.size(); ++k)
+    streamclust::test::RandomParams<P>::draw(options.params[k], rng);
+  options.expect_rejections = true;
+  STREAMCLUST_CHECK_LAW(streamclust::testing::check_projection<P>(options));
 }
 
 TEST_CASE_TEMPLATE_APPLY(projection_contract_id, streamclust::test::Projections);

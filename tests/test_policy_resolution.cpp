@@ -6,9 +6,11 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/testing/doctest.hpp>
+#include <streamclust/testing/resolution_laws.hpp>
+
 #include "support/invalid_argument.hpp"
 #include "support/policy_lists.hpp"
-#include "support/type_name.hpp"
 
 #include <streamclust/resolution/adaptive.hpp>
 #include <streamclust/resolution/fixed.hpp>
@@ -81,26 +83,9 @@ bool same_trace(const std::vector<AdaptiveStep>& a, const std::vector<AdaptiveSt
 
 }  // namespace
 
-TEST_CASE_TEMPLATE_DEFINE("resolution contract: a valid grid, calibrated once, deterministically", R,
-                          resolution_contract_id) {
-  INFO("resolution " << streamclust::test::type_name<R>());
-  const auto valid = [](GridSize g) { return g.rows >= 1 && g.cols >= 1; };
-  // an empty first window (nothing accepted) and clouds of several sizes and aspects
-  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{500}, std::size_t{20000}}) {
-    for (const float aspect : {0.5f, 1.0f, 6.0f}) {
-      CAPTURE(n);
-      CAPTURE(aspect);
-      const std::vector<Projected> cloud = uniform_cloud(n, static_cast<std::uint32_t>(n) + 3);
-      R a{typename R::Params{}};
-      R b{typename R::Params{}};
-      if (!a.needs_calibration()) CHECK(valid(a.grid()));
-      const GridSize chosen = a.calibrate(cloud, aspect);
-      CHECK(valid(chosen));
-      CHECK_FALSE(a.needs_calibration());  // calibrated once
-      CHECK(a.grid() == chosen);
-      CHECK(b.calibrate(cloud, aspect) == chosen);  // deterministic
-    }
-  }
+// The test kit's resolution laws (<streamclust/testing/resolution_laws.hpp>).
+TEST_CASE_TEMPLATE_DEFINE("resolution contract: the test kit's resolution laws hold", R, resolution_contract_id) {
+  STREAMCLUST_CHECK_LAW(streamclust::testing::check_resolution<R>());
 }
 
 TEST_CASE_TEMPLATE_APPLY(resolution_contract_id, streamclust::test::Resolutions);

@@ -5,10 +5,12 @@
 
 #include <doctest/doctest.h>
 
+#include <streamclust/testing/doctest.hpp>
+#include <streamclust/testing/window_laws.hpp>
+
 #include "support/invalid_argument.hpp"
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
-#include "support/type_name.hpp"
 
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
@@ -38,41 +40,15 @@ using streamclust::test::invalid_argument_message;
 
 }  // namespace
 
-TEST_CASE_TEMPLATE_DEFINE("window contract: monotone expiry, the newest point stays, expiry implies completeness", W,
-                          window_contract_id) {
-  INFO("window " << streamclust::test::type_name<W>());
+// The test kit's window laws (<streamclust/testing/window_laws.hpp>) at the
+// defaults and 11 random parameter sets.
+TEST_CASE_TEMPLATE_DEFINE("window contract: the test kit's window laws hold", W, window_contract_id) {
+  streamclust::testing::WindowLawOptions<W> options;
   std::mt19937_64 rng(31);
-  std::exponential_distribution<double> gap(500.0);  // [s^-1]
-  std::size_t evictions = 0;
-  for (int draw = 0; draw < 12; ++draw) {
-    typename W::Params params{};
-    if (draw > 0) streamclust::test::RandomParams<W>::draw(params, rng);
-    const W window{params};
-    // the engine's loop on irregular timestamps, with bursts of equal times
-    std::deque<double> times;
-    double t = 3.0;
-    for (int k = 0; k < 3000; ++k) {
-      if (rng() % 4 != 0) t += gap(rng);
-      const std::size_t before = times.size();
-      push(window, times, t);
-      evictions += before + 1 - times.size();
-      REQUIRE(times.back() == t);                                // the newest point is never evicted
-      REQUIRE_FALSE(window.expired(t, t, 1));                    // a point alone never expires
-      const double oldest = times.front();
-      const std::size_t size = times.size();
-      REQUIRE_FALSE(window.expired(oldest, t, size));           // what stays is not expired
-      // monotone: an older point or a larger window expires too
-      if (window.expired(oldest, t, size + 1)) REQUIRE(window.expired(oldest - 0.5, t, size + 1));
-      if (window.expired(oldest - 0.5, t, size)) REQUIRE(window.expired(oldest - 0.5, t, size + 7));
-      // a window that must evict has reached its extent
-      for (const std::size_t s : {size, size + 1, size + 100}) {
-        for (const double o : {oldest, oldest - 0.01, oldest - 10.0}) {
-          if (window.expired(o, t, s)) REQUIRE(window.complete(o, t, s));
-        }
-      }
-    }
-  }
-  CHECK(evictions > 0);  // the windows bounded the stream
+  options.params.resize(12);
+  for (std::size_t k = 1; k < options.params.size(); ++k)
+    streamclust::test::RandomParams<W>::draw(options.params[k], rng);
+  STREAMCLUST_CHECK_LAW(streamclust::testing::check_window<W>(options));
 }
 
 TEST_CASE_TEMPLATE_APPLY(window_contract_id, streamclust::test::Windows);

@@ -189,10 +189,14 @@ class BatchClusterer {
         if (linked_[k]) sets_.unite(static_cast<std::uint32_t>(i), candidates_[k]);
       }
     } else {
+      // The indexed point first (in insertion order the older one), where
+      // the engine asks linkage(new, old): an asymmetric linkage, which has
+      // no single-linkage partition, then shows as a mismatch of the oracle
+      // (tests/test_testing_kit.cpp).
       const Sample& s = samples_[i];
       detail::for_each_mask_cell(result_.grid, cells_[i], half_, [&](CellIndex c) {
         index_.for_each(c, [&](PointHandle h) {
-          if (h != i && linkage_(s, samples_[h])) sets_.unite(static_cast<std::uint32_t>(i), h);
+          if (h != i && linkage_(samples_[h], s)) sets_.unite(static_cast<std::uint32_t>(i), h);
         });
       });
     }

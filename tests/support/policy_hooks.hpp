@@ -5,7 +5,7 @@
 // default that fits a new policy with default Params, so a policy added to a
 // list is tested at once; a specialisation here sharpens the test (random
 // parameters for the oracle, pairs known to link at the defaults, the
-// capacity model of an index).
+// parameters of an index's laws).
 
 #include <streamclust/connectivity/spanning_forest.hpp>
 #include <streamclust/index/bucket_grid.hpp>
@@ -25,6 +25,8 @@
 
 #include "test_linkages.hpp"
 
+#include <streamclust/testing/random_params.hpp>
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -37,183 +39,28 @@ namespace streamclust::test {
 
 // ------------------------------------------------------ oracle parameters
 
-/// Random parameters of policy `P` for one oracle seed: `draw(params, rng)`
-/// overwrites some fields of `params` (a `P::Params`) from `rng`. The
-/// default keeps P's defaults. Specialisations favour small, crowded and
-/// extreme settings (the oracle's streams are a few hundred points).
-/// `rng` is a std::mt19937_64; the draws of one seed follow a fixed order
-/// (ClustererParams: mask, resolution, projection, index, linkage, window,
-/// connectivity), so a seed always gives the same parameters.
-template <class P>
-struct RandomParams {
-  template <class Params, class Rng>
-  static void draw(Params&, Rng&) {}
-};
+// RandomParams and random_params are the test kit's
+// (<streamclust/testing/random_params.hpp>): a specialisation for a
+// test-only policy goes into namespace streamclust::testing.
 
-namespace detail {
-template <class Rng>
-float unit_float(Rng& rng) {
-  return std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
-}
-}  // namespace detail
+}  // namespace streamclust::test
+
+namespace streamclust::testing {
 
 template <>
-struct RandomParams<FixedResolution> {
+struct RandomParams<test::BoxLinkage> {
   template <class Rng>
-  static void draw(FixedResolution::Params& p, Rng& rng) {
-    p.rows = 1 + static_cast<std::uint32_t>(rng() % 24);
-    p.cols = 1 + static_cast<std::uint32_t>(rng() % 64);
+  static void draw(test::BoxLinkage::Params& p, Rng& rng) {
+    p.half_width = 0.1f + 1.5f * internal::unit_float(rng);
   }
 };
 
-template <>
-struct RandomParams<SphericalProjection> {
-  template <class Rng>
-  static void draw(SphericalProjection::Params& p, Rng& rng) {
-    if (rng() % 2) {
-      p.azimuth_min_deg = -60.0f;
-      p.azimuth_max_deg = 60.0f;
-    }
-    if (rng() % 2) {
-      p.elevation_min_deg = -30.0f;
-      p.elevation_max_deg = 50.0f;
-    }
-  }
-};
+}  // namespace streamclust::testing
 
-template <>
-struct RandomParams<CylindricalProjection> {
-  template <class Rng>
-  static void draw(CylindricalProjection::Params& p, Rng& rng) {
-    if (rng() % 2) {
-      p.azimuth_min_deg = -60.0f;
-      p.azimuth_max_deg = 60.0f;
-    }
-    p.z_min = -2.0f;
-    p.z_max = 4.0f;
-  }
-};
+namespace streamclust::test {
 
-template <>
-struct RandomParams<CappedGrid> {
-  template <class Rng>
-  static void draw(CappedGrid::Params& p, Rng& rng) {
-    p.capacity = 1 + static_cast<std::uint32_t>(rng() % 4);
-  }
-};
-
-template <>
-struct RandomParams<EuclideanLinkage> {
-  template <class Rng>
-  static void draw(EuclideanLinkage::Params& p, Rng& rng) {
-    p.max_distance = 0.2f + 2.0f * detail::unit_float(rng);
-  }
-};
-
-template <>
-struct RandomParams<AngularLinkage> {
-  template <class Rng>
-  static void draw(AngularLinkage::Params& p, Rng& rng) {
-    p.theta_deg = 5.0f + 60.0f * detail::unit_float(rng);
-    const float floors[] = {0.0f, 0.2f, 1.0f};
-    p.min_ray_angle_deg = floors[rng() % 3];
-  }
-};
-
-template <>
-struct RandomParams<RangeAdaptiveLinkage> {
-  template <class Rng>
-  static void draw(RangeAdaptiveLinkage::Params& p, Rng& rng) {
-    p.min_distance = 0.05f + 0.5f * detail::unit_float(rng);
-    const float factor = 0.005f + 0.1f * detail::unit_float(rng);
-    p.range_factor = rng() % 4 == 0 ? 0.0f : factor;  // 0: a fixed radius
-  }
-};
-
-template <>
-struct RandomParams<BoxLinkage> {
-  template <class Rng>
-  static void draw(BoxLinkage::Params& p, Rng& rng) {
-    p.half_width = 0.1f + 1.5f * detail::unit_float(rng);
-  }
-};
-
-namespace detail {
-/// Draws every child's parameters in order (the combinators' Params tuple).
-template <class... Ls, class Rng>
-void draw_children(std::tuple<typename Ls::Params...>& p, Rng& rng) {
-  std::apply([&](auto&... child) { (RandomParams<Ls>::draw(child, rng), ...); }, p);
-}
-}  // namespace detail
-
-template <class... Ls>
-struct RandomParams<AllOf<Ls...>> {
-  template <class Rng>
-  static void draw(typename AllOf<Ls...>::Params& p, Rng& rng) {
-    detail::draw_children<Ls...>(p, rng);
-  }
-};
-
-template <class... Ls>
-struct RandomParams<AnyOf<Ls...>> {
-  template <class Rng>
-  static void draw(typename AnyOf<Ls...>::Params& p, Rng& rng) {
-    detail::draw_children<Ls...>(p, rng);
-  }
-};
-
-template <>
-struct RandomParams<RuntimeLinkage> {
-  template <class Rng>
-  static void draw(RuntimeLinkage::Params& p, Rng& rng) {
-    const RuntimeLinkage::Kind kinds[] = {RuntimeLinkage::Kind::angular, RuntimeLinkage::Kind::euclidean,
-                                          RuntimeLinkage::Kind::range_adaptive};
-    p.kind = kinds[rng() % 3];
-    RandomParams<AngularLinkage>::draw(p.angular, rng);
-    RandomParams<EuclideanLinkage>::draw(p.euclidean, rng);
-    RandomParams<RangeAdaptiveLinkage>::draw(p.range_adaptive, rng);
-  }
-};
-
-template <>
-struct RandomParams<TimeWindow> {
-  template <class Rng>
-  static void draw(TimeWindow::Params& p, Rng& rng) {
-    const double durations[] = {0.0, 0.0005, 0.01, 0.05, 0.2, 1.0};  // [s]
-    p.duration = durations[rng() % 6];
-  }
-};
-
-template <>
-struct RandomParams<CountWindow> {
-  template <class Rng>
-  static void draw(CountWindow::Params& p, Rng& rng) {
-    const std::size_t capacities[] = {1, 2, 7, 40, 150};
-    p.capacity = capacities[rng() % 5];
-  }
-};
-
-template <>
-struct RandomParams<SpanningForestConnectivity> {
-  template <class Rng>
-  static void draw(SpanningForestConnectivity::Params& p, Rng& rng) {
-    // The default threshold (65536 edges) never folds on the oracle's short
-    // streams: mostly tiny ones, so that the fold runs between retrievals.
-    const std::uint32_t thresholds[] = {1, 1, 3, 20, 65536};
-    p.min_fold_edges = thresholds[rng() % 5];
-    p.fold_edges_per_point = 1 + static_cast<std::uint32_t>(rng() % 2);
-    p.prune_witnesses = static_cast<std::uint32_t>(rng() % 4);  // 0: every edge kept
-  }
-};
-
-/// True for a connectivity strategy that folds its new edges without a
-/// retrieval once they pass a threshold (counted in
-/// RetrievalStats::forest_folds); the oracle then requires that such folds
-/// happened. False by default: the oracle requires that none happened.
-template <class Connectivity>
-inline constexpr bool folds_between_retrievals_v = false;
-template <>
-inline constexpr bool folds_between_retrievals_v<SpanningForestConnectivity> = true;
+using ::streamclust::testing::folds_between_retrievals_v;
+using ::streamclust::testing::RandomParams;
 
 // ------------------------------------------------- linkage known values
 
@@ -266,31 +113,22 @@ struct KnownPairs<RangeAdaptiveLinkage> {
   static std::pair<Sample, Sample> split() { return {sample_on_ray(0.0, 0.0, 3.0), sample_on_ray(5.0, 0.0, 3.0)}; }
 };
 
-// ------------------------------------------------------ index capacity model
+// ------------------------------------------------------ index parameters
 
-/// How the index contract test builds index `I` and how many handles one of
-/// its cells keeps (a full cell displaces its oldest handle). The default
-/// builds `I` from default Params and models an unbounded cell; a bounded
-/// index specialises it.
+/// The parameters the index laws (test kit, check_index) test index `I`
+/// with; the model's capacity is the index's max_cell_size. The default is
+/// I's defaults.
 template <class I>
 struct IndexModel {
-  static I make() { return I{typename I::Params{}}; }
-  static constexpr std::size_t capacity = std::numeric_limits<std::size_t>::max();
+  static typename I::Params params() { return {}; }
 };
 template <>
 struct IndexModel<BucketGrid> {
-  static BucketGrid make() { return BucketGrid{{2}}; }  // inline capacity 2: spills early
-  static constexpr std::size_t capacity = std::numeric_limits<std::size_t>::max();
+  static BucketGrid::Params params() { return {2}; }  // inline capacity 2: spills early
 };
 template <>
 struct IndexModel<CappedGrid> {
-  static CappedGrid make() { return CappedGrid{{3}}; }
-  static constexpr std::size_t capacity = 3;
-};
-template <>
-struct IndexModel<OverwriteGrid> {
-  static OverwriteGrid make() { return OverwriteGrid{{}}; }
-  static constexpr std::size_t capacity = 1;
+  static CappedGrid::Params params() { return {3}; }
 };
 
 }  // namespace streamclust::test

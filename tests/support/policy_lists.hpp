@@ -2,27 +2,30 @@
 #pragma once
 // The lists of policies that drive the generated tests and benchmarks.
 //
-// Adding a policy to its list is the only line it needs. A linkage added to
-// `Linkages` gets, with no other change:
-//   1. the oracle (tests/test_oracle.cpp): the continuous partition equals
-//      the batch partition of the same window, for every combination of it
-//      with the other lists' policies (Projections x SpatialIndexes x
-//      Linkages x Windows x Connectivities);
-//   2. the linkage contract tests (tests/test_policy_linkage.cpp): symmetry,
-//      the payload operator and `link_many` against the Sample operator (when
-//      it has them), a pair that must link and one that must not at its
-//      default parameters;
+// Adding a policy to its list is the only line it needs. The checks are the
+// test kit's (<streamclust/testing/...>, docs/testing.md), the same a user
+// runs on a policy of their own. A linkage added to `Linkages` gets, with no
+// other change:
+//   1. the oracle (tests/test_oracle.cpp): the kit's exactness check, the
+//      continuous partition equals the batch partition of the same window,
+//      for every combination of it with the other lists' policies
+//      (Projections x SpatialIndexes x Linkages x Windows x Connectivities);
+//   2. the kit's linkage laws (tests/test_policy_linkage.cpp): symmetry, no
+//      state, the payload operator and `link_many` against the Sample
+//      operator (when it has them), a pair that must link and one that must
+//      not at its default parameters;
 //   3. its microbenchmark (bench/policies.cpp, bench_policies).
 // The same holds for the other families: a projection, index, window or
-// resolution added to its list runs its family's contract tests
+// resolution added to its list runs its family's laws
 // (tests/test_policy_<family>.cpp) and its microbenchmark, and (except
 // resolutions, see below) the oracle.
 //
 // What a policy may add in policy_hooks.hpp (each has a default):
-// `RandomParams<P>` (random parameters for the oracle; default: P's
-// defaults), `KnownPairs<L>` (a linkage's pairs at its defaults; default: a
-// surface seen face-on links, a depth jump of 10 m splits), `IndexModel<I>`
-// (an index's per-cell capacity; default: unbounded).
+// `streamclust::testing::RandomParams<P>` (random parameters for the oracle;
+// default: P's defaults), `KnownPairs<L>` (a linkage's pairs at its
+// defaults; default: a surface seen face-on links, a depth jump of 10 m
+// splits), `IndexModel<I>` (the parameters an index's laws run with;
+// default: I's defaults).
 //
 // The oracle runs on FixedResolution (it compares on a grid it draws); the
 // adaptive resolution is compared through the C-ARC presets in
