@@ -21,11 +21,11 @@
 ///    candidate.
 /// 2. The plane across. Without a large plane on side B, the farthest plane
 ///    parallel to A's on side B is searched in all the points (a floor seen
-///    at grazing angles holds a thousandth of them): a peak of 1 cm bins
-///    along the axis with at least max(20, points / 2000) points and 3 times
-///    the density 0.15-0.5 m around it, nothing much beyond it (at most a
-///    quarter of its points: a floor or a ceiling bounds what is seen), and
-///    showing in at least a tenth as many 0.5 m cells as plane A.
+///    at grazing angles holds a thousandth of them): a pair of 1 cm bins
+///    along the axis with at least max(20, points / 2000) points, twice the
+///    density 3-15 cm nearer the sensor, and at least 4 times the points
+///    beyond it (a floor or a ceiling bounds what is seen), showing in at
+///    least a twentieth as many 0.5 m cells as plane A.
 /// 3. Floor or ceiling. Objects stand on the floor and hang from nothing.
 ///    A point *touches* a plane when it lies 2 inlier_distance to
 ///    `contact_band` m off it, the plane goes on at least 1 m farther out
@@ -33,10 +33,12 @@
 ///    a wall ends it) and no point of its 0.5 m cell is that near the other
 ///    plane (a pillar touches both). With planes on both sides, the ground
 ///    is the one touched in at least `contact_ratio` times as many cells
-///    per cell showing it as the other (and in 3 cells at least). With one
+///    per cell showing it as the other, and in 2 cells more at least. With one
 ///    plane, it is the ground when at least `standing_fraction` of the
 ///    cells holding points up to 2 m off it (where it goes on behind them)
-///    touch it, in 3 cells at least. Otherwise the status is `ambiguous`.
+///    touch it, or when fewer than 15 cells hold such points (no evidence
+///    against the lone plane: outdoors, the ground). Otherwise the status
+///    is `ambiguous`.
 ///    Up is the ground's normal pointing towards the sensor: an upside-down
 ///    sensor (roll 180) finds roll 180, whichever plane is nearer.
 ///
@@ -271,8 +273,8 @@ struct PlanePeak {
 /// The farthest plane perpendicular to `up` on the side `up` points to,
 /// among all of `points` (rule 2 of the file comment): the farthest pair of
 /// `bin` m bins of `up . p` (0 to `max_distance`) holding at least
-/// `min_points`, 3 times the mean of the bins 0.15-0.5 m on either side,
-/// and at least 4 times the points beyond it. Its distance is the mean
+/// `min_points`, twice the points of the mean pair 3-15 cm nearer the
+/// sensor, and at least 4 times the points beyond it. Its distance is the mean
 /// over its points. O(points + max_distance / bin).
 inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3d& up,
                                          double bin, double max_distance, std::size_t min_points) {
@@ -441,15 +443,16 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
     std::tie(on_a, on_b) = detail::plane_contacts(sensor_points, axis, side_a->plane.d, 0.0, params.inlier_distance,
                                                   params.contact_band);
   }
-  constexpr std::size_t kMinStandingCells = 15;  // less is no evidence against a lone plane
+  constexpr std::size_t kMinTouches = 2;         // the ground's lead in touching cells, at least
+  constexpr std::size_t kMinStandingCells = 15;  // fewer are no evidence against a lone plane
   bool a_is_ground = true;
   GroundStatus status = GroundStatus::ambiguous;
   double contact = 0.0, opposite_contact = 0.0;
   if (distance_b > 0.0) {
     const double a = on_a.per_cell(), b = on_b.per_cell();
-    if (on_a.touches >= 3 && a >= params.contact_ratio * b) {
+    if (on_a.touches >= on_b.touches + kMinTouches && a >= params.contact_ratio * b) {
       status = GroundStatus::found;
-    } else if (on_b.touches >= 3 && b >= params.contact_ratio * a) {
+    } else if (on_b.touches >= on_a.touches + kMinTouches && b >= params.contact_ratio * a) {
       status = GroundStatus::found;
       a_is_ground = false;
     }
