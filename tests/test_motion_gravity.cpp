@@ -207,32 +207,25 @@ TEST_CASE("estimate_ground: deterministic for a seed; non-finite points skipped;
   // 10,501 points, 10,500 finite, an even stride of 3: 3,500 used.
   CHECK(a->points_used == 3500);
 
-  sc::MountEstimateParams p;
-  p.min_plane_fraction = 0.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("min_plane_fraction = 0") !=
+  // Each bad parameter is named with its value.
+  const auto message = [&](void (*spoil)(sc::MountEstimateParams&)) {
+    sc::MountEstimateParams p;
+    spoil(p);
+    return invalid_argument_message([&] { sc::estimate_mount(points, p); });
+  };
+  CHECK(message([](sc::MountEstimateParams& p) { p.min_plane_fraction = 0.0; }).find("min_plane_fraction = 0") !=
         std::string::npos);
-  p = {};
-  p.max_tilt_deg = 90.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("max_tilt_deg = 90") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.max_tilt_deg = 90.0; }).find("max_tilt_deg = 90") !=
         std::string::npos);
-  p = {};
-  p.inlier_distance = -1.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("inlier_distance = -1") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.inlier_distance = -1.0; }).find("inlier_distance = -1") !=
         std::string::npos);
-  p = {};
-  p.iterations = 0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("iterations = 0") != std::string::npos);
-  p = {};
-  p.contact_band = 0.1;  // not beyond 2 inlier_distance
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("contact_band = 0.1") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.iterations = 0; }).find("iterations = 0") != std::string::npos);
+  // contact_band not beyond 2 inlier_distance
+  CHECK(message([](sc::MountEstimateParams& p) { p.contact_band = 0.1; }).find("contact_band = 0.1") !=
         std::string::npos);
-  p = {};
-  p.contact_ratio = 0.5;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("contact_ratio = 0.5") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.contact_ratio = 0.5; }).find("contact_ratio = 0.5") !=
         std::string::npos);
-  p = {};
-  p.standing_fraction = 0.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("standing_fraction = 0") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.standing_fraction = 0.0; }).find("standing_fraction = 0") !=
         std::string::npos);
 }
 
