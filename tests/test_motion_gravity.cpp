@@ -23,6 +23,7 @@
 #include "support/shared_data.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <random>
 #include <string>
@@ -295,10 +296,12 @@ TEST_CASE("estimate_ground: pitched and upside-down mounts in the office, forest
     double roll, pitch;
     float height;  // [m] upside down: 2.5, as evaluate --objects
   };
-  const Mount mounts[] = {{0.0, 15.0, 1.0f}, {0.0, 30.0, 1.0f}, {180.0, 0.0, 2.5f}};
+  const Mount mounts[] = {{180.0, 0.0, 2.5f}, {0.0, 30.0, 1.0f}, {0.0, 15.0, 1.0f}};
   for (const char* sensor : {"mid360", "avia"}) {
     for (const char* scene : {"office", "forest", "street", "hills"}) {
-      for (const Mount& m : mounts) {
+      const std::size_t count = std::string(scene) == "office" ? 3 : 2;  // pitched 15 indoors only (test time)
+      for (std::size_t i = 0; i < count; ++i) {
+        const Mount& m = mounts[i];
         CAPTURE(sensor);
         CAPTURE(scene);
         CAPTURE(m.roll);

@@ -123,7 +123,7 @@ struct GroundEstimate {
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();     ///< the ground's unit normal towards the sensor, sensor frame
   double height = 0.0;                               ///< [m] the sensor's distance from the ground plane
   double roll_deg = 0.0, pitch_deg = 0.0;            ///< [deg] of the mount (mount_from_roll_pitch_yaw_deg's)
-  std::size_t inliers = 0;                           ///< points on the ground plane (among those used)
+  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2)
   std::size_t points_used = 0;                       ///< finite points used
   GroundStatus status = GroundStatus::found;         ///< found, or ambiguous (then the fields are a guess)
   double opposite_distance = 0.0;  ///< [m] the sensor's distance from the plane across it (a ceiling), 0: none seen
