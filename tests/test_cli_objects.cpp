@@ -2,8 +2,9 @@
 // `streamclust cluster` with structure removal and poses, in-process: the
 // objects presets (the same labels as the library's presets), --ground with
 // the labels -2/-3 and the report's ground fields, --poses/--mount with
-// --verify, the mount and sensor height estimated from the first window,
-// and the usage and input errors.
+// --verify, the mount and sensor height estimated from the first window (the
+// office floor under a level Mid-360; ambiguous planes named as such), and
+// the usage and input errors.
 
 #include <doctest/doctest.h>
 
@@ -201,6 +202,47 @@ TEST_CASE("cluster --ground without a mount or height estimates both from the fi
   CHECK(g.at("sensor_height_estimated").get<bool>());
   CHECK(g.at("sensor_height").get<double>() == doctest::Approx(1.0).epsilon(0.1));
   CHECK(g.at("estimated_mount").at("pitch_deg").get<double>() == doctest::Approx(20.0).epsilon(0.1));
+}
+
+TEST_CASE("cluster --preset objects-mid360, a level Mid-360 1 m up in the office: the floor, not the ceiling") {
+  const streamclust::test::TempDir tmp("cli", "office_estimate");
+  const fs::path input = simulate(tmp.dir, "office", {"--scene", "office"}, 0.7);
+  const auto r = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--report",
+                          (tmp.dir / "report.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("ground of the first window: roll") != std::string::npos);
+  const auto doc = nlohmann::json::parse(slurp(tmp.dir / "report.json"));
+  const auto& g = doc.at("ground");
+  CHECK(g.at("sensor_height_estimated").get<bool>());
+  CHECK(g.at("sensor_height").get<double>() == doctest::Approx(1.0).epsilon(0.01));  // was 2.0: the ceiling
+  CHECK(std::abs(g.at("estimated_mount").at("roll_deg").get<double>()) < 0.5);       // was 180
+  CHECK(std::abs(g.at("estimated_mount").at("pitch_deg").get<double>()) < 0.5);
+}
+
+TEST_CASE("cluster --ground, two parallel planes with nothing on them: ambiguous, the tool asks for the mount") {
+  const streamclust::test::TempDir tmp("cli", "ambiguous");
+  const fs::path input = tmp.dir / "planes.csv";
+  {
+    // 0.6 s at 20 kHz: a floor 1 m below and a ceiling 2 m above the sensor, discs 2-15 m out, nothing else.
+    std::ofstream f(input);
+    f << "x,y,z,intensity,t\n";
+    for (int i = 0; i < 12000; ++i) {
+      const double r = 2.0 + 13.0 * std::fmod(i * 0.6180339887, 1.0), a = i * 2.399963;
+      f << r * std::cos(a) << ',' << r * std::sin(a) << ',' << (i % 2 == 0 ? -1.0 : 2.0) << ",50," << i / 20000.0
+        << '\n';
+    }
+  }
+  const auto r = run_cli({"cluster", input.string(), "--preset", "objects-mid360", "--report",
+                          (tmp.dir / "report.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("the ground of the first window is ambiguous") != std::string::npos);
+  CHECK(r.err.find("give --mount and --sensor-height") != std::string::npos);
+  CHECK(r.err.find("ground of the first window: roll") == std::string::npos);
+  const auto doc = nlohmann::json::parse(slurp(tmp.dir / "report.json"));
+  CHECK_FALSE(doc.at("ground").at("sensor_height_estimated").get<bool>());
+  CHECK_FALSE(doc.at("ground").contains("estimated_mount"));
 }
 
 TEST_CASE("cluster --poses with a moving, turning sensor: verified; points outside the poses' span are no_pose") {

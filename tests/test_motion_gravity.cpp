@@ -2,16 +2,28 @@
 // estimate_mount / estimate_ground on synthetic scenes: a noisy ground with
 // boxes and a wall seen by a sensor 1 m above it under several mounts
 // (level, pitched, upside down, rolled and pitched); floor and ceiling (the
-// nearer wins); no ground; parameters; determinism.
+// boxes stand on the floor; nothing or as much on both: ambiguous); no
+// ground; parameters; determinism. Then simulated first windows: a level
+// Mid-360 and Avia in the office at several heights, pitched and upside-down
+// mounts in the office, forest, street and hills (the Mid-360 from the real
+// scan table when the shared data has it, else the analytic model).
 
 #include <doctest/doctest.h>
 
 #include <streamclust/motion/gravity_estimate.hpp>
 #include <streamclust/motion/pose.hpp>
 
+#include <streamclust/sim/scenes.hpp>
+#include <streamclust/sim/sensors/avia_model.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
+#include <streamclust/sim/sensors/table_replay.hpp>
+#include <streamclust/sim/simulator.hpp>
+
 #include "support/invalid_argument.hpp"
+#include "support/shared_data.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <random>
 #include <string>
@@ -28,6 +40,8 @@ struct Scene {
   bool ceiling = false;
   double ceiling_height = 3.0;  ///< [m] above the ground
   bool ground = true;
+  bool standing_boxes = true;   ///< three boxes on the ground
+  bool hanging_boxes = false;   ///< the same three hanging from the ceiling, mirrored (x, y -> -x, -y; z -> 3 - z)
 };
 
 /// World points: a ground disc (z = 0, 2 cm noise) of radius 15 m, three
@@ -45,17 +59,23 @@ std::vector<Eigen::Vector3d> world_points(const Scene& scene, unsigned seed) {
   };
   if (scene.ground) disc(0.0, 6000);
   if (scene.ceiling) disc(scene.ceiling_height, 6000);
-  // Boxes (centre x, y, size, height): every face but the bottom.
+  // Boxes (centre x, y, size, height): every face but the bottom (the top, when hanging).
   const double boxes[3][4] = {{3.0, 2.0, 1.0, 0.8}, {-4.0, -1.0, 1.5, 1.2}, {2.0, -5.0, 0.6, 1.8}};
-  for (const auto& b : boxes) {
-    for (int i = 0; i < 500; ++i) {
-      const double s = (u(rng) - 0.5) * b[2], h = u(rng) * b[3];
-      switch (i % 5) {
-        case 0: out.emplace_back(b[0] + s, b[1] - b[2] / 2, h); break;
-        case 1: out.emplace_back(b[0] + s, b[1] + b[2] / 2, h); break;
-        case 2: out.emplace_back(b[0] - b[2] / 2, b[1] + s, h); break;
-        case 3: out.emplace_back(b[0] + b[2] / 2, b[1] + s, h); break;
-        default: out.emplace_back(b[0] + s, b[1] + (u(rng) - 0.5) * b[2], b[3]); break;
+  for (const bool hanging : {false, true}) {
+    if (!(hanging ? scene.hanging_boxes : scene.standing_boxes)) continue;
+    const auto z = [&](double h) { return hanging ? scene.ceiling_height - h : h; };
+    const double side = hanging ? -1.0 : 1.0;  // hanging boxes elsewhere: not pillars
+    for (const auto& box : boxes) {
+      const double b[4] = {side * box[0], side * box[1], box[2], box[3]};
+      for (int i = 0; i < 500; ++i) {
+        const double s = (u(rng) - 0.5) * b[2], h = u(rng) * b[3];
+        switch (i % 5) {
+          case 0: out.emplace_back(b[0] + s, b[1] - b[2] / 2, z(h)); break;
+          case 1: out.emplace_back(b[0] + s, b[1] + b[2] / 2, z(h)); break;
+          case 2: out.emplace_back(b[0] - b[2] / 2, b[1] + s, z(h)); break;
+          case 3: out.emplace_back(b[0] + b[2] / 2, b[1] + s, z(h)); break;
+          default: out.emplace_back(b[0] + s, b[1] + (u(rng) - 0.5) * b[2], z(b[3])); break;
+        }
       }
     }
   }
@@ -105,22 +125,50 @@ TEST_CASE("estimate_mount: ground, boxes and a wall; level, pitched, upside-down
   }
 }
 
-TEST_CASE("estimate_ground: with floor and ceiling the nearer plane is the ground, also upside down") {
+TEST_CASE("estimate_ground: with floor and ceiling the ground is what the boxes stand on, nearer or not") {
   Scene scene;
   scene.ceiling = true;
   const std::vector<Eigen::Vector3d> world = world_points(scene, 2);
   for (const double roll : {0.0, 180.0}) {
-    CAPTURE(roll);
-    const sc::Pose mount = sc::mount_from_roll_pitch_yaw_deg(roll, 12.0, 0.0);
-    const std::optional<sc::GroundEstimate> low = sc::estimate_ground(sensor_points(world, mount, 1.0));
-    REQUIRE(low.has_value());
-    CHECK(tilt_error_deg(low->mount, mount) < 1.0);
-    CHECK(low->height == doctest::Approx(1.0).epsilon(0.03));
-    // Nearer to the ceiling (2.2 m up, 0.8 m below it): the documented failure, the ceiling is taken.
-    const std::optional<sc::GroundEstimate> high = sc::estimate_ground(sensor_points(world, mount, 2.2));
-    REQUIRE(high.has_value());
-    CHECK(tilt_error_deg(high->mount, mount) > 179.0);
-    CHECK(high->height == doctest::Approx(0.8).epsilon(0.05));
+    for (const double height : {1.0, 2.2}) {  // 2.2: nearer the ceiling (0.8 m below it) than the floor
+      CAPTURE(roll);
+      CAPTURE(height);
+      const sc::Pose mount = sc::mount_from_roll_pitch_yaw_deg(roll, 12.0, 0.0);
+      const std::optional<sc::GroundEstimate> g = sc::estimate_ground(sensor_points(world, mount, height));
+      REQUIRE(g.has_value());
+      CHECK(g->status == sc::GroundStatus::found);
+      CHECK(tilt_error_deg(g->mount, mount) < 1.0);
+      CHECK(g->height == doctest::Approx(height).epsilon(0.03));
+      CHECK(g->opposite_distance == doctest::Approx(3.0 - height).epsilon(0.05));
+      CHECK(g->contact > 10.0 * g->opposite_contact);  // nothing hangs from the ceiling
+    }
+  }
+  // The boxes moved to the ceiling, hanging: the evidence, not the nearer plane or the true floor, decides.
+  scene.standing_boxes = false;
+  scene.hanging_boxes = true;
+  const sc::Pose level;
+  const std::optional<sc::GroundEstimate> flipped = sc::estimate_ground(sensor_points(world_points(scene, 2), level, 1.0));
+  REQUIRE(flipped.has_value());
+  CHECK(flipped->status == sc::GroundStatus::found);
+  CHECK(tilt_error_deg(flipped->mount, level) > 179.0);
+  CHECK(flipped->height == doctest::Approx(2.0).epsilon(0.03));
+}
+
+TEST_CASE("estimate_ground: two parallel planes and nothing that tells which is below: ambiguous") {
+  Scene scene;
+  scene.ceiling = true;
+  scene.standing_boxes = false;  // floor, ceiling and a wall from one to the other
+  const sc::Pose level;
+  for (const bool mirrored : {false, true}) {  // nothing on either, or as much hanging as standing
+    CAPTURE(mirrored);
+    scene.standing_boxes = scene.hanging_boxes = mirrored;
+    const std::vector<Eigen::Vector3f> points = sensor_points(world_points(scene, 5), level, 1.5);
+    const std::optional<sc::GroundEstimate> g = sc::estimate_ground(points);
+    REQUIRE(g.has_value());
+    CHECK(g->status == sc::GroundStatus::ambiguous);
+    CHECK(std::min(g->height, g->opposite_distance) == doctest::Approx(1.5).epsilon(0.03));
+    CHECK(g->height + g->opposite_distance == doctest::Approx(3.0).epsilon(0.03));
+    CHECK_FALSE(sc::estimate_mount(points).has_value());
   }
 }
 
@@ -160,19 +208,113 @@ TEST_CASE("estimate_ground: deterministic for a seed; non-finite points skipped;
   // 10,501 points, 10,500 finite, an even stride of 3: 3,500 used.
   CHECK(a->points_used == 3500);
 
-  sc::MountEstimateParams p;
-  p.min_plane_fraction = 0.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("min_plane_fraction = 0") !=
+  // Each bad parameter is named with its value.
+  const auto message = [&](void (*spoil)(sc::MountEstimateParams&)) {
+    sc::MountEstimateParams p;
+    spoil(p);
+    return invalid_argument_message([&] { sc::estimate_mount(points, p); });
+  };
+  CHECK(message([](sc::MountEstimateParams& p) { p.min_plane_fraction = 0.0; }).find("min_plane_fraction = 0") !=
         std::string::npos);
-  p = {};
-  p.max_tilt_deg = 90.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("max_tilt_deg = 90") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.max_tilt_deg = 90.0; }).find("max_tilt_deg = 90") !=
         std::string::npos);
-  p = {};
-  p.inlier_distance = -1.0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("inlier_distance = -1") !=
+  CHECK(message([](sc::MountEstimateParams& p) { p.inlier_distance = -1.0; }).find("inlier_distance = -1") !=
         std::string::npos);
-  p = {};
-  p.iterations = 0;
-  CHECK(invalid_argument_message([&] { sc::estimate_mount(points, p); }).find("iterations = 0") != std::string::npos);
+  CHECK(message([](sc::MountEstimateParams& p) { p.iterations = 0; }).find("iterations = 0") != std::string::npos);
+  // contact_band not beyond 2 inlier_distance
+  CHECK(message([](sc::MountEstimateParams& p) { p.contact_band = 0.1; }).find("contact_band = 0.1") !=
+        std::string::npos);
+  CHECK(message([](sc::MountEstimateParams& p) { p.contact_ratio = 0.5; }).find("contact_ratio = 0.5") !=
+        std::string::npos);
+  CHECK(message([](sc::MountEstimateParams& p) { p.standing_fraction = 0.0; }).find("standing_fraction = 0") !=
+        std::string::npos);
+}
+
+namespace {
+
+namespace sim = streamclust::sim;
+
+/// The first 0.5 s (the objects presets' window) of `sensor` in the scene
+/// `scene` (seed 1), `height` m above the ground with `mount`: sensor frame.
+template <class Sensor>
+std::vector<Eigen::Vector3f> first_window(Sensor sensor, const char* scene, const sc::Pose& mount, float height) {
+  typename sim::Simulator<Sensor>::Params params;
+  params.start_position = Eigen::Vector3f(0.0f, 0.0f, height);
+  params.mount = mount;
+  sim::Simulator<Sensor> simulator(std::move(sensor), sim::make_scene(scene, 1), params);
+  std::vector<Eigen::Vector3f> out;
+  while (simulator.time() < 0.5) {
+    const sim::SimPoint p = simulator.next();
+    out.emplace_back(p.x, p.y, p.z);
+  }
+  return out;
+}
+
+/// A Mid-360 (the real scan table when the shared data has it) or an Avia (analytic) first window.
+std::vector<Eigen::Vector3f> livox_window(const std::string& sensor, const char* scene, const sc::Pose& mount,
+                                          float height) {
+  if (sensor == "avia") return first_window(sim::AviaModel{}, scene, mount, height);
+  const auto table = streamclust::test::livox_data_dir() / "patterns" / "mid360_u16le.bin";
+  if (streamclust::test::data_present(table)) {
+    return first_window(sim::TableReplay::mid360(table.string()), scene, mount, height);
+  }
+  return first_window(sim::Mid360Model{}, scene, mount, height);
+}
+
+}  // namespace
+
+TEST_CASE("estimate_ground: a level Mid-360 or Avia in the simulated office is level at its height") {
+  const sc::Pose level;
+  struct Case {
+    const char* sensor;
+    float height;  // [m]
+  };
+  const Case cases[] = {{"mid360", 0.5f}, {"mid360", 0.8f}, {"mid360", 1.0f},
+                        {"avia", 0.5f},   {"avia", 1.0f},   {"avia", 1.5f}};
+  for (const Case& c : cases) {
+    const char* sensor = c.sensor;
+    const float height = c.height;
+    CAPTURE(sensor);
+    CAPTURE(height);
+    const std::optional<sc::GroundEstimate> g = sc::estimate_ground(livox_window(sensor, "office", level, height));
+    REQUIRE(g.has_value());
+    CHECK(g->status == sc::GroundStatus::found);
+    CHECK(tilt_error_deg(g->mount, level) < 0.5);
+    CHECK(g->height == doctest::Approx(height).epsilon(0.02));
+    CHECK(g->opposite_distance == doctest::Approx(3.0 - height).epsilon(0.02));  // the ceiling at 3 m
+  }
+  // 1.5 m up, the Mid-360's lowest ray (-7 deg) meets the floor 12 m out, beyond the 20 x 12 m room: the
+  // ceiling alone, pillars alone touching it. Ambiguous, not the ceiling taken for the ground.
+  const std::optional<sc::GroundEstimate> high = sc::estimate_ground(livox_window("mid360", "office", level, 1.5f));
+  REQUIRE(high.has_value());
+  CHECK(high->status == sc::GroundStatus::ambiguous);
+  CHECK(high->height == doctest::Approx(1.5).epsilon(0.02));  // the guess: the ceiling's distance
+}
+
+TEST_CASE("estimate_ground: pitched and upside-down mounts in the office, forest, street and hills") {
+  struct Mount {
+    double roll, pitch;
+    float height;  // [m] upside down: 2.5, as evaluate --objects
+  };
+  const Mount mounts[] = {{180.0, 0.0, 2.5f}, {0.0, 30.0, 1.0f}, {0.0, 15.0, 1.0f}};
+  for (const char* sensor : {"mid360", "avia"}) {
+    for (const char* scene : {"office", "forest", "street", "hills"}) {
+      const std::size_t count = std::string(scene) == "office" ? 3 : 2;  // pitched 15 indoors only (test time)
+      for (std::size_t i = 0; i < count; ++i) {
+        const Mount& m = mounts[i];
+        CAPTURE(sensor);
+        CAPTURE(scene);
+        CAPTURE(m.roll);
+        CAPTURE(m.pitch);
+        const sc::Pose mount = sc::mount_from_roll_pitch_yaw_deg(m.roll, m.pitch, 0.0);
+        const std::optional<sc::GroundEstimate> g = sc::estimate_ground(livox_window(sensor, scene, mount, m.height));
+        REQUIRE(g.has_value());
+        CHECK(g->status == sc::GroundStatus::found);
+        const std::string name(scene);
+        // The forest floor slopes up to 1.7 deg; the hills' plane is a fit to rolling terrain.
+        CHECK(tilt_error_deg(g->mount, mount) < (name == "hills" ? 3.5 : name == "forest" ? 2.5 : 0.5));
+        CHECK(g->height == doctest::Approx(m.height).epsilon(name == "hills" ? 0.25 : 0.02));
+      }
+    }
+  }
 }

@@ -66,7 +66,8 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
 /// file), builds the mount; with --ground, estimates from the first window
 /// what is not given (the mount when neither --mount nor --poses is, the
 /// sensor height without --sensor-height; see estimate_ground) and notes it
-/// on `err` unless quiet. `timed` times the ground and placement stages (the
+/// on `err` unless quiet; an ambiguous estimate (floor and ceiling not told
+/// apart) is noted and not used. `timed` times the ground and placement stages (the
 /// report). `first_window`, when given, replaces the first window read from
 /// `o.input` (a caller that holds the stream in memory). Throws UsageError
 /// for a value a policy rejects.
@@ -86,7 +87,22 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
   if (o.sensor_height) g.sensor_height = *o.sensor_height;
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
     s.estimate = estimate_ground(first_window ? *first_window : first_window_points(o));
-    if (s.estimate) {
+    if (s.estimate && s.estimate->status == GroundStatus::ambiguous) {
+      if (!o.quiet) {
+        char planes[96];
+        if (s.estimate->opposite_distance > 0.0) {
+          std::snprintf(planes, sizeof planes, "a plane %.2f m and one %.2f m from the sensor", s.estimate->height,
+                        s.estimate->opposite_distance);
+        } else {
+          std::snprintf(planes, sizeof planes, "one plane, %.2f m from the sensor", s.estimate->height);
+        }
+        char line[320];
+        std::snprintf(line, sizeof line, "streamclust: the ground of the first window is ambiguous: %s, and nothing "
+                      "in view tells floor from ceiling; a level sensor is assumed, its height unknown "
+                      "(give --mount and --sensor-height)\n", planes);
+        err << line;
+      }
+    } else if (s.estimate) {
       if (!s.motion.enabled) {
         s.motion.enabled = true;
         s.motion.posed.mount = s.estimate->mount;

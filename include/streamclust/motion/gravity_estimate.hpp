@@ -3,44 +3,74 @@
 
 /// \file
 /// The sensor's mount from its own points: the roll and pitch (yaw 0) that
-/// make the ground plane horizontal, for a sensor given neither poses nor a
-/// mount. A deterministic RANSAC search for near-horizontal planes.
+/// make the ground plane horizontal, and the sensor's height above it, for a
+/// sensor given neither poses nor a mount. A deterministic RANSAC search for
+/// near-horizontal planes, and what stands on them to tell floor from
+/// ceiling.
 ///
-/// The rule. Up to `max_planes` planes are extracted one after the other
-/// (each search sees only the points no earlier plane took): each is the
-/// 3-point hypothesis with the most inliers (distance <= inlier_distance)
-/// among those whose normal lies within `max_tilt_deg` of the sensor's z
-/// axis, **either sign**, refined twice by a least-squares fit to its
-/// inliers. A plane is *large* when it holds at least `min_plane_fraction`
-/// of the points; the search stops at the first plane that is not. The
-/// ground is the large plane **nearest to the sensor**; up is its normal
-/// pointing towards the sensor. So an upside-down sensor (roll 180) above a
-/// floor sees the floor at its -z and finds roll 180; indoors, with floor
-/// and ceiling both large, the nearer one wins.
+/// The rule.
+/// 1. Planes. Up to `max_planes` planes are extracted one after the other
+///    (each search sees only the points no earlier plane took): each is the
+///    3-point hypothesis with the most inliers (distance <= inlier_distance)
+///    among those whose normal lies within `max_tilt_deg` of the sensor's z
+///    axis, **either sign**, refined twice by a least-squares fit to its
+///    inliers. A plane is *large* when it holds at least
+///    `min_plane_fraction` of the points; the search stops at the first that
+///    is not. The first (largest) fixes the axis; its side of the sensor is
+///    side A, the other side B; on each side the nearest large plane is the
+///    candidate.
+/// 2. The plane across. Without a large plane on side B, the farthest plane
+///    parallel to A's on side B is searched in all the points (a floor seen
+///    at grazing angles holds a thousandth of them): a pair of 1 cm bins
+///    along the axis with at least max(20, points / 2000) points, twice the
+///    density 3-15 cm nearer the sensor, and at least 4 times the points
+///    beyond it (a floor or a ceiling bounds what is seen), showing in at
+///    least a twentieth as many 0.5 m cells as plane A.
+/// 3. Floor or ceiling. Objects stand on the floor and hang from nothing.
+///    A point *touches* a plane when it lies 2 inlier_distance to
+///    `contact_band` m off it, the plane goes on at least 1 m farther out
+///    in its 2-degree sector (a floor continues behind what stands on it;
+///    a wall ends it) and no point of its 0.5 m cell is that near the other
+///    plane (a pillar touches both). With planes on both sides, the ground
+///    is the one touched in at least `contact_ratio` times as many cells
+///    per cell showing it as the other, and in 2 cells more at least. With one
+///    plane, it is the ground when at least `standing_fraction` of the
+///    cells holding points up to 2 m off it (where it goes on behind them)
+///    touch it, or when fewer than 15 cells hold such points (no evidence
+///    against the lone plane: outdoors, the ground). Otherwise the status
+///    is `ambiguous`.
+///    Up is the ground's normal pointing towards the sensor: an upside-down
+///    sensor (roll 180) finds roll 180, whichever plane is nearer.
 ///
-/// Failure cases (the estimate is then wrong, or nullopt):
-/// - the sensor is nearer to the ceiling than to the floor (a ceiling
-///   mount), or the floor is out of view or small while the ceiling is
-///   large (a level Mid-360 indoors sees mostly ceiling): the ceiling is
-///   taken for the ground and the estimate is upside down;
+/// Failure cases (the estimate is then wrong, ambiguous or nullopt):
+/// - the floor out of view: a level Mid-360 (rays from -7 deg) 1.5 m up in
+///   a 20 x 12 m room meets the floor 12 m out, beyond the walls: one plane,
+///   the ceiling, with pillars alone touching it: ambiguous;
+/// - mirror-symmetric evidence (two parallel planes, nothing standing on
+///   either or as much on both): ambiguous;
 /// - the sensor is tilted more than `max_tilt_deg`: the ground is no
 ///   candidate, and a wall then within max_tilt_deg of the z axis is taken
 ///   for it (raising max_tilt_deg admits walls, and a wall nearer than the
 ///   ground wins);
-/// - a large horizontal surface nearer than the ground (a platform, a big
-///   table top) is taken for the ground (its tilt is usually the ground's);
-/// - sloped ground is made horizontal: the mount then holds the slope;
+/// - a large horizontal surface nearer than the ground on its side (a
+///   platform, a big table top) is taken for the ground (its tilt is
+///   usually the ground's);
+/// - sloped ground is made horizontal: the mount then holds the slope; on
+///   rolling terrain the plane is a fit to part of it;
 /// - no plane holds min_plane_fraction of the points: nullopt. A plane
 ///   holding a share w of the points is found by `iterations` hypotheses
 ///   with probability 1 - (1 - w^3)^iterations (w = 0.2: 99.99 % at 2000).
 ///
 /// Cost: O(iterations x max_points x max_planes) point-plane distances
-/// (about 10 ms for the defaults), no state; deterministic for a given
-/// input and seed (own generator, no std:: distributions).
+/// (about 10 ms for the defaults) plus three passes over all the points
+/// (the plane across and the contacts, a hash map of the occupied cells);
+/// deterministic for a given input and seed (own generator, no std::
+/// distributions).
 ///
 /// \code
 /// std::vector<Eigen::Vector3f> first_window = ...;     // sensor frame [m]
-/// if (const auto mount = streamclust::estimate_mount(first_window)) params.mount = *mount;
+/// const auto ground = streamclust::estimate_ground(first_window);
+/// if (ground && ground->status == streamclust::GroundStatus::found) params.mount = ground->mount;
 /// \endcode
 ///
 /// Thread safety: free functions without shared state.
@@ -60,6 +90,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace streamclust {
@@ -73,6 +106,15 @@ struct MountEstimateParams {
   std::size_t max_planes = 3;      ///< near-horizontal planes extracted, 1 to 16
   std::size_t max_points = 5000;   ///< points used (an even stride through the finite ones), >= 3
   std::uint64_t seed = 1;          ///< the sampling's seed
+  double contact_band = 0.5;       ///< [m] points up to this far off a plane touch it, (2 inlier_distance, 10]
+  double contact_ratio = 2.0;      ///< planes on both sides: the ground's touches per cell over the other's, >= 1
+  double standing_fraction = 0.5;  ///< one plane: share of what stands near it that touches it, (0, 1]
+};
+
+/// What estimate_ground could tell.
+enum class GroundStatus : std::uint8_t {
+  found,      ///< the ground plane, told from a ceiling by what stands on it
+  ambiguous,  ///< planes, but nothing tells which is below: the fields hold plane A as a guess; give the mount
 };
 
 /// The ground found by estimate_ground.
@@ -81,12 +123,15 @@ struct GroundEstimate {
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();     ///< the ground's unit normal towards the sensor, sensor frame
   double height = 0.0;                               ///< [m] the sensor's distance from the ground plane
   double roll_deg = 0.0, pitch_deg = 0.0;            ///< [deg] of the mount (mount_from_roll_pitch_yaw_deg's)
-  std::size_t inliers = 0;                           ///< points on the ground plane (among those used)
+  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2)
   std::size_t points_used = 0;                       ///< finite points used
+  GroundStatus status = GroundStatus::found;         ///< found, or ambiguous (then the fields are a guess)
+  double opposite_distance = 0.0;  ///< [m] the sensor's distance from the plane across it (a ceiling), 0: none seen
+  double contact = 0.0;            ///< the evidence for this plane (touches per cell; one plane: share touching)
+  double opposite_contact = 0.0;   ///< the same for the plane across (0: none)
 };
 
 namespace detail {
-
 
 inline void check_mount_estimate_params(const MountEstimateParams& p) {
   const auto fail = [](const char* name, double value, const char* allowed) {
@@ -102,6 +147,11 @@ inline void check_mount_estimate_params(const MountEstimateParams& p) {
   if (!(p.max_tilt_deg > 0.0 && p.max_tilt_deg < 90.0)) fail("max_tilt_deg", p.max_tilt_deg, "(0, 90) deg");
   if (p.max_planes < 1 || p.max_planes > 16) fail("max_planes", static_cast<double>(p.max_planes), "1 to 16");
   if (p.max_points < 3) fail("max_points", static_cast<double>(p.max_points), ">= 3");
+  if (!(p.contact_band > 2.0 * p.inlier_distance && p.contact_band <= 10.0))
+    fail("contact_band", p.contact_band, "(2 inlier_distance, 10] m");
+  if (!(p.contact_ratio >= 1.0 && p.contact_ratio <= 1e6)) fail("contact_ratio", p.contact_ratio, "[1, 1e6]");
+  if (!(p.standing_fraction > 0.0 && p.standing_fraction <= 1.0))
+    fail("standing_fraction", p.standing_fraction, "(0, 1]");
 }
 
 /// A plane n . p + d = 0 with unit n.
@@ -139,10 +189,223 @@ inline void plane_inliers(const std::vector<Eigen::Vector3d>& points, const std:
 
 }  // namespace detail
 
+namespace detail {
+
+/// A near-horizontal plane found by the RANSAC search: the normal towards
+/// the sensor (n . 0 + d = d > 0: d is the sensor's distance from it).
+struct FoundPlane {
+  Plane plane;
+  std::size_t inliers = 0;
+};
+
+/// Up to `params.max_planes` large near-horizontal planes of `points`, in the
+/// order found (each search sees the points no earlier plane took). See the
+/// file comment. O(iterations x points x max_planes).
+inline std::vector<FoundPlane> horizontal_planes(const std::vector<Eigen::Vector3d>& points,
+                                                 const MountEstimateParams& params) {
+  const std::size_t total = points.size();
+  const auto large = static_cast<std::size_t>(std::ceil(params.min_plane_fraction * static_cast<double>(total)));
+  const double min_abs_nz = std::cos(params.max_tilt_deg * 3.14159265358979323846 / 180.0);
+  std::vector<std::size_t> remaining(total);
+  for (std::size_t i = 0; i < total; ++i) remaining[i] = i;
+  std::vector<std::size_t> best_inliers, kept;
+  SplitMix64 rng{params.seed};
+  std::vector<FoundPlane> found;
+  for (std::size_t plane_no = 0; plane_no < params.max_planes; ++plane_no) {
+    const std::size_t m = remaining.size();
+    if (m < 3 || m < large) break;
+    // RANSAC over near-horizontal 3-point hypotheses.
+    std::size_t best = 0;
+    Plane best_plane;
+    for (std::size_t it = 0; it < params.iterations; ++it) {
+      const std::size_t a = rng.below(m), b = rng.below(m), c = rng.below(m);
+      if (a == b || b == c || a == c) continue;
+      const Eigen::Vector3d& pa = points[remaining[a]];
+      const Eigen::Vector3d n = (points[remaining[b]] - pa).cross(points[remaining[c]] - pa);
+      const double len = n.norm();
+      if (!(len > 1e-12)) continue;
+      Plane h{n / len, 0.0};
+      if (std::abs(h.n.z()) < min_abs_nz) continue;
+      h.d = -h.n.dot(pa);
+      std::size_t count = 0;
+      for (const std::size_t i : remaining) count += std::abs(h.n.dot(points[i]) + h.d) <= params.inlier_distance;
+      if (count > best) {
+        best = count;
+        best_plane = h;
+      }
+    }
+    if (best < 3 || best < large) break;
+    // Two least-squares refinements on the inliers.
+    plane_inliers(points, remaining, best_plane, params.inlier_distance, best_inliers);
+    Plane plane = best_plane;
+    for (int round = 0; round < 2 && best_inliers.size() >= 3; ++round) {
+      plane = fit_plane(points, best_inliers);
+      plane_inliers(points, remaining, plane, params.inlier_distance, best_inliers);
+    }
+    if (best_inliers.size() < 3 || best_inliers.size() < large || std::abs(plane.n.z()) < min_abs_nz) break;
+    if (plane.d < 0.0) {  // the normal towards the sensor (the origin): n . 0 + d > 0
+      plane.n = -plane.n;
+      plane.d = -plane.d;
+    }
+    found.push_back(FoundPlane{plane, best_inliers.size()});
+    // The next search sees the points this plane did not take.
+    kept.clear();
+    std::size_t j = 0;  // best_inliers is a sorted subsequence of remaining
+    for (const std::size_t i : remaining) {
+      if (j < best_inliers.size() && best_inliers[j] == i) {
+        ++j;
+      } else {
+        kept.push_back(i);
+      }
+    }
+    remaining.swap(kept);
+  }
+  return found;
+}
+
+/// The plane across found by farthest_parallel_plane: the sensor's distance
+/// from it [m] (0: none) and its points.
+struct PlanePeak {
+  double distance = 0.0;
+  std::size_t points = 0;
+};
+
+/// The farthest plane perpendicular to `up` on the side `up` points to,
+/// among all of `points` (rule 2 of the file comment): the farthest pair of
+/// `bin` m bins of `up . p` (0 to `max_distance`) holding at least
+/// `min_points`, twice the points of the mean pair 3-15 cm nearer the
+/// sensor, and at least 4 times the points beyond it. Its distance is the mean
+/// over its points. O(points + max_distance / bin).
+inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3d& up,
+                                         double bin, double max_distance, std::size_t min_points) {
+  const auto bins = static_cast<std::size_t>(std::ceil(max_distance / bin)) + 2;
+  std::vector<std::size_t> hist(bins, 0);
+  for (const Eigen::Vector3f& p : points) {
+    if (!p.allFinite()) continue;
+    const double s = up.dot(p.cast<double>());
+    if (s > 0.0 && s < max_distance) ++hist[static_cast<std::size_t>(s / bin)];
+  }
+  const auto near_lo = static_cast<std::size_t>(std::ceil(0.03 / bin));
+  const auto near_hi = static_cast<std::size_t>(0.15 / bin);
+  std::size_t beyond = 0;  // points in the bins past k + 1
+  for (std::size_t k = bins - 1; k-- > 1;) {  // farthest first; bin 0 (at the sensor) is no plane
+    const std::size_t here = hist[k] + hist[k + 1];  // a plane may straddle two bins
+    if (here >= min_points && 4 * beyond <= here) {
+      double around = 0.0;  // the density on the sensor's side of it, 3-15 cm nearer
+      std::size_t counted = 0;
+      for (std::size_t off = near_lo; off <= near_hi && off <= k; ++off) around += static_cast<double>(hist[k - off]), ++counted;
+      const double mean_around = counted > 0 ? around / static_cast<double>(counted) : 0.0;
+      if (static_cast<double>(here) >= 2.0 * 2.0 * mean_around) {
+        double sum = 0.0;
+        std::size_t n = 0;
+        const double lo = static_cast<double>(k) * bin, hi = lo + 2.0 * bin;
+        for (const Eigen::Vector3f& p : points) {
+          if (!p.allFinite()) continue;
+          const double s = up.dot(p.cast<double>());
+          if (s >= lo && s < hi) sum += s, ++n;
+        }
+        if (n > 0) return PlanePeak{sum / static_cast<double>(n), n};
+      }
+    }
+    beyond += hist[k + 1];
+  }
+  return PlanePeak{};
+}
+
+/// What stands on plane A (at distance `distance_a` along -axis) and plane B
+/// (at `distance_b` along +axis; 0: none), rule 3 of the file comment, in
+/// cells of `cell` m across the axis. Per plane: cells showing it, cells
+/// touching it, and cells holding points 2 tolerance to `reach` m off it
+/// where it goes on behind them (`standing`).
+struct PlaneContacts {
+  std::size_t shows = 0, touches = 0, standing = 0;
+  /// Touching cells per cell showing the plane.
+  double per_cell() const { return shows > 0 ? static_cast<double>(touches) / static_cast<double>(shows) : 0.0; }
+  /// Share of the standing cells that touch the plane.
+  double standing_share() const {
+    return standing > 0 ? static_cast<double>(touches) / static_cast<double>(standing) : 0.0;
+  }
+};
+
+/// Rule 3's counts for planes A and B from all of `points`. O(points)
+/// with a hash map of the occupied cells.
+inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<Eigen::Vector3f>& points,
+                                                              const Eigen::Vector3d& axis, double distance_a,
+                                                              double distance_b, double tolerance, double band) {
+  constexpr double kCell = 0.5;    // [m]
+  constexpr double kBeyond = 1.0;  // [m] the plane goes on at least this much farther out
+  constexpr double kReach = 2.0;   // [m] what stands near a plane: up to this far off it
+  constexpr int kSectors = 180;    // 2 deg each
+  constexpr double kPi = 3.14159265358979323846;
+  const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  const double offset[2] = {distance_a, distance_b};  // off plane k (>= 0 on the sensor's side): sign_k s + offset_k
+  const double sign[2] = {1.0, -1.0};
+  const int planes = distance_b > 0.0 ? 2 : 1;
+  const auto sector = [&](double x, double y) {
+    const int k = static_cast<int>(std::floor((std::atan2(y, x) + kPi) / (2.0 * kPi) * kSectors));
+    return std::min(std::max(k, 0), kSectors - 1);
+  };
+  // Pass 1: how far out each plane shows in each sector [m].
+  std::vector<double> reach[2] = {std::vector<double>(kSectors, -1.0), std::vector<double>(kSectors, -1.0)};
+  for (const Eigen::Vector3f& pf : points) {
+    if (!pf.allFinite()) continue;
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double s = axis.dot(p), x = e1.dot(p), y = e2.dot(p);
+    for (int k = 0; k < planes; ++k) {
+      if (std::abs(sign[k] * s + offset[k]) <= tolerance) {
+        double& r = reach[k][static_cast<std::size_t>(sector(x, y))];
+        r = std::max(r, std::hypot(x, y));
+      }
+    }
+  }
+  // Pass 2: per cell, per plane: shows, near (within band), touches (near, plane goes on), standing.
+  enum : std::uint8_t { kShows = 1, kNear = 2, kTouches = 4, kStanding = 8 };
+  std::unordered_map<std::uint64_t, std::uint8_t> cells;  // plane A's flags in bits 0-3, B's in 4-7
+  for (const Eigen::Vector3f& pf : points) {
+    if (!pf.allFinite()) continue;
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double s = axis.dot(p), x = e1.dot(p), y = e2.dot(p);
+    std::uint8_t flags = 0;
+    for (int k = 0; k < planes; ++k) {
+      const double off = sign[k] * s + offset[k];  // >= 0 on the sensor's side
+      std::uint8_t f = 0;
+      if (std::abs(off) <= tolerance) {
+        f = kShows;
+      } else if (off > 2.0 * tolerance && off <= kReach &&
+                 reach[k][static_cast<std::size_t>(sector(x, y))] >= std::hypot(x, y) + kBeyond) {
+        f = off <= band ? (kNear | kTouches | kStanding) : kStanding;
+      } else if (off > 2.0 * tolerance && off <= band) {
+        f = kNear;  // near, the plane not going on behind: it still marks a pillar's cell
+      }
+      flags |= static_cast<std::uint8_t>(f << (4 * k));
+    }
+    if (flags == 0) continue;
+    const auto i = static_cast<std::int64_t>(std::floor(x / kCell)), j = static_cast<std::int64_t>(std::floor(y / kCell));
+    cells[(static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffu)] |= flags;
+  }
+  PlaneContacts out[2];
+  for (const auto& entry : cells) {
+    const std::uint8_t flags[2] = {static_cast<std::uint8_t>(entry.second & 15u),
+                                   static_cast<std::uint8_t>(entry.second >> 4)};
+    const bool near_both = (flags[0] & kNear) != 0 && (flags[1] & kNear) != 0;  // a pillar, a wall
+    for (int k = 0; k < 2; ++k) {
+      out[k].shows += (flags[k] & kShows) != 0;
+      if (near_both) continue;
+      out[k].touches += (flags[k] & kTouches) != 0;
+      out[k].standing += (flags[k] & kStanding) != 0;
+    }
+  }
+  return {out[0], out[1]};
+}
+
+}  // namespace detail
+
 /// The ground plane of `sensor_points` (sensor frame [m]; non-finite points
 /// are skipped) by the rule of this header, and the mount that makes it
 /// horizontal; nullopt when fewer than 3 finite points or no large
-/// near-horizontal plane. Throws std::invalid_argument for bad params.
+/// near-horizontal plane; status `ambiguous` when what stands on the planes
+/// does not tell floor from ceiling. Throws std::invalid_argument for bad
+/// params.
 inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Vector3f>& sensor_points,
                                                      const MountEstimateParams& params = {}) {
   detail::check_mount_estimate_params(params);
@@ -157,88 +420,72 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
     if (!p.allFinite()) continue;
     if (k++ % stride == 0) points.push_back(p.cast<double>());
   }
-  const std::size_t total = points.size();
-  const auto large = static_cast<std::size_t>(std::ceil(params.min_plane_fraction * static_cast<double>(total)));
-  const double min_abs_nz = std::cos(params.max_tilt_deg * 3.14159265358979323846 / 180.0);
-
-  std::vector<std::size_t> remaining(total);
-  for (std::size_t i = 0; i < total; ++i) remaining[i] = i;
-  std::vector<std::size_t> inliers, best_inliers, kept;
-  detail::SplitMix64 rng{params.seed};
-  std::optional<GroundEstimate> ground;
-
-  for (std::size_t plane_no = 0; plane_no < params.max_planes; ++plane_no) {
-    const std::size_t m = remaining.size();
-    if (m < 3 || m < large) break;
-    // RANSAC over near-horizontal 3-point hypotheses.
-    std::size_t best = 0;
-    detail::Plane best_plane;
-    for (std::size_t it = 0; it < params.iterations; ++it) {
-      const std::size_t a = rng.below(m), b = rng.below(m), c = rng.below(m);
-      if (a == b || b == c || a == c) continue;
-      const Eigen::Vector3d& pa = points[remaining[a]];
-      const Eigen::Vector3d n = (points[remaining[b]] - pa).cross(points[remaining[c]] - pa);
-      const double len = n.norm();
-      if (!(len > 1e-12)) continue;
-      detail::Plane h{n / len, 0.0};
-      if (std::abs(h.n.z()) < min_abs_nz) continue;
-      h.d = -h.n.dot(pa);
-      std::size_t count = 0;
-      for (const std::size_t i : remaining) count += std::abs(h.n.dot(points[i]) + h.d) <= params.inlier_distance;
-      if (count > best) {
-        best = count;
-        best_plane = h;
-      }
-    }
-    if (best < 3 || best < large) break;
-    // Two least-squares refinements on the inliers.
-    detail::plane_inliers(points, remaining, best_plane, params.inlier_distance, best_inliers);
-    detail::Plane plane = best_plane;
-    for (int round = 0; round < 2 && best_inliers.size() >= 3; ++round) {
-      plane = detail::fit_plane(points, best_inliers);
-      detail::plane_inliers(points, remaining, plane, params.inlier_distance, best_inliers);
-    }
-    if (best_inliers.size() < 3 || best_inliers.size() < large || std::abs(plane.n.z()) < min_abs_nz) break;
-    if (plane.d < 0.0) {  // the normal towards the sensor (the origin): n . 0 + d > 0
-      plane.n = -plane.n;
-      plane.d = -plane.d;
-    }
-    if (!ground || plane.d < ground->height) {
-      GroundEstimate g;
-      g.up = plane.n;
-      g.height = plane.d;
-      g.inliers = best_inliers.size();
-      g.points_used = total;
-      ground = g;
-    }
-    // The next search sees the points this plane did not take.
-    kept.clear();
-    std::size_t j = 0;  // best_inliers is a sorted subsequence of remaining
-    for (const std::size_t i : remaining) {
-      if (j < best_inliers.size() && best_inliers[j] == i) {
-        ++j;
-      } else {
-        kept.push_back(i);
-      }
-    }
-    remaining.swap(kept);
+  // 1. Planes; the nearest large one on each side of the sensor.
+  const std::vector<detail::FoundPlane> planes = detail::horizontal_planes(points, params);
+  if (planes.empty()) return std::nullopt;
+  const Eigen::Vector3d axis = planes.front().plane.n;  // from side A towards the sensor
+  std::optional<detail::FoundPlane> side_a, side_b;
+  for (const detail::FoundPlane& f : planes) {
+    std::optional<detail::FoundPlane>& side = f.plane.n.dot(axis) > 0.0 ? side_a : side_b;
+    if (!side || f.plane.d < side->plane.d) side = f;
   }
-  if (!ground) return std::nullopt;
+  // 2. The plane across, when no large one: a peak along the axis.
+  double distance_b = side_b ? side_b->plane.d : 0.0;
+  if (!side_b) {
+    distance_b = detail::farthest_parallel_plane(sensor_points, axis, 0.01, 50.0,
+                                                 std::max<std::size_t>(20, finite / 2000)).distance;
+  }
+  // 3. What stands on them.
+  auto [on_a, on_b] = detail::plane_contacts(sensor_points, axis, side_a->plane.d, distance_b,
+                                             params.inlier_distance, params.contact_band);
+  if (!side_b && distance_b > 0.0 && 20 * on_b.shows < on_a.shows) {  // too small to be a floor or ceiling
+    distance_b = 0.0;
+    std::tie(on_a, on_b) = detail::plane_contacts(sensor_points, axis, side_a->plane.d, 0.0, params.inlier_distance,
+                                                  params.contact_band);
+  }
+  constexpr std::size_t kMinTouches = 2;         // the ground's lead in touching cells, at least
+  constexpr std::size_t kMinStandingCells = 15;  // fewer are no evidence against a lone plane
+  bool a_is_ground = true;
+  GroundStatus status = GroundStatus::ambiguous;
+  double contact = 0.0, opposite_contact = 0.0;
+  if (distance_b > 0.0) {
+    const double a = on_a.per_cell(), b = on_b.per_cell();
+    if (on_a.touches >= on_b.touches + kMinTouches && a >= params.contact_ratio * b) {
+      status = GroundStatus::found;
+    } else if (on_b.touches >= on_a.touches + kMinTouches && b >= params.contact_ratio * a) {
+      status = GroundStatus::found;
+      a_is_ground = false;
+    }
+    contact = a_is_ground ? a : b;
+    opposite_contact = a_is_ground ? b : a;
+  } else {
+    contact = on_a.standing_share();
+    if (on_a.standing < kMinStandingCells || contact >= params.standing_fraction) status = GroundStatus::found;
+  }
+  GroundEstimate g;
+  g.status = status;
+  g.up = a_is_ground ? side_a->plane.n : side_b ? side_b->plane.n : Eigen::Vector3d(-axis);
+  g.height = a_is_ground ? side_a->plane.d : distance_b;
+  g.opposite_distance = a_is_ground ? distance_b : side_a->plane.d;
+  g.inliers = a_is_ground ? side_a->inliers : (side_b ? side_b->inliers : 0);
+  g.points_used = points.size();
+  g.contact = contact;
+  g.opposite_contact = opposite_contact;
   // up = R^T z for R = Ry(pitch) Rx(roll): up = (-sin pitch, sin roll cos pitch, cos roll cos pitch).
-  const Eigen::Vector3d& u = ground->up;
   constexpr double deg = 180.0 / 3.14159265358979323846;
-  ground->roll_deg = std::atan2(u.y(), u.z()) * deg;
-  ground->pitch_deg = std::atan2(-u.x(), std::hypot(u.y(), u.z())) * deg;
-  ground->mount = mount_from_roll_pitch_yaw_deg(ground->roll_deg, ground->pitch_deg, 0.0);
-  return ground;
+  g.roll_deg = std::atan2(g.up.y(), g.up.z()) * deg;
+  g.pitch_deg = std::atan2(-g.up.x(), std::hypot(g.up.y(), g.up.z())) * deg;
+  g.mount = mount_from_roll_pitch_yaw_deg(g.roll_deg, g.pitch_deg, 0.0);
+  return g;
 }
 
 /// The mount (roll and pitch, yaw 0, no translation) that makes the ground
-/// of `sensor_points` horizontal: `estimate_ground(...)->mount`, or nullopt.
+/// of `sensor_points` horizontal: `estimate_ground(...)->mount`, or nullopt
+/// (also when the estimate is ambiguous).
 inline std::optional<Pose> estimate_mount(const std::vector<Eigen::Vector3f>& sensor_points,
                                           const MountEstimateParams& params = {}) {
   const std::optional<GroundEstimate> ground = estimate_ground(sensor_points, params);
-  if (!ground) return std::nullopt;
+  if (!ground || ground->status != GroundStatus::found) return std::nullopt;
   return ground->mount;
 }
 
