@@ -3,12 +3,17 @@
 
 /// \file
 /// Command-line options of the `streamclust` tool: parsing, presets and
-/// validation. Every bad option becomes a UsageError (exit code 2).
+/// validation. Every bad option becomes a UsageError (exit code 2). The
+/// policy choices and their options come from the tool's registry
+/// (cli/tool_policies.hpp).
+
+#include "cli/tool_policies.hpp"
 
 #include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/record.hpp>
 #include <streamclust/sensors.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -27,18 +32,14 @@ namespace streamclust::cli {
 enum ExitCode : int { kOk = 0, kUsage = 2, kMismatch = 3, kInputError = 4, kOutOfMemory = 5 };
 
 /// A usage error: bad option, value or combination. Exit code 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using registry::UsageError;
+using registry::parse_count;
+using registry::parse_number;
+using registry::parse_positive;
+using registry::parse_positive_float;
+using registry::Slot;
 
-enum class ProjectionKind { spherical, cylindrical };
-enum class IndexKind { bucket, capped, overwrite };
-enum class LinkageKind { angular, euclidean, range_adaptive };
 enum class Mode { continuous, frame };
-/// How the engine keeps its components: the spanning forest (the fastest
-/// exact strategy, the default) or the paper's lazy BFS (same partition;
-/// see docs/policies.md).
-enum class ConnectivityKind { lazy_bfs, spanning_forest };
 
 struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
 
@@ -46,16 +47,16 @@ struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
 struct ClusterOptions {
   std::string input;
   io::ReadOptions read;
-  // policies
-  ProjectionKind projection = ProjectionKind::spherical;
-  IndexKind index = IndexKind::bucket;
-  std::uint32_t cap = 4;
-  LinkageKind linkage = LinkageKind::angular;
-  float theta_deg = 10.0f;
-  float min_ray_angle_deg = 0.2f;
-  float distance = 0.5f;
-  float min_distance = 0.2f;  ///< range-adaptive: radius near the sensor [m]
-  float range_factor = 0.05f;  ///< range-adaptive: radius per metre of the nearer range [m/m]
+  // policies: the registered names (cli/tool_policies.hpp) and their Params
+  std::string projection = "spherical";
+  std::string index = "bucket";
+  std::string linkage = "angular";
+  /// How the engine keeps its components: the spanning forest (the fastest
+  /// exact strategy, the default) or the paper's lazy BFS (same partition;
+  /// see docs/policies.md).
+  std::string connectivity = "forest";
+  /// The parameters of every registered policy: params.get<AngularLinkage>().theta_deg.
+  ToolRegistry::Values params;
   int mask = 5;
   bool window_is_count = false;
   double window_seconds = 0.1;
@@ -64,7 +65,6 @@ struct ClusterOptions {
   double max_time_jump = 60.0;  ///< [s] a point further ahead of the stream is a time_jump (acceptance.hpp)
   std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
   float max_multiplicity = 2.0f;
-  ConnectivityKind connectivity = ConnectivityKind::spanning_forest;
   bool connectivity_given = false;  ///< --connectivity was on the command line
   Mode mode = Mode::continuous;
   // field of view (spherical: degrees; cylindrical: azimuth degrees, z metres)
@@ -102,37 +102,37 @@ struct InfoOptions {
   io::ReadOptions read;
 };
 
-inline double parse_number(std::string_view option, const std::string& value) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(value, &used);
-    if (used != value.size()) throw std::invalid_argument("trailing characters");
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(std::string(option) + ": expected a number, got '" + value + "'");
+/// A preset's name and what it sets, one line, for the help.
+struct PresetSummary {
+  const char* name;
+  const char* summary;
+};
+
+/// Every preset apply_preset knows, in the help's order.
+inline const std::vector<PresetSummary>& preset_summaries() {
+  static const std::vector<PresetSummary> presets = {
+      {"carc", "spherical, bucket grid, angular theta 10, w 5, T_M 2, adaptive grid (the default)"},
+      {"carc-mid360", "carc with theta 30 and the Mid-360 FOV (elevation -7.5..52.5 deg)"},
+      {"carc-avia", "carc with theta 80 and the Avia FOV (70.4 x 77.2 deg)"},
+      {"baseline", "overwrite grid in frame mode, w 3, theta 10 (the frame-based method)"},
+      {"objects", "clusters that are objects: --ground, range-adaptive, capped grid (K 4), forest, "
+                  "T_B 0.5 s, w 5, T_M 4, the full sphere"},
+      {"objects-mid360", "objects with the Mid-360 FOV"},
+      {"objects-avia", "objects with the Avia FOV"},
+  };
+  return presets;
+}
+
+/// The --preset lines of the help: every preset with its summary.
+inline std::string preset_help() {
+  std::string names, lines;
+  std::size_t width = 0;
+  for (const PresetSummary& p : preset_summaries()) width = std::max(width, std::string(p.name).size());
+  for (const PresetSummary& p : preset_summaries()) {
+    names += (names.empty() ? "" : "|") + std::string(p.name);
+    lines += "        " + std::string(p.name) + std::string(width + 2 - std::string(p.name).size(), ' ') + p.summary + "\n";
   }
-}
-
-inline double parse_positive(std::string_view option, const std::string& value) {
-  const double v = parse_number(option, value);
-  if (!(v > 0.0) || v > 1e12) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
-  return v;
-}
-
-/// parse_positive for a float option: a value that rounds to 0 as a float
-/// (below 1e-45) is refused too.
-inline float parse_positive_float(std::string_view option, const std::string& value) {
-  const auto v = static_cast<float>(parse_positive(option, value));
-  if (!(v > 0.0f)) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
-  return v;
-}
-
-inline std::uint64_t parse_count(std::string_view option, const std::string& value) {
-  const double v = parse_number(option, value);
-  if (!(v >= 1.0) || v > 4e9 || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
-    throw UsageError(std::string(option) + ": expected a whole number >= 1, got '" + value + "'");
-  }
-  return static_cast<std::uint64_t>(v);
+  return "  --preset " + names + "   (default carc)\n" + lines;
 }
 
 /// Applies a named preset to `o` (before the other options override it).
@@ -141,10 +141,10 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
   if (name == "objects" || name == "objects-mid360" || name == "objects-avia") {
     // Structure removal, the range-adaptive linkage, the spanning forest, T_B = 0.5 s.
     o.ground = true;
-    o.linkage = LinkageKind::range_adaptive;
-    o.connectivity = ConnectivityKind::spanning_forest;
+    o.linkage = "range-adaptive";
+    o.connectivity = "forest";
     o.window_seconds = 0.5;
-    o.index = IndexKind::capped;  // K = 4, ObjectsConfig's
+    o.index = "capped";  // K = 4, ObjectsConfig's
     o.mask = 5;                  // kObjectsMaskSize
     o.max_multiplicity = 4.0f;   // kObjectsMaxMultiplicity
     if (name == "objects") return;  // any sensor: the full sphere
@@ -156,20 +156,20 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     return;
   }
   if (name == "carc-mid360") {
-    o.theta_deg = 30.0f;
+    o.params.get<AngularLinkage>().theta_deg = 30.0f;
     o.elevation_min = livox_mid360.projection_elevation_min_deg();
     o.elevation_max = livox_mid360.projection_elevation_max_deg();
   } else if (name == "carc-avia") {
-    o.theta_deg = 80.0f;
+    o.params.get<AngularLinkage>().theta_deg = 80.0f;
     o.azimuth_min = livox_avia.projection_azimuth_min_deg();
     o.azimuth_max = livox_avia.projection_azimuth_max_deg();
     o.elevation_min = livox_avia.projection_elevation_min_deg();
     o.elevation_max = livox_avia.projection_elevation_max_deg();
   } else if (name == "baseline") {
-    o.index = IndexKind::overwrite;
+    o.index = "overwrite";
     o.mode = Mode::frame;
     o.mask = 3;
-    o.theta_deg = 10.0f;
+    o.params.get<AngularLinkage>().theta_deg = 10.0f;
   } else {
     throw UsageError(
         "--preset: expected carc, carc-mid360, carc-avia, baseline, objects, objects-mid360 or objects-avia, got '" +
@@ -211,10 +211,10 @@ class ArgCursor {
 };
 
 /// Parses one clustering-policy option shared by `cluster` and `evaluate`
-/// (window time, rate, linkage, theta, min ray angle, distance, min distance,
-/// range factor, mask, index,
-/// connectivity, cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
-/// under the cursor is not one of them (nothing consumed).
+/// (window time, rate, linkage, index, connectivity, every registered
+/// policy option such as --theta or --cap, mask, grid, T_M, FOV, min range)
+/// into `o`. Returns false when the option under the cursor is not one of
+/// them (nothing consumed).
 inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   const std::string& a = c.option();
   if (a == "--window-time") {
@@ -225,30 +225,16 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   } else if (a == "--max-time-jump") {
     o.max_time_jump = parse_positive(a, c.value());
   } else if (a == "--linkage") {
-    const std::string v = c.choice({"angular", "euclidean", "range-adaptive"});
-    o.linkage = v == "angular" ? LinkageKind::angular
-                : v == "euclidean" ? LinkageKind::euclidean : LinkageKind::range_adaptive;
-  } else if (a == "--theta") {
-    o.theta_deg = parse_positive_float(a, c.value());
-  } else if (a == "--min-ray-angle") {
-    o.min_ray_angle_deg = static_cast<float>(parse_number(a, c.value()));
-  } else if (a == "--distance") {
-    o.distance = parse_positive_float(a, c.value());
-  } else if (a == "--min-distance") {
-    o.min_distance = parse_positive_float(a, c.value());
-  } else if (a == "--range-factor") {
-    o.range_factor = static_cast<float>(parse_number(a, c.value()));
+    o.linkage = ToolRegistry::choose(Slot::linkage, c.value());
+  } else if (a == "--index") {
+    o.index = ToolRegistry::choose(Slot::spatial_index, c.value());
+  } else if (a == "--connectivity") {
+    o.connectivity = ToolRegistry::choose(Slot::connectivity, c.value());
+    o.connectivity_given = true;
+  } else if (ToolRegistry::parse_option(a, [&] { return c.value(); }, o.params)) {
+    // a registered policy's option (--theta, --distance, --cap, ...)
   } else if (a == "--mask") {
     o.mask = static_cast<int>(parse_count(a, c.value()));
-  } else if (a == "--index") {
-    const std::string v = c.choice({"bucket", "capped", "overwrite"});
-    o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
-  } else if (a == "--connectivity") {
-    o.connectivity =
-        c.choice({"lazy-bfs", "forest"}) == "forest" ? ConnectivityKind::spanning_forest : ConnectivityKind::lazy_bfs;
-    o.connectivity_given = true;
-  } else if (a == "--cap") {
-    o.cap = static_cast<std::uint32_t>(parse_count(a, c.value()));
   } else if (a == "--grid") {
     const std::string v = c.value();
     if (v == "auto") {
@@ -291,7 +277,6 @@ inline void validate_policy_options(const ClusterOptions& o) {
   if (o.mask < 1 || o.mask % 2 == 0 || o.mask > 255) {
     throw UsageError("--mask: expected an odd number of cells from 1 to 255");
   }
-  if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
 }
 
 /// Parses one input option shared by `cluster` and `info` (--format,
@@ -367,8 +352,7 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.window_count = parse_count(a, c.value());
       window_count_set = true;
     } else if (a == "--projection") {
-      o.projection = c.choice({"spherical", "cylindrical"}) == "spherical" ? ProjectionKind::spherical
-                                                                            : ProjectionKind::cylindrical;
+      o.projection = ToolRegistry::choose(Slot::projection, c.value());
     } else if (a == "--mode") {
       o.mode = c.choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
     } else if (a == "--poses") {

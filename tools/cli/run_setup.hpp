@@ -109,7 +109,7 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
              "(give --mount and --sensor-height)\n";
     }
   }
-  if (s.motion.enabled && o.projection == ProjectionKind::spherical) {
+  if (s.motion.enabled && o.projection == "spherical") {
     SphericalProjection::Params sensor_fov;
     sensor_fov.azimuth_min_deg = o.azimuth_min;
     sensor_fov.azimuth_max_deg = o.azimuth_max;
@@ -119,7 +119,7 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
     const auto rotations = sensor_rotations(s.motion.posed.mount, s.motion.posed.trajectory.get());
     s.world_fov = world_field_of_view(sensor_fov, rotations);
     if (g.sensor_height > 0.0f) g.lowest_ray_elevation_deg = lowest_ray_elevation_deg(sensor_fov, rotations);
-  } else if (o.projection == ProjectionKind::spherical && g.sensor_height > 0.0f) {
+  } else if (o.projection == "spherical" && g.sensor_height > 0.0f) {
     g.lowest_ray_elevation_deg = o.elevation_min;
   }
   return s;
