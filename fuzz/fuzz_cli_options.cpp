@@ -51,13 +51,16 @@ bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 /// What cluster's and evaluate's policy options promise once parsed.
 void check_policy(const cli::ClusterOptions& o) {
   require(o.mask >= 1 && o.mask <= 255 && o.mask % 2 == 1, "--mask: an odd number of cells from 1 to 255");
-  require(o.cap >= 1 && o.cap <= 255, "--cap: 1 to 255 points per cell");
+  const auto cap = o.params.get<streamclust::CappedGrid>().capacity;
+  require(cap >= 1 && cap <= 255, "--cap: 1 to 255 points per cell");
   require(o.window_count >= 1, "--window-count: at least one point");
   require(std::isfinite(o.window_seconds) && o.window_seconds >= 0.0, "--window-time: finite seconds >= 0");
   require(finite_positive(o.rate_hz), "--rate: finite and > 0");
   require(finite_positive(o.max_time_jump), "--max-time-jump: finite and > 0");
-  require(finite_positive(o.theta_deg), "--theta: finite and > 0");
-  require(finite_positive(o.distance) && finite_positive(o.min_distance), "--distance, --min-distance: finite and > 0");
+  require(finite_positive(o.params.get<streamclust::AngularLinkage>().theta_deg), "--theta: finite and > 0");
+  require(finite_positive(o.params.get<streamclust::EuclideanLinkage>().max_distance) &&
+              finite_positive(o.params.get<streamclust::RangeAdaptiveLinkage>().min_distance),
+          "--distance, --min-distance: finite and > 0");
   require(finite_positive(o.max_multiplicity), "--max-multiplicity: finite and > 0");
   if (o.grid) require(o.grid->first >= 1 && o.grid->second >= 1, "--grid: at least one row and one column");
   if (o.read.point_rate) require(finite_positive(*o.read.point_rate), "--point-rate: finite and > 0");

@@ -52,7 +52,7 @@ std::size_t distinct(const std::vector<std::string>& labels) {
 TEST_CASE("CLI: --linkage range-adaptive and its parameters reach RangeAdaptiveLinkage::Params") {
   using Config = sc::cli::CliConfig<sc::SphericalProjection, sc::BucketGrid, sc::RangeAdaptiveLinkage, sc::TimeWindow>;
   const sc::cli::ClusterOptions defaults = sc::cli::parse_cluster_options({"in.csv", "--linkage", "range-adaptive"});
-  CHECK(defaults.linkage == sc::cli::LinkageKind::range_adaptive);
+  CHECK(defaults.linkage == "range-adaptive");
   const sc::RangeAdaptiveLinkage::Params library{};
   CHECK(sc::cli::make_params<Config>(defaults).linkage.min_distance == library.min_distance);
   CHECK(sc::cli::make_params<Config>(defaults).linkage.range_factor == library.range_factor);
@@ -61,8 +61,8 @@ TEST_CASE("CLI: --linkage range-adaptive and its parameters reach RangeAdaptiveL
   const auto p = sc::cli::make_params<Config>(o);
   CHECK(p.linkage.min_distance == 0.35f);
   CHECK(p.linkage.range_factor == 0.04f);
-  CHECK(sc::cli::parse_cluster_options({"in.csv", "--linkage", "euclidean"}).linkage == sc::cli::LinkageKind::euclidean);
-  CHECK(sc::cli::parse_cluster_options({"in.csv", "--linkage", "angular"}).linkage == sc::cli::LinkageKind::angular);
+  CHECK(sc::cli::parse_cluster_options({"in.csv", "--linkage", "euclidean"}).linkage == "euclidean");
+  CHECK(sc::cli::parse_cluster_options({"in.csv", "--linkage", "angular"}).linkage == "angular");
 }
 
 TEST_CASE("CLI: cluster --linkage range-adaptive is verified, and its parameters change the partition") {

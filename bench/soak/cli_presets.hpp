@@ -56,16 +56,11 @@ template <class Config>
 void require_cli_config(const cli::ClusterOptions& o) {
   using Index = typename Config::spatial_index;
   using Linkage = typename Config::linkage;
-  const bool index_ok = std::is_same_v<Index, BucketGrid>   ? o.index == cli::IndexKind::bucket
-                        : std::is_same_v<Index, CappedGrid> ? o.index == cli::IndexKind::capped
-                                                            : false;
-  const bool linkage_ok = std::is_same_v<Linkage, AngularLinkage> ? o.linkage == cli::LinkageKind::angular
-                          : std::is_same_v<Linkage, RangeAdaptiveLinkage>
-                              ? o.linkage == cli::LinkageKind::range_adaptive
-                              : false;
-  const bool rest_ok = o.mode == cli::Mode::continuous && o.projection == cli::ProjectionKind::spherical &&
-                       !o.window_is_count && o.connectivity == cli::ConnectivityKind::spanning_forest &&
-                       std::is_same_v<typename Config::window, TimeWindow> &&
+  using registry::PolicyDescriptor;
+  const bool index_ok = o.index == PolicyDescriptor<Index>::name;
+  const bool linkage_ok = o.linkage == PolicyDescriptor<Linkage>::name;
+  const bool rest_ok = o.mode == cli::Mode::continuous && o.projection == "spherical" && !o.window_is_count &&
+                       o.connectivity == "forest" && std::is_same_v<typename Config::window, TimeWindow> &&
                        std::is_same_v<typename Config::connectivity, SpanningForestConnectivity>;
   if (!(index_ok && linkage_ok && rest_ok)) {
     throw std::logic_error("the preset's options no longer map to the configuration the soak names (cli_presets.hpp)");

@@ -150,14 +150,17 @@ int soak_preset(const std::string& preset, const SoakOptions& o) {
 
   std::printf("== soak: streamclust cluster --preset %s\n", preset.c_str());
   std::printf("  engine       %s\n", config_name<Config>());
-  if (cli.linkage == sc::cli::LinkageKind::angular) {
-    std::printf("               theta %.0f deg, w %d, T_M %.0f, T_B %.2f s\n", static_cast<double>(cli.theta_deg),
+  if (cli.linkage == "angular") {
+    std::printf("               theta %.0f deg, w %d, T_M %.0f, T_B %.2f s\n",
+                static_cast<double>(cli.params.get<sc::AngularLinkage>().theta_deg),
                 cli.mask, static_cast<double>(cli.max_multiplicity), window);
   } else {
     std::printf(
         "               range-adaptive %.2f m + %.2f x range, K %u, w %d, T_M %.0f, T_B %.2f s, "
         "ground and ceiling out\n",
-        static_cast<double>(cli.min_distance), static_cast<double>(cli.range_factor), cli.cap, cli.mask,
+        static_cast<double>(cli.params.get<sc::RangeAdaptiveLinkage>().min_distance),
+        static_cast<double>(cli.params.get<sc::RangeAdaptiveLinkage>().range_factor),
+        cli.params.get<sc::CappedGrid>().capacity, cli.mask,
         static_cast<double>(cli.max_multiplicity), window);
   }
   if (cli.setup && cli.setup->estimate) {

@@ -110,17 +110,12 @@ void set_policy_slots(cli::ClusterOptions& o) {
   using P = typename Config::projection;
   using I = typename Config::spatial_index;
   using L = typename Config::linkage;
-  o.projection = std::is_same_v<P, CylindricalProjection> ? cli::ProjectionKind::cylindrical : cli::ProjectionKind::spherical;
-  o.index = std::is_same_v<I, CappedGrid>      ? cli::IndexKind::capped
-            : std::is_same_v<I, OverwriteGrid> ? cli::IndexKind::overwrite
-                                               : cli::IndexKind::bucket;
-  o.linkage = std::is_same_v<L, EuclideanLinkage>       ? cli::LinkageKind::euclidean
-              : std::is_same_v<L, RangeAdaptiveLinkage> ? cli::LinkageKind::range_adaptive
-                                                        : cli::LinkageKind::angular;
+  using C = typename Config::connectivity;
+  o.projection = registry::PolicyDescriptor<P>::name;
+  o.index = registry::PolicyDescriptor<I>::name;
+  o.linkage = registry::PolicyDescriptor<L>::name;
   o.window_is_count = std::is_same_v<typename Config::window, CountWindow>;
-  o.connectivity = std::is_same_v<typename Config::connectivity, LazyBfsConnectivity>
-                       ? cli::ConnectivityKind::lazy_bfs
-                       : cli::ConnectivityKind::spanning_forest;
+  o.connectivity = registry::PolicyDescriptor<C>::name;
 }
 
 /// The scenario's run on `Config`, with its checks (see the file comment).

@@ -143,7 +143,7 @@ inline void apply_header(const std::array<std::uint8_t, 8>& h, Scenario& s) {
   static constexpr int masks[8] = {5, 1, 3, 5, 7, 9, 15, 31};
   static constexpr std::uint32_t caps[4] = {4, 1, 2, 32};  // K x cells stays a few MB
   if ((h[4] & 0x80) == 0) o.mask = masks[h[4] & 7];  // else the preset's
-  o.cap = caps[(h[4] >> 3) & 3];
+  o.params.get<CappedGrid>().capacity = caps[(h[4] >> 3) & 3];
   static constexpr float multiplicities[4] = {2.0f, 1.25f, 4.0f, 10.0f};
   if ((h[4] & 0x40) != 0) o.max_multiplicity = multiplicities[(h[4] >> 5) & 1 ? 3 : 1];
   // Ground and mount: --ground / --no-ground, --sensor-height, --mount, --no-ceiling, --max-time-jump.
@@ -158,14 +158,14 @@ inline void apply_header(const std::array<std::uint8_t, 8>& h, Scenario& s) {
   if ((h[5] & 0x80) != 0) o.max_time_jump = jumps[h[6] >> 6];
   // Linkage and projection.
   static constexpr float thetas[4] = {1.0f, 45.0f, 89.9f, 10.0f};
-  if ((h[6] & 3) != 0) o.theta_deg = thetas[h[6] & 3];
+  if ((h[6] & 3) != 0) o.params.get<AngularLinkage>().theta_deg = thetas[h[6] & 3];
   static constexpr float ray_floor[4] = {0.2f, 0.0f, 5.0f, 0.2f};
-  o.min_ray_angle_deg = ray_floor[(h[6] >> 2) & 3];
+  o.params.get<AngularLinkage>().min_ray_angle_deg = ray_floor[(h[6] >> 2) & 3];
   static constexpr float distances[4] = {0.5f, 0.05f, 3.0f, 0.5f};
-  o.distance = distances[(h[6] >> 4) & 3];
-  o.min_distance = distances[(h[6] >> 4) & 3] * 0.4f;
+  o.params.get<EuclideanLinkage>().max_distance = distances[(h[6] >> 4) & 3];
+  o.params.get<RangeAdaptiveLinkage>().min_distance = distances[(h[6] >> 4) & 3] * 0.4f;
   static constexpr float factors[4] = {0.05f, 0.0f, 1.0f, 0.05f};
-  o.range_factor = factors[(h[7] >> 6) & 3];
+  o.params.get<RangeAdaptiveLinkage>().range_factor = factors[(h[7] >> 6) & 3];
   static constexpr float min_ranges[4] = {0.1f, 0.0f, 2.0f, 0.1f};
   o.min_range = min_ranges[(h[7] >> 4) & 3];
   // The spanning forest's own parameters (not options of the tool).

@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     }
   }
   sc::cli::ClusterOptions o = sc::cli::parse_cluster_options({"--preset", preset, argv[1]});
-  if (o.index != sc::cli::IndexKind::bucket || o.linkage != sc::cli::LinkageKind::angular || o.window_is_count ||
-      o.projection != sc::cli::ProjectionKind::spherical || o.connectivity != sc::cli::ConnectivityKind::spanning_forest) {
+  if (o.index != "bucket" || o.linkage != "angular" || o.window_is_count || o.projection != "spherical" ||
+      o.connectivity != "forest") {
     std::cerr << "preset " << preset << " is not compiled into this benchmark\n";
     return 2;
   }

@@ -138,3 +138,9 @@ std::unique_ptr<ErasedClusterer> make_for(const cli::ClusterOptions& o) {
 }
 
 }  // namespace streamclust::python
+
+/// The translation unit of the module's engines for one projection and
+/// linkage (every index, window, mode and connectivity of the registry).
+#define STREAMCLUST_INSTANTIATE_PYTHON_ENGINE(Projection, Linkage) \
+  template std::unique_ptr<streamclust::python::ErasedClusterer>   \
+  streamclust::python::make_for<Projection, Linkage>(const streamclust::cli::ClusterOptions&)

@@ -1,21 +1,17 @@
 // SPDX-License-Identifier: MIT
 // make_erased_clusterer: the translation unit compiled for the options'
-// projection and linkage (the CLI's choice in tools/cli/cluster.cpp).
+// projection and linkage (the registry's dispatch, as in tools/cli/cluster.cpp).
 
 #include "erased_clusterer.hpp"
+
+#include "cli/engine_config.hpp"
 
 namespace streamclust::python {
 
 std::unique_ptr<ErasedClusterer> make_erased_clusterer(const cli::ClusterOptions& o) {
-  const bool spherical = o.projection == cli::ProjectionKind::spherical;
-  switch (o.linkage) {
-    case cli::LinkageKind::euclidean:
-      return spherical ? make_spherical_euclidean(o) : make_cylindrical_euclidean(o);
-    case cli::LinkageKind::range_adaptive:
-      return spherical ? make_spherical_range_adaptive(o) : make_cylindrical_range_adaptive(o);
-    case cli::LinkageKind::angular: break;
-  }
-  return spherical ? make_spherical_angular(o) : make_cylindrical_angular(o);
+  return cli::with_projection_and_linkage(o, [&](auto projection, auto linkage) {
+    return make_for<typename decltype(projection)::type, typename decltype(linkage)::type>(o);
+  });
 }
 
 }  // namespace streamclust::python

@@ -51,12 +51,10 @@ class ErasedClusterer {
 /// policy rejects.
 std::unique_ptr<ErasedClusterer> make_erased_clusterer(const cli::ClusterOptions& o);
 
-/// The same for one projection and linkage (one translation unit each).
-std::unique_ptr<ErasedClusterer> make_spherical_angular(const cli::ClusterOptions& o);
-std::unique_ptr<ErasedClusterer> make_spherical_euclidean(const cli::ClusterOptions& o);
-std::unique_ptr<ErasedClusterer> make_spherical_range_adaptive(const cli::ClusterOptions& o);
-std::unique_ptr<ErasedClusterer> make_cylindrical_angular(const cli::ClusterOptions& o);
-std::unique_ptr<ErasedClusterer> make_cylindrical_euclidean(const cli::ClusterOptions& o);
-std::unique_ptr<ErasedClusterer> make_cylindrical_range_adaptive(const cli::ClusterOptions& o);
+/// The same for one projection and linkage: defined in engine_clusterer.hpp,
+/// explicitly instantiated in one translation unit per registered pair
+/// (STREAMCLUST_INSTANTIATE_PYTHON_ENGINE).
+template <class Projection, class Linkage>
+std::unique_ptr<ErasedClusterer> make_for(const cli::ClusterOptions& o);
 
 }  // namespace streamclust::python

@@ -1,14 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The Python module's engines for the spherical projection and the euclidean
-// linkage (every index, window and connectivity; one file per pair keeps
-// each translation unit small enough to build in parallel, as in the CLI).
+// The Python module's engines for one projection and linkage (every index,
+// window and connectivity; one file per pair keeps each translation unit
+// small enough to build in parallel, as in the CLI).
 
 #include "engine_clusterer.hpp"
 
-namespace streamclust::python {
-
-std::unique_ptr<ErasedClusterer> make_spherical_euclidean(const cli::ClusterOptions& o) {
-  return make_for<SphericalProjection, EuclideanLinkage>(o);
-}
-
-}  // namespace streamclust::python
+STREAMCLUST_INSTANTIATE_PYTHON_ENGINE(streamclust::SphericalProjection, streamclust::EuclideanLinkage);

@@ -34,6 +34,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace py = pybind11;
@@ -419,4 +420,25 @@ PYBIND11_MODULE(_streamclust, m) {
   m.def("read", &sp::read_file, py::arg("path"), py::arg("args"));
   m.def("simulate", &sp::simulate, py::arg("args"));
   m.def("evaluate", &sp::evaluate, py::arg("labels"), py::arg("truth"), py::arg("min_points"));
+  // The registered policies' options (cli/tool_policies.hpp): the package's
+  // keywords for them (python/streamclust/_options.py).
+  m.def("policy_options", [] {
+    std::vector<std::pair<std::string, std::string>> options;  // (keyword, CLI option), each once
+    for (const auto& o : streamclust::cli::ToolRegistry::options()) {
+      const bool seen = std::any_of(options.begin(), options.end(), [&](const auto& k) { return k.first == o.keyword; });
+      if (!seen) options.emplace_back(o.keyword, o.name);
+    }
+    return options;
+  });
+  m.def("policy_names", [](const std::string& slot) {
+    using streamclust::registry::Slot;
+    const Slot s = slot == "linkage" ? Slot::linkage
+                   : slot == "index" ? Slot::spatial_index
+                   : slot == "connectivity" ? Slot::connectivity
+                   : slot == "projection" ? Slot::projection
+                                          : throw streamclust::cli::UsageError("policy_names: expected linkage, index, "
+                                                                               "connectivity or projection, got '" +
+                                                                               slot + "'");
+    return streamclust::cli::ToolRegistry::names(s);
+  });
 }

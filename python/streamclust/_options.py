@@ -11,19 +11,15 @@ import numbers
 import os
 import re
 
+from . import _streamclust
+
 # keyword -> (CLI option, kind)
 POLICY_KEYWORDS = {
     "window_time": ("--window-time", "number"),
     "window_count": ("--window-count", "number"),
     "linkage": ("--linkage", "choice"),
-    "theta": ("--theta", "number"),
-    "min_ray_angle": ("--min-ray-angle", "number"),
-    "distance": ("--distance", "number"),
-    "min_distance": ("--min-distance", "number"),
-    "range_factor": ("--range-factor", "number"),
     "mask": ("--mask", "number"),
     "index": ("--index", "choice"),
-    "cap": ("--cap", "number"),
     "connectivity": ("--connectivity", "choice"),
     "projection": ("--projection", "choice"),
     "mode": ("--mode", "choice"),
@@ -46,6 +42,11 @@ POLICY_KEYWORDS = {
     "max_slope": ("--max-slope", "number"),
     "ceiling": ("--ceiling", "flag"),
 }
+
+# Every option of the registered policies (theta, distance, cap, ... and a
+# custom module's own): the registry's names, --min-ray-angle -> min_ray_angle.
+for _keyword, _option in _streamclust.policy_options():
+    POLICY_KEYWORDS.setdefault(_keyword, (_option, "number"))
 
 READ_KEYWORDS = {
     "format": ("--format", "choice"),

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // `streamclust cluster`: the choice of the translation unit compiled for the
-// options' projection and linkage.
+// options' projection and linkage (the registry's dispatch).
 
 #include "cli/cluster.hpp"
+#include "cli/engine_config.hpp"
 #include "cli/memory_context.hpp"
 #include "cli/run_setup.hpp"
 
@@ -27,16 +28,9 @@ int run_cluster_setup(const ClusterOptions& options, std::ostream& out, std::ost
       throw UsageError(e.what());
     }
   }
-  const bool spherical = o.projection == ProjectionKind::spherical;
-  switch (o.linkage) {
-    case LinkageKind::euclidean:
-      return spherical ? run_cluster_spherical_euclidean(o, out, err) : run_cluster_cylindrical_euclidean(o, out, err);
-    case LinkageKind::range_adaptive:
-      return spherical ? run_cluster_spherical_range_adaptive(o, out, err)
-                       : run_cluster_cylindrical_range_adaptive(o, out, err);
-    case LinkageKind::angular: break;
-  }
-  return spherical ? run_cluster_spherical_angular(o, out, err) : run_cluster_cylindrical_angular(o, out, err);
+  return with_projection_and_linkage(o, [&](auto projection, auto linkage) {
+    return run_cluster_for<typename decltype(projection)::type, typename decltype(linkage)::type>(o, out, err);
+  });
 }
 
 }  // namespace

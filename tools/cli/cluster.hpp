@@ -19,12 +19,10 @@ namespace streamclust::cli {
 /// UsageError (exit 2).
 int run_cluster(const ClusterOptions& o, std::ostream& out, std::ostream& err);
 
-/// The same for one projection and linkage (one translation unit each).
-int run_cluster_spherical_angular(const ClusterOptions& o, std::ostream& out, std::ostream& err);
-int run_cluster_spherical_euclidean(const ClusterOptions& o, std::ostream& out, std::ostream& err);
-int run_cluster_cylindrical_angular(const ClusterOptions& o, std::ostream& out, std::ostream& err);
-int run_cluster_cylindrical_euclidean(const ClusterOptions& o, std::ostream& out, std::ostream& err);
-int run_cluster_spherical_range_adaptive(const ClusterOptions& o, std::ostream& out, std::ostream& err);
-int run_cluster_cylindrical_range_adaptive(const ClusterOptions& o, std::ostream& out, std::ostream& err);
+/// The same for one projection and linkage: defined in cli/cluster_driver.hpp,
+/// explicitly instantiated in one translation unit per pair
+/// (STREAMCLUST_INSTANTIATE_CLUSTER).
+template <class Projection, class Linkage>
+int run_cluster_for(const ClusterOptions& o, std::ostream& out, std::ostream& err);
 
 }  // namespace streamclust::cli

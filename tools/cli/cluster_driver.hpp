@@ -487,3 +487,9 @@ int run_cluster_for(const ClusterOptions& o, std::ostream& out, std::ostream& er
 }
 
 }  // namespace streamclust::cli
+
+/// The translation unit of `streamclust cluster` for one projection and
+/// linkage (every index, window, mode and connectivity of the registry).
+#define STREAMCLUST_INSTANTIATE_CLUSTER(Projection, Linkage)                                    \
+  template int streamclust::cli::run_cluster_for<Projection, Linkage>(                           \
+      const streamclust::cli::ClusterOptions&, std::ostream&, std::ostream&)

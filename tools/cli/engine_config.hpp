@@ -6,7 +6,9 @@
 /// FrameClusterer) configuration per combination of options it offers, so
 /// that every run gets its policies' fast paths (the linkage's payloads and
 /// link_many, the window's inlined test). `with_engine_config` maps the
-/// options to that configuration once, at start-up.
+/// options to that configuration once, at start-up, through the tool's
+/// registry (cli/tool_policies.hpp): every registered index and
+/// connectivity, the time and count windows.
 
 #include "cli/options.hpp"
 #include "cli/run_setup.hpp"
@@ -77,16 +79,9 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
     p.projection.z_min = o.z_min;
     p.projection.z_max = o.z_max;
   }
-  if constexpr (std::is_same_v<typename Config::spatial_index, CappedGrid>) p.spatial_index.capacity = o.cap;
-  if constexpr (std::is_same_v<typename Config::linkage, AngularLinkage>) {
-    p.linkage.theta_deg = o.theta_deg;
-    p.linkage.min_ray_angle_deg = o.min_ray_angle_deg;
-  } else if constexpr (std::is_same_v<typename Config::linkage, RangeAdaptiveLinkage>) {
-    p.linkage.min_distance = o.min_distance;
-    p.linkage.range_factor = o.range_factor;
-  } else {
-    p.linkage.max_distance = o.distance;
-  }
+  p.spatial_index = o.params.template get<typename Config::spatial_index>();
+  p.linkage = o.params.template get<typename Config::linkage>();
+  p.connectivity = o.params.template get<typename Config::connectivity>();
   if constexpr (std::is_same_v<typename Config::window, TimeWindow>) {
     p.window.duration = o.window_seconds;
   } else {
@@ -112,11 +107,7 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
   return p;
 }
 
-/// A policy type as a value, for generic lambdas.
-template <class T>
-struct TypeTag {
-  using type = T;
-};
+using registry::TypeTag;
 
 namespace detail {
 
@@ -125,21 +116,16 @@ namespace detail {
 /// default).
 template <bool Frame, class Projection, class Linkage, class Window, class F>
 decltype(auto) with_index_and_connectivity(const ClusterOptions& o, F&& f) {
-  const auto pick = [&](auto index) -> decltype(auto) {
+  return ToolRegistry::with_policy<Slot::spatial_index>(o.index, [&](auto index) -> decltype(auto) {
     using I = typename decltype(index)::type;
-    if constexpr (!Frame) {
-      if (o.connectivity == ConnectivityKind::lazy_bfs) {
-        return f(TypeTag<CliConfig<Projection, I, Linkage, Window, LazyBfsConnectivity>>{});
-      }
+    if constexpr (Frame) {
+      return f(TypeTag<CliConfig<Projection, I, Linkage, Window>>{});
+    } else {
+      return ToolRegistry::with_policy<Slot::connectivity>(o.connectivity, [&](auto connectivity) -> decltype(auto) {
+        return f(TypeTag<CliConfig<Projection, I, Linkage, Window, typename decltype(connectivity)::type>>{});
+      });
     }
-    return f(TypeTag<CliConfig<Projection, I, Linkage, Window>>{});
-  };
-  switch (o.index) {
-    case IndexKind::capped: return pick(TypeTag<CappedGrid>{});
-    case IndexKind::overwrite: return pick(TypeTag<OverwriteGrid>{});
-    case IndexKind::bucket: break;
-  }
-  return pick(TypeTag<BucketGrid>{});
+  });
 }
 
 }  // namespace detail
@@ -152,6 +138,16 @@ template <bool Frame, class Projection, class Linkage, class F>
 decltype(auto) with_engine_config(const ClusterOptions& o, F&& f) {
   if (o.window_is_count) return detail::with_index_and_connectivity<Frame, Projection, Linkage, CountWindow>(o, f);
   return detail::with_index_and_connectivity<Frame, Projection, Linkage, TimeWindow>(o, f);
+}
+
+/// Calls `f(TypeTag<Projection>{}, TypeTag<Linkage>{})` with the projection and
+/// the linkage the options name.
+template <class F>
+decltype(auto) with_projection_and_linkage(const ClusterOptions& o, F&& f) {
+  return ToolRegistry::with_policy<Slot::projection>(o.projection, [&](auto projection) -> decltype(auto) {
+    return ToolRegistry::with_policy<Slot::linkage>(o.linkage,
+                                                   [&](auto linkage) -> decltype(auto) { return f(projection, linkage); });
+  });
 }
 
 }  // namespace streamclust::cli

@@ -177,15 +177,8 @@ Evaluation evaluate_records(const EvaluateOptions& o, const std::vector<io::Reco
     LabelledSets labelled;
     const bool both = o.run_carc && o.run_baseline;
     std::optional<MethodResult> baseline;
-    // Calls f(TypeTag<Linkage>{}) with the linkage the options name.
-    const auto with_linkage = [&](auto&& f) {
-      switch (o.policy.linkage) {
-        case LinkageKind::euclidean: return f(TypeTag<EuclideanLinkage>{});
-        case LinkageKind::range_adaptive: return f(TypeTag<RangeAdaptiveLinkage>{});
-        case LinkageKind::angular: break;
-      }
-      return f(TypeTag<AngularLinkage>{});
-    };
+    // Calls f(TypeTag<Linkage>{}) with the linkage the options name (any registered one).
+    const auto with_linkage = [&](auto&& f) { return ToolRegistry::with_policy<Slot::linkage>(o.policy.linkage, f); };
     if (o.run_baseline) {
       LabelledSets* sets = both ? &labelled : nullptr;
       baseline = with_linkage([&](auto linkage) {

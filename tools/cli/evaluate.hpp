@@ -130,7 +130,7 @@ inline EvaluateOptions parse_evaluate_options(const std::vector<std::string>& ar
   if (o.scenario.sensor == "synthetic") {
     throw UsageError("--sensor: evaluate needs a simulated sensor (mid360|mid40|mid70|avia|spinning32)");
   }
-  if (o.policy.index == IndexKind::overwrite) {
+  if (o.policy.index == "overwrite") {
     throw UsageError("--index: C-ARC runs on bucket|capped; the overwrite grid is the baseline (--method baseline)");
   }
   if (!(o.policy.window_seconds > 0.0)) throw UsageError("--window-time: expected a window T_B > 0 s");
@@ -311,24 +311,20 @@ inline Json evaluation_json(const EvaluateOptions& o, const Evaluation& e) {
                                                            {"speed", s.burst_speed},
                                                            {"yaw_rate", s.burst_yaw_rate}}
                                                      : Json(nullptr)}};
-  doc["policy"] = {{"linkage", p.linkage == LinkageKind::angular     ? "angular"
-                               : p.linkage == LinkageKind::euclidean ? "euclidean"
-                                                                     : "range-adaptive"},
-                   {"theta_deg", p.theta_deg},
-                   {"min_ray_angle_deg", p.min_ray_angle_deg},
-                   {"distance", p.distance},
-                   {"min_distance", p.min_distance},
-                   {"range_factor", p.range_factor},
+  doc["policy"] = {{"linkage", p.linkage},
                    {"mask", p.mask},
                    {"window_time", p.window_seconds},
                    {"rate", p.rate_hz},
-                   {"index", p.index == IndexKind::capped ? "capped" : "bucket"},
-                   {"cap", p.cap},
-                   {"connectivity", p.connectivity == ConnectivityKind::spanning_forest ? "forest" : "lazy-bfs"},
+                   {"index", p.index},
+                   {"connectivity", p.connectivity},
                    {"multiplicity", p.max_multiplicity},
                    {"frames", o.frames == FrameSchedule::sliding ? "sliding" : "tumbling"},
                    {"min_points", o.min_points},
                    {"structure", o.drop_structure ? "drop" : "keep"}};
+  // every registered policy option by its key (theta_deg, distance, cap, ...)
+  for (const registry::OptionValue& v : ToolRegistry::values_of(p.params)) {
+    doc["policy"][v.key] = v.integral ? Json(static_cast<std::int64_t>(v.value)) : Json(v.value);
+  }
   doc["records"] = e.records;
   doc["grid"] = {{"rows", e.grid.grid.rows},
                  {"cols", e.grid.grid.cols},
@@ -405,18 +401,8 @@ inline void print_evaluation(std::ostream& out, const EvaluateOptions& o, const 
     std::snprintf(line, sizeof line, "grid %ux%u (given)", e.grid.grid.rows, e.grid.grid.cols);
   }
   out << line << "\n";
-  if (p.linkage == LinkageKind::angular) {
-    std::snprintf(line, sizeof line, "linkage angular theta %.3g deg, mask %d, window %.3g s, retrievals %.3g Hz",
-                  static_cast<double>(p.theta_deg), p.mask, p.window_seconds, p.rate_hz);
-  } else if (p.linkage == LinkageKind::euclidean) {
-    std::snprintf(line, sizeof line, "linkage euclidean %.3g m, mask %d, window %.3g s, retrievals %.3g Hz",
-                  static_cast<double>(p.distance), p.mask, p.window_seconds, p.rate_hz);
-  } else {
-    std::snprintf(line, sizeof line,
-                  "linkage range-adaptive max(%.3g m, %.3g x range), mask %d, window %.3g s, retrievals %.3g Hz",
-                  static_cast<double>(p.min_distance), static_cast<double>(p.range_factor), p.mask, p.window_seconds,
-                  p.rate_hz);
-  }
+  std::snprintf(line, sizeof line, "linkage %s, mask %d, window %.3g s, retrievals %.3g Hz",
+                ToolRegistry::describe(Slot::linkage, p.linkage, p.params).c_str(), p.mask, p.window_seconds, p.rate_hz);
   out << line << "\n";
   if (s.burst_length > 0.0) {
     std::snprintf(line, sizeof line, "ego-motion burst at %.3g s for %.3g s: %.3g m/s, %.3g rad/s", s.burst_start,

@@ -45,8 +45,10 @@ Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error,
 )";
 }
 
-inline const char* cluster_help() {
-  return R"(usage: streamclust cluster INPUT [options]
+/// The help of `streamclust cluster`: the presets (cli::preset_summaries),
+/// the policies and their options (the tool's registry) and every other option.
+inline std::string cluster_help() {
+  std::string text = R"(usage: streamclust cluster INPUT [options]
 
 Streams INPUT point by point through the continuous C-ARC engine, retrieves
 clusters at a fixed rate of stream time and writes the results.
@@ -61,33 +63,39 @@ input (a point file, or a recording: ROS 1 bag, rosbag2 folder or .db3, MCAP, LV
   --time-origin S                   whole seconds times count from (default: those of the
                                     first time); --poses are read from the same origin
 policies (a preset first, then every option below overrides it):
-  --preset carc|carc-mid360|carc-avia|baseline   (default carc)
-        carc         spherical, bucket grid, angular theta 10, w 5, T_M 2, adaptive grid
-        carc-mid360  carc with theta 30 and the Mid-360 FOV (elevation -7.5..52.5 deg)
-        carc-avia    carc with theta 80 and the Avia FOV (70.4 x 77.2 deg)
-        baseline     overwrite grid in frame mode, w 3, theta 10 (the frame-based method)
-  --window-time SECONDS | --window-count N   sliding window (default 0.1 s)
+)";
+  text += preset_help();
+  text += R"(  --window-time SECONDS | --window-count N   sliding window (default 0.1 s)
   --rate HZ                         retrievals per second of stream time (default 20)
   --max-time-jump S                 a point more than S ahead of the stream is rejected as a
                                     time_jump until 256 agree (a pause); default 60
-  --linkage angular|euclidean|range-adaptive
-  --theta DEG (default 10)          angular threshold
-  --min-ray-angle DEG               floor on the angle between rays (angular; default 0.2)
-  --distance M (default 0.5)        euclidean threshold
-  --min-distance M (default 0.2)    range-adaptive: link within max(M, F x nearer range)
-  --range-factor F (default 0.05)
-  --mask W                          odd mask width in cells (default 5)
-  --index bucket|capped|overwrite   --cap K (capped grid, default 4)
-  --connectivity forest|lazy-bfs    the engine's components: the spanning forest (default,
-                                    the fastest exact strategy) or the paper's lazy BFS
-                                    (same partition; its own stable ids)
-  --projection spherical|cylindrical
-  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
+)";
+  text += ToolRegistry::help(Slot::linkage);
+  text += "  --mask W                          odd mask width in cells (default 5)\n";
+  text += ToolRegistry::help(Slot::spatial_index);
+  text += ToolRegistry::help(Slot::connectivity, ClusterOptions{}.connectivity);
+  text += ToolRegistry::help(Slot::projection);
+  text += R"(  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX (deg)  --fov-z MIN:MAX (m, cylindrical)
   --min-range M                     closer points are rejected (default 0.1)
   --grid auto|HxW                   auto: adaptive resolution on the first window
   --max-multiplicity T_M            adaptive target (default 2; alias --multiplicity)
   --mode continuous|frame           frame: each retrieval clusters its window from scratch
-outputs:
+motion and structure removal (continuous mode; the objects presets turn --ground on):
+  --poses FILE                      the sensor's poses, a TUM trajectory (t tx ty tz qx qy qz qw,
+                                    world from vehicle, on the points' clock): each point placed
+                                    in the world at its capture time
+  --mount ROLL,PITCH,YAW            the sensor's rotation [deg] (0,30,0: pitched 30 down; 180,0,0:
+                                    upside down); with --poses, on the vehicle
+  --ground | --no-ground            class ground and ceiling points out of the clustering
+                                    (HeightMapGround); without --mount/--poses and --sensor-height,
+                                    the first window's ground plane gives the mount and height
+  --sensor-height M                 the sensor's height above the ground under it, (0, 100]
+  --ground-tolerance M (default 0.03)   tolerance above the ground bound, [0, 2]
+  --ground-cell M (default 0.5)     cell edge of the ground model, (0.05, 10]
+  --max-slope DEG (default 15)      steepest ground, [0, 60]
+  --no-ceiling                      no ceiling detection
+)";
+  text += R"(outputs:
   --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)
   --cycles all|last|N,M,...         cycles written to --labels, --ply, --pcd (default last)
   --report FILE     JSON: grid and adaptive trace, per-cycle sizes and latencies, totals
@@ -108,7 +116,9 @@ examples:
   streamclust cluster scan.csv --preset carc-avia --index overwrite --mode frame --ply out.ply
   streamclust cluster scan.bin --format kitti --point-rate 1200000 --verify
   streamclust cluster run.bag --topic /livox/lidar --preset carc-mid360 --labels labels.csv
+  streamclust cluster office.csv --preset objects-mid360 --mount 0,0,0 --sensor-height 1.0
 )";
+  return text;
 }
 
 inline const char* info_help() {
@@ -170,8 +180,9 @@ examples:
 )";
 }
 
-inline const char* evaluate_help() {
-  return R"(usage: streamclust evaluate [scenario options] [method options] [--json FILE] [--series FILE]
+/// The help of `streamclust evaluate`, the policies from the tool's registry.
+inline std::string evaluate_help() {
+  std::string text = R"(usage: streamclust evaluate [scenario options] [method options] [--json FILE] [--series FILE]
        streamclust evaluate --objects [options]   (see streamclust evaluate --objects --help)
 
 Simulates a scenario with ground truth, clusters it with C-ARC (the continuous
@@ -196,17 +207,18 @@ methods:
   --method carc|baseline|both       (default both)
   --frames sliding|tumbling         baseline: re-cluster the window at every retrieval (default),
                                     or non-overlapping frames of T_B, the last one held in between
-  --linkage angular|euclidean|range-adaptive
-  --theta DEG (default 10)  --min-ray-angle DEG (default 0.2)  --distance M (default 0.5)
-  --min-distance M (default 0.2)  --range-factor F (default 0.05)
-  --mask W                          odd mask width (default 3, the paper's comparison)
+)";
+  text += ToolRegistry::help(Slot::linkage);
+  text += R"(  --mask W                          odd mask width (default 3, the paper's comparison)
   --window-time T_B                 sliding window / frame length [s] (default 0.1)
   --rate HZ                         retrievals per second of stream time (default 20)
   --multiplicity T_M                adaptive-loop target (default 2; the paper's fine grid: 1.25)
   --grid auto|HxW                   a given grid instead of the adaptive loop's
-  --index bucket|capped  --cap K    C-ARC's grid (default bucket)
-  --connectivity forest|lazy-bfs    C-ARC's components (default forest; same scores)
-  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX   (default: the sensor's FOV)
+  C-ARC's grid (not overwrite: the baseline's) and components (same scores):
+)";
+  text += ToolRegistry::help(Slot::spatial_index);
+  text += ToolRegistry::help(Slot::connectivity, ClusterOptions{}.connectivity);
+  text += R"(  --fov-azimuth MIN:MAX  --fov-elevation MIN:MAX   (default: the sensor's FOV)
   --min-range M                     (default 0.1)
   --structure keep|drop             drop: remove the ground-truth structure points (ground, walls)
                                     before clustering, an oracle ground/wall removal (default keep)
@@ -223,6 +235,7 @@ examples:
   streamclust evaluate --sensor mid70 --scene street --linkage euclidean --distance 0.3
   streamclust evaluate --scene forest --duration 2.5 --burst 1:0.3 --burst-yaw-rate 3 --series burst.csv
 )";
+  return text;
 }
 
 /// The message on `err` and the exit code of the exception being handled

@@ -3,11 +3,16 @@
 
 /// \file
 /// Command-line options of the `streamclust` tool: parsing and validation
-/// (the presets: cli/presets.hpp). Every bad option becomes a UsageError (exit code 2).
+/// (the presets: cli/presets.hpp). Every bad option becomes a UsageError (exit code 2). The
+/// policy choices and their options come from the tool's registry
+/// (cli/tool_policies.hpp).
+
+#include "cli/tool_policies.hpp"
 
 #include <streamclust/io/input_stream.hpp>
 #include <streamclust/io/record.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -26,18 +31,14 @@ namespace streamclust::cli {
 enum ExitCode : int { kOk = 0, kUsage = 2, kMismatch = 3, kInputError = 4, kOutOfMemory = 5 };
 
 /// A usage error: bad option, value or combination. Exit code 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using registry::UsageError;
+using registry::parse_count;
+using registry::parse_number;
+using registry::parse_positive;
+using registry::parse_positive_float;
+using registry::Slot;
 
-enum class ProjectionKind { spherical, cylindrical };
-enum class IndexKind { bucket, capped, overwrite };
-enum class LinkageKind { angular, euclidean, range_adaptive };
 enum class Mode { continuous, frame };
-/// How the engine keeps its components: the spanning forest (the fastest
-/// exact strategy, the default) or the paper's lazy BFS (same partition;
-/// see docs/policies.md).
-enum class ConnectivityKind { lazy_bfs, spanning_forest };
 
 struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
 
@@ -45,16 +46,16 @@ struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
 struct ClusterOptions {
   std::string input;
   io::ReadOptions read;
-  // policies
-  ProjectionKind projection = ProjectionKind::spherical;
-  IndexKind index = IndexKind::bucket;
-  std::uint32_t cap = 4;
-  LinkageKind linkage = LinkageKind::angular;
-  float theta_deg = 10.0f;
-  float min_ray_angle_deg = 0.2f;
-  float distance = 0.5f;
-  float min_distance = 0.2f;  ///< range-adaptive: radius near the sensor [m]
-  float range_factor = 0.05f;  ///< range-adaptive: radius per metre of the nearer range [m/m]
+  // policies: the registered names (cli/tool_policies.hpp) and their Params
+  std::string projection = "spherical";
+  std::string index = "bucket";
+  std::string linkage = "angular";
+  /// How the engine keeps its components: the spanning forest (the fastest
+  /// exact strategy, the default) or the paper's lazy BFS (same partition;
+  /// see docs/policies.md).
+  std::string connectivity = "forest";
+  /// The parameters of every registered policy: params.get<AngularLinkage>().theta_deg.
+  ToolRegistry::Values params;
   int mask = 5;
   bool window_is_count = false;
   double window_seconds = 0.1;
@@ -63,7 +64,6 @@ struct ClusterOptions {
   double max_time_jump = 60.0;  ///< [s] a point further ahead of the stream is a time_jump (acceptance.hpp)
   std::optional<std::pair<std::uint32_t, std::uint32_t>> grid;  ///< rows x cols; empty = auto
   float max_multiplicity = 2.0f;
-  ConnectivityKind connectivity = ConnectivityKind::spanning_forest;
   bool connectivity_given = false;  ///< --connectivity was on the command line
   Mode mode = Mode::continuous;
   // field of view (spherical: degrees; cylindrical: azimuth degrees, z metres)
@@ -100,39 +100,6 @@ struct InfoOptions {
   std::string input;
   io::ReadOptions read;
 };
-
-inline double parse_number(std::string_view option, const std::string& value) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(value, &used);
-    if (used != value.size()) throw std::invalid_argument("trailing characters");
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(std::string(option) + ": expected a number, got '" + value + "'");
-  }
-}
-
-inline double parse_positive(std::string_view option, const std::string& value) {
-  const double v = parse_number(option, value);
-  if (!(v > 0.0) || v > 1e12) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
-  return v;
-}
-
-/// parse_positive for a float option: a value that rounds to 0 as a float
-/// (below 1e-45) is refused too.
-inline float parse_positive_float(std::string_view option, const std::string& value) {
-  const auto v = static_cast<float>(parse_positive(option, value));
-  if (!(v > 0.0f)) throw UsageError(std::string(option) + ": expected a positive number, got '" + value + "'");
-  return v;
-}
-
-inline std::uint64_t parse_count(std::string_view option, const std::string& value) {
-  const double v = parse_number(option, value);
-  if (!(v >= 1.0) || v > 4e9 || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
-    throw UsageError(std::string(option) + ": expected a whole number >= 1, got '" + value + "'");
-  }
-  return static_cast<std::uint64_t>(v);
-}
 
 /// Applies a named preset to `o` (before the other options override it):
 /// cli/presets.hpp, included at the end of this header.
@@ -172,10 +139,10 @@ class ArgCursor {
 };
 
 /// Parses one clustering-policy option shared by `cluster` and `evaluate`
-/// (window time, rate, linkage, theta, min ray angle, distance, min distance,
-/// range factor, mask, index,
-/// connectivity, cap, grid, T_M, FOV, min range) into `o`. Returns false when the option
-/// under the cursor is not one of them (nothing consumed).
+/// (window time, rate, linkage, index, connectivity, every registered
+/// policy option such as --theta or --cap, mask, grid, T_M, FOV, min range)
+/// into `o`. Returns false when the option under the cursor is not one of
+/// them (nothing consumed).
 inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   const std::string& a = c.option();
   if (a == "--window-time") {
@@ -186,30 +153,16 @@ inline bool parse_policy_option(ArgCursor& c, ClusterOptions& o) {
   } else if (a == "--max-time-jump") {
     o.max_time_jump = parse_positive(a, c.value());
   } else if (a == "--linkage") {
-    const std::string v = c.choice({"angular", "euclidean", "range-adaptive"});
-    o.linkage = v == "angular" ? LinkageKind::angular
-                : v == "euclidean" ? LinkageKind::euclidean : LinkageKind::range_adaptive;
-  } else if (a == "--theta") {
-    o.theta_deg = parse_positive_float(a, c.value());
-  } else if (a == "--min-ray-angle") {
-    o.min_ray_angle_deg = static_cast<float>(parse_number(a, c.value()));
-  } else if (a == "--distance") {
-    o.distance = parse_positive_float(a, c.value());
-  } else if (a == "--min-distance") {
-    o.min_distance = parse_positive_float(a, c.value());
-  } else if (a == "--range-factor") {
-    o.range_factor = static_cast<float>(parse_number(a, c.value()));
+    o.linkage = ToolRegistry::choose(Slot::linkage, c.value());
+  } else if (a == "--index") {
+    o.index = ToolRegistry::choose(Slot::spatial_index, c.value());
+  } else if (a == "--connectivity") {
+    o.connectivity = ToolRegistry::choose(Slot::connectivity, c.value());
+    o.connectivity_given = true;
+  } else if (ToolRegistry::parse_option(a, [&] { return c.value(); }, o.params)) {
+    // a registered policy's option (--theta, --distance, --cap, ...)
   } else if (a == "--mask") {
     o.mask = static_cast<int>(parse_count(a, c.value()));
-  } else if (a == "--index") {
-    const std::string v = c.choice({"bucket", "capped", "overwrite"});
-    o.index = v == "bucket" ? IndexKind::bucket : v == "capped" ? IndexKind::capped : IndexKind::overwrite;
-  } else if (a == "--connectivity") {
-    o.connectivity =
-        c.choice({"lazy-bfs", "forest"}) == "forest" ? ConnectivityKind::spanning_forest : ConnectivityKind::lazy_bfs;
-    o.connectivity_given = true;
-  } else if (a == "--cap") {
-    o.cap = static_cast<std::uint32_t>(parse_count(a, c.value()));
   } else if (a == "--grid") {
     const std::string v = c.value();
     if (v == "auto") {
@@ -252,7 +205,6 @@ inline void validate_policy_options(const ClusterOptions& o) {
   if (o.mask < 1 || o.mask % 2 == 0 || o.mask > 255) {
     throw UsageError("--mask: expected an odd number of cells from 1 to 255");
   }
-  if (o.cap > 255) throw UsageError("--cap: expected 1 to 255 points per cell");
 }
 
 /// Parses one input option shared by `cluster` and `info` (--format,
@@ -328,8 +280,7 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.window_count = parse_count(a, c.value());
       window_count_set = true;
     } else if (a == "--projection") {
-      o.projection = c.choice({"spherical", "cylindrical"}) == "spherical" ? ProjectionKind::spherical
-                                                                            : ProjectionKind::cylindrical;
+      o.projection = ToolRegistry::choose(Slot::projection, c.value());
     } else if (a == "--mode") {
       o.mode = c.choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
     } else if (a == "--poses") {

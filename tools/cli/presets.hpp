@@ -16,6 +16,8 @@
 #include <streamclust/presets.hpp>
 #include <streamclust/sensors.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -39,12 +41,27 @@ inline std::vector<std::pair<std::string_view, std::string_view>> preset_catalog
   };
 }
 
+/// The --preset lines of the help: every preset of preset_catalogue() with
+/// its summary.
+inline std::string preset_help() {
+  const auto catalogue = preset_catalogue();
+  std::string names, lines;
+  std::size_t width = 0;
+  for (const auto& [name, summary] : catalogue) width = std::max(width, name.size());
+  for (const auto& [name, summary] : catalogue) {
+    names += (names.empty() ? "" : "|") + std::string(name);
+    lines += "        " + std::string(name) + std::string(width + 2 - name.size(), ' ') + std::string(summary) + "\n";
+  }
+  return "  --preset " + names + "   (default " + std::string(catalogue.front().first) + ")\n" + lines;
+}
+
 namespace detail {
 
 /// The options of the library's C-ARC parameters.
 inline void apply_carc_params(const CArcParams& p, ClusterOptions& o) {
-  o.theta_deg = p.theta_deg;
-  o.min_ray_angle_deg = p.min_ray_angle_deg;
+  AngularLinkage::Params& angular = o.params.get<AngularLinkage>();
+  angular.theta_deg = p.theta_deg;
+  angular.min_ray_angle_deg = p.min_ray_angle_deg;
   o.window_seconds = p.window_seconds;
   o.mask = p.mask_size;
   o.max_multiplicity = p.max_multiplicity;
@@ -68,16 +85,16 @@ inline void apply_objects_params(const SphericalProjection::Params& sensor_fov, 
                     std::is_same_v<Objects::ground, HeightMapGround> && std::is_same_v<Objects::motion, PosedMotion>,
                 "ObjectsConfig changed a slot: choose the tool's policies for it here");
   const ClustererParams<ObjectsConfig> p = objects_params(sensor_fov);
-  o.index = IndexKind::capped;
-  o.cap = p.spatial_index.capacity;
-  o.linkage = LinkageKind::range_adaptive;
-  o.min_distance = p.linkage.min_distance;
-  o.range_factor = p.linkage.range_factor;
+  o.index = "capped";
+  o.params.get<CappedGrid>() = p.spatial_index;
+  o.linkage = "range-adaptive";
+  o.params.get<RangeAdaptiveLinkage>() = p.linkage;
   o.window_is_count = false;
   o.window_seconds = p.window.duration;
   o.max_multiplicity = p.resolution.max_multiplicity;
   o.mask = p.mask_size;
-  o.connectivity = ConnectivityKind::spanning_forest;
+  o.connectivity = "forest";
+  o.params.get<SpanningForestConnectivity>() = p.connectivity;
   o.max_time_jump = p.time_order.max_jump;
   o.azimuth_min = sensor_fov.azimuth_min_deg;
   o.azimuth_max = sensor_fov.azimuth_max_deg;
@@ -107,7 +124,7 @@ inline void apply_preset(const std::string& name, ClusterOptions& o) {
     detail::apply_carc_params(baseline_params(), o);
     static_assert(std::is_same_v<config_traits<FrameBaselineConfig>::spatial_index, OverwriteGrid>,
                   "FrameBaselineConfig changed its index: choose the tool's index for it here");
-    o.index = IndexKind::overwrite;
+    o.index = "overwrite";
     o.mode = Mode::frame;
   } else if (name == "objects") {
     detail::apply_objects_params(SphericalProjection::Params{}, o);

@@ -124,7 +124,7 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
              "(give --mount and --sensor-height)\n";
     }
   }
-  if (o.projection == ProjectionKind::spherical) {
+  if (o.projection == "spherical") {
     SphericalProjection::Params sensor_fov;  // the projection's bounds in the sensor frame
     sensor_fov.azimuth_min_deg = o.azimuth_min;
     sensor_fov.azimuth_max_deg = o.azimuth_max;
