@@ -316,7 +316,8 @@ TEST_CASE("sim intensity: an object is not one value, and objects of one materia
     ++rated;
     const float sigma = sim::reflectivity_sigma(noisy.intensity, static_cast<float>(mean_of(values[id])),
                                                 static_cast<float>(mean_of(ranges[id])));
-    CAPTURE(id);
+    const int instance = id;  // a structured binding cannot be captured (C++17)
+    CAPTURE(instance);
     CHECK(sd_of(v) > 1.0);
     above += sd_of(v) > sigma;
   }
