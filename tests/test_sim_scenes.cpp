@@ -640,8 +640,8 @@ TEST_CASE("sim simulator: min and max range are honoured") {
     const float r = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
     CHECK(r <= 5.0f + 1e-4f);
     CHECK(r >= 1.5f - 1e-4f);
-    CHECK(p.intensity >= 38.0f);
-    CHECK(p.intensity <= 217.0f);
+    CHECK(p.intensity >= 0.0f);
+    CHECK(p.intensity <= 150.0f);  // diffuse only: the office has no retroreflector
   }
   CHECK(simulator.stats().out_of_range > 1000);
 }

@@ -10,6 +10,7 @@
 /// answers `std::optional<Hit> cast(const Eigen::Vector3f& origin, const
 /// Eigen::Vector3f& direction, double time) const` in the world frame.
 
+#include <streamclust/sim/materials.hpp>
 #include <streamclust/surface_class.hpp>
 
 #include <Eigen/Core>
@@ -30,6 +31,9 @@ struct Hit {
   float range = 0.0f;  ///< distance along the ray [m]
   int instance = 0;    ///< ground-truth instance id; 0 = structure (ground, walls, ceiling)
   SurfaceClass surface = SurfaceClass::object;  ///< ground-truth class: `object` for instance > 0, else the structure's
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();  ///< unit surface normal at the hit, world frame (either side)
+  Material material = Material::generic;              ///< what the surface hit is made of
+  float reflectance = 0.0f;  ///< the surface's reflectance there (materials.hpp: drawn value x texture), >= 0
 };
 
 /// A simulated point with its ground truth, in the sensor frame at capture time.

@@ -24,6 +24,7 @@
 /// concurrently; building (the `add_*` members) is not.
 
 #include <streamclust/detail/split_mix.hpp>
+#include <streamclust/sim/materials.hpp>
 #include <streamclust/sim/ray.hpp>
 #include <streamclust/sim/shapes.hpp>
 #include <streamclust/sim/terrain.hpp>
@@ -57,13 +58,29 @@ inline SplitMix64 make_rng(std::uint64_t seed, std::uint64_t tag) {
 
 }  // namespace detail
 
+/// Which shape of a ShapeSet a ray hit (ShapeSet::nearest), for
+/// ShapeSet::surface_at.
+struct ShapePick {
+  std::uint8_t kind = 0;    ///< internal: the shape family
+  std::uint32_t index = 0;  ///< internal: the shape within its family
+};
+
+/// The normal and material at a point of a ShapeSet (ShapeSet::surface_at).
+struct SurfacePoint {
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();  ///< unit, the set's frame, either side
+  Material material = Material::generic;
+};
+
 /// A set of shapes hit as one body: `nearest` returns the closest hit over
 /// all of them. Its bounds are kept up to date as shapes are added
-/// (infinite planes make them unbounded).
+/// (infinite planes make them unbounded). Each shape has a material
+/// (materials.hpp; `generic` unless given), and decals (flat rectangles on
+/// a surface: licence plates, a car's roof) give the hits within 1 cm of
+/// them their own material; neither changes where rays hit.
 class ShapeSet {
  public:
-  ShapeSet& add(const Plane& p) {
-    planes_.push_back(p);
+  ShapeSet& add(const Plane& p, Material m = Material::generic) {
+    planes_.push_back(Part<Plane>{p, m});
     if (p.bounded) {
       bounds_.extend(p.bounds());
     } else {
@@ -71,22 +88,31 @@ class ShapeSet {
     }
     return *this;
   }
-  ShapeSet& add(const Box& b) { return push(boxes_, b); }
-  ShapeSet& add(const Cylinder& c) { return push(cylinders_, c); }
-  ShapeSet& add(const Sphere& s) { return push(spheres_, s); }
-  ShapeSet& add(const Ellipsoid& e) { return push(ellipsoids_, e); }
-  ShapeSet& add(const Capsule& c) { return push(capsules_, c); }
-  ShapeSet& add(const Terrain& t) { return push(terrains_, t); }
+  ShapeSet& add(const Box& b, Material m = Material::generic) { return push(boxes_, b, m); }
+  ShapeSet& add(const Cylinder& c, Material m = Material::generic) { return push(cylinders_, c, m); }
+  ShapeSet& add(const Sphere& s, Material m = Material::generic) { return push(spheres_, s, m); }
+  ShapeSet& add(const Ellipsoid& e, Material m = Material::generic) { return push(ellipsoids_, e, m); }
+  ShapeSet& add(const Capsule& c, Material m = Material::generic) { return push(capsules_, c, m); }
+  ShapeSet& add(const Terrain& t, Material m = Material::generic) { return push(terrains_, t, m); }
 
-  /// All shapes of `other`, in their coordinates.
+  /// All shapes and decals of `other`, in their coordinates and materials.
   ShapeSet& add(const ShapeSet& other) {
-    for (const Plane& p : other.planes_) add(p);
-    for (const Box& b : other.boxes_) add(b);
-    for (const Cylinder& c : other.cylinders_) add(c);
-    for (const Sphere& s : other.spheres_) add(s);
-    for (const Ellipsoid& e : other.ellipsoids_) add(e);
-    for (const Capsule& c : other.capsules_) add(c);
-    for (const Terrain& t : other.terrains_) add(t);
+    for (const Part<Plane>& p : other.planes_) add(p.shape, p.material);
+    for (const Part<Box>& b : other.boxes_) add(b.shape, b.material);
+    for (const Part<Cylinder>& c : other.cylinders_) add(c.shape, c.material);
+    for (const Part<Sphere>& s : other.spheres_) add(s.shape, s.material);
+    for (const Part<Ellipsoid>& e : other.ellipsoids_) add(e.shape, e.material);
+    for (const Part<Capsule>& c : other.capsules_) add(c.shape, c.material);
+    for (const Part<Terrain>& t : other.terrains_) add(t.shape, t.material);
+    decals_.insert(decals_.end(), other.decals_.begin(), other.decals_.end());
+    return *this;
+  }
+
+  /// A decal: hits within 1 cm of the rectangle `patch` (Plane::rectangle)
+  /// take `m` instead of their shape's material. Adds no geometry; the last
+  /// decal added wins where decals overlap.
+  ShapeSet& decal(const Plane& patch, Material m) {
+    decals_.push_back(Part<Plane>{patch, m});
     return *this;
   }
 
@@ -100,20 +126,24 @@ class ShapeSet {
   }
   bool empty() const { return size() == 0; }
 
-  /// The nearest hit distance over all shapes if below `best`, else `best`.
-  /// `direction` should be a unit vector. O(size()), a height field
+  /// The nearest hit distance over all shapes if below `best`, else `best`;
+  /// `pick`, when given, is set to the shape hit when the result is below
+  /// `best`. `direction` should be a unit vector. O(size()), a height field
   /// O(its marching steps).
   float nearest(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                float best = std::numeric_limits<float>::infinity()) const {
-    consider(planes_, origin, direction, best);
-    consider(boxes_, origin, direction, best);
-    consider(cylinders_, origin, direction, best);
-    consider(spheres_, origin, direction, best);
-    consider(ellipsoids_, origin, direction, best);
-    consider(capsules_, origin, direction, best);
-    for (const Terrain& t : terrains_) {
-      const std::optional<float> hit = t.intersect(origin, direction, best);
-      if (hit && *hit < best) best = *hit;
+                float best = std::numeric_limits<float>::infinity(), ShapePick* pick = nullptr) const {
+    consider(planes_, 0, origin, direction, best, pick);
+    consider(boxes_, 1, origin, direction, best, pick);
+    consider(cylinders_, 2, origin, direction, best, pick);
+    consider(spheres_, 3, origin, direction, best, pick);
+    consider(ellipsoids_, 4, origin, direction, best, pick);
+    consider(capsules_, 5, origin, direction, best, pick);
+    for (std::size_t i = 0; i < terrains_.size(); ++i) {
+      const std::optional<float> hit = terrains_[i].shape.intersect(origin, direction, best);
+      if (hit && *hit < best) {
+        best = *hit;
+        if (pick) *pick = ShapePick{6, static_cast<std::uint32_t>(i)};
+      }
     }
     return best;
   }
@@ -125,28 +155,72 @@ class ShapeSet {
     return std::nullopt;
   }
 
+  /// Normal and material at `point` (the set's frame) on the shape `pick`
+  /// (from `nearest`). O(1) plus O(decals); a height field O(its terms).
+  SurfacePoint surface_at(const ShapePick& pick, const Eigen::Vector3f& point) const {
+    SurfacePoint out;
+    switch (pick.kind) {
+      case 0: out = at(planes_, pick.index, point); break;
+      case 1: out = at(boxes_, pick.index, point); break;
+      case 2: out = at(cylinders_, pick.index, point); break;
+      case 3: out = at(spheres_, pick.index, point); break;
+      case 4: out = at(ellipsoids_, pick.index, point); break;
+      case 5: out = at(capsules_, pick.index, point); break;
+      default:
+        if (pick.index < terrains_.size()) {
+          out = SurfacePoint{terrains_[pick.index].shape.normal_at(point), terrains_[pick.index].material};
+        }
+        break;
+    }
+    for (const Part<Plane>& d : decals_) {
+      const Plane& r = d.shape;
+      const Eigen::Vector3f q = point - r.center;
+      if (std::abs(q.dot(r.normal)) <= 0.01f && std::abs(q.dot(r.u_axis)) <= r.half_u &&
+          std::abs(q.dot(r.v_axis)) <= r.half_v) {
+        out.material = d.material;
+      }
+    }
+    return out;
+  }
+
  private:
   template <class S>
-  ShapeSet& push(std::vector<S>& v, const S& s) {
-    v.push_back(s);
+  struct Part {
+    S shape;
+    Material material;
+  };
+
+  template <class S>
+  ShapeSet& push(std::vector<Part<S>>& v, const S& s, Material m) {
+    v.push_back(Part<S>{s, m});
     bounds_.extend(s.bounds());
     return *this;
   }
   template <class S>
-  static void consider(const std::vector<S>& v, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float& best) {
-    for (const S& s : v) {
-      const std::optional<float> t = sim::intersect(s, o, d);
-      if (t && *t < best) best = *t;
+  static void consider(const std::vector<Part<S>>& v, std::uint8_t kind, const Eigen::Vector3f& o,
+                       const Eigen::Vector3f& d, float& best, ShapePick* pick) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::optional<float> t = sim::intersect(v[i].shape, o, d);
+      if (t && *t < best) {
+        best = *t;
+        if (pick) *pick = ShapePick{kind, static_cast<std::uint32_t>(i)};
+      }
     }
   }
+  template <class S>
+  static SurfacePoint at(const std::vector<Part<S>>& v, std::uint32_t i, const Eigen::Vector3f& point) {
+    if (i >= v.size()) return SurfacePoint{};
+    return SurfacePoint{normal_at(v[i].shape, point), v[i].material};
+  }
 
-  std::vector<Plane> planes_;
-  std::vector<Box> boxes_;
-  std::vector<Cylinder> cylinders_;
-  std::vector<Sphere> spheres_;
-  std::vector<Ellipsoid> ellipsoids_;
-  std::vector<Capsule> capsules_;
-  std::vector<Terrain> terrains_;
+  std::vector<Part<Plane>> planes_;
+  std::vector<Part<Box>> boxes_;
+  std::vector<Part<Cylinder>> cylinders_;
+  std::vector<Part<Sphere>> spheres_;
+  std::vector<Part<Ellipsoid>> ellipsoids_;
+  std::vector<Part<Capsule>> capsules_;
+  std::vector<Part<Terrain>> terrains_;
+  std::vector<Part<Plane>> decals_;
   Aabb bounds_;
   bool unbounded_ = false;
 };
@@ -300,18 +374,19 @@ class Scene {
           "Scene::add_structure: surface = object is invalid, expected ground, wall or ceiling (objects: add_object)");
     }
     if (shapes.empty()) return;
+    const std::int64_t owner = -(++structure_pieces_);
     if (shapes.unbounded()) {
-      unbounded_.push_back(Body{shapes.bounds(), shapes, 0, surface});
+      unbounded_.push_back(Body{shapes.bounds(), shapes, 0, surface, owner});
     } else {
-      statics_.push_back(Body{shapes.bounds(), shapes, 0, surface});
+      statics_.push_back(Body{shapes.bounds(), shapes, 0, surface, owner});
     }
   }
 
-  /// Adds `terrain` as ground structure and makes it the scene's ground
+  /// Adds `terrain` (of `material`) as ground structure and makes it the scene's ground
   /// height (`ground_height`, which a simulated vehicle follows; the last
   /// terrain added wins).
-  void add_terrain(const Terrain& terrain) {
-    add_structure(ShapeSet().add(terrain), SurfaceClass::ground);
+  void add_terrain(const Terrain& terrain, Material material = Material::generic) {
+    add_structure(ShapeSet().add(terrain, material), SurfaceClass::ground);
     ground_ = terrain;
   }
 
@@ -329,7 +404,7 @@ class Scene {
   int add_object(std::string label, const ShapeSet& shapes) {
     check_object(shapes, "add_object");
     const int id = next_id_++;
-    statics_.push_back(Body{shapes.bounds(), shapes, id, SurfaceClass::object});
+    statics_.push_back(Body{shapes.bounds(), shapes, id, SurfaceClass::object, id});
     infos_.push_back(ObjectInfo{id, std::move(label), false, shapes.bounds()});
     anchors_.push_back(shapes.bounds().center());
     return id;
@@ -363,10 +438,13 @@ class Scene {
 
   /// The first surface along the ray from `origin` in `direction` (world
   /// frame; normalized here if it is not a unit vector) at stream time
-  /// `time` [s]: its distance [m], instance id (0 for structure) and
-  /// surface class, or nothing. Shapes containing the origin are ignored (shapes.hpp).
-  /// O(objects) bound tests plus the shapes of the objects whose bounds the
-  /// ray crosses. Thread-safe.
+  /// `time` [s]: its distance [m], instance id (0 for structure), surface
+  /// class, and at the hit point its normal (world frame), material and
+  /// reflectance (`surface_reflectance` of the owner's material times the
+  /// texture factor; a `generic` structure shape takes its class's default
+  /// material, `default_material`), or nothing. Shapes containing the origin
+  /// are ignored (shapes.hpp). O(objects) bound tests plus the shapes of the
+  /// objects whose bounds the ray crosses. Thread-safe.
   std::optional<Hit> cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, double time) const {
     Eigen::Vector3f d = direction;
     const float n2 = d.squaredNorm();
@@ -377,10 +455,26 @@ class Scene {
     float best = std::numeric_limits<float>::infinity();
     int instance = -1;
     SurfaceClass surface = SurfaceClass::object;
-    for (const Body& b : unbounded_) take(b.shapes.nearest(origin, d, best), b, best, instance, surface);
+    // What was hit, for the surface properties once the nearest hit is known.
+    const Body* hit_body = nullptr;
+    const Mover* hit_mover = nullptr;
+    ShapePick pick, candidate;
+    float hit_c = 1.0f, hit_s = 0.0f;
+    Eigen::Vector3f hit_lo = Eigen::Vector3f::Zero(), hit_ld = Eigen::Vector3f::UnitX();
+    const auto take = [&](float t, const Body& b) {
+      if (t < best) {
+        best = t;
+        instance = b.instance;
+        surface = b.surface;
+        hit_body = &b;
+        hit_mover = nullptr;
+        pick = candidate;
+      }
+    };
+    for (const Body& b : unbounded_) take(b.shapes.nearest(origin, d, best, &candidate), b);
     for (const Body& b : statics_) {
       if (!detail::ray_hits_aabb(b.bounds, origin, inv, best)) continue;
-      take(b.shapes.nearest(origin, d, best), b, best, instance, surface);
+      take(b.shapes.nearest(origin, d, best, &candidate), b);
     }
     for (const Mover& m : movers_) {
       if (!detail::ray_hits_aabb(m.swept, origin, inv, best)) continue;
@@ -398,16 +492,62 @@ class Scene {
       if (dist2 > m.local_radius * m.local_radius || tc + m.local_radius < 0.0f || tc - m.local_radius > best) {
         continue;
       }
-      const float t = m.shapes.nearest(lo, ld, best);
+      const float t = m.shapes.nearest(lo, ld, best, &candidate);
       if (t < best) {
         best = t;
         instance = m.instance;
         surface = SurfaceClass::object;
+        hit_body = nullptr;
+        hit_mover = &m;
+        pick = candidate;
+        hit_c = c;
+        hit_s = s;
+        hit_lo = lo;
+        hit_ld = ld;
       }
     }
     if (instance < 0) return std::nullopt;
-    return Hit{best, instance, surface};
+    Hit hit{best, instance, surface};
+    // Surface properties at the hit, in the frame of the shapes (texture
+    // cells move with a moving object).
+    Eigen::Vector3f point;
+    SurfacePoint sp;
+    std::int64_t owner = instance;
+    if (hit_mover) {
+      point = hit_lo + best * hit_ld;
+      sp = hit_mover->shapes.surface_at(pick, point);
+      const Eigen::Vector3f& n = sp.normal;
+      sp.normal = Eigen::Vector3f(hit_c * n.x() - hit_s * n.y(), hit_s * n.x() + hit_c * n.y(), n.z());
+    } else {
+      point = origin + best * d;
+      sp = hit_body->shapes.surface_at(pick, point);
+      owner = hit_body->owner;
+    }
+    if (sp.material == Material::generic && surface != SurfaceClass::object) sp.material = default_material(surface);
+    hit.normal = sp.normal;
+    hit.material = sp.material;
+    hit.reflectance = surface_reflectance(material_seed_, owner, sp.material) *
+                      texture_factor(material_seed_, owner, sp.material, point);
+    return hit;
   }
+
+  /// The material a structure shape added without one is made of: ground
+  /// concrete, walls painted, ceilings tiles (objects stay `generic`).
+  static Material default_material(SurfaceClass surface) {
+    switch (surface) {
+      case SurfaceClass::ground: return Material::concrete;
+      case SurfaceClass::wall: return Material::painted_wall;
+      case SurfaceClass::ceiling: return Material::ceiling_tile;
+      case SurfaceClass::object: break;
+    }
+    return Material::generic;
+  }
+
+  /// The seed of every surface's reflectance draw and texture
+  /// (materials.hpp; 0 unless set; the ready-made scenes use their seed).
+  /// Changes no geometry.
+  void set_material_seed(std::uint64_t seed) { material_seed_ = seed; }
+  std::uint64_t material_seed() const { return material_seed_; }
 
   /// The objects, in order of instance id (1, 2, ...). Structure is not listed.
   const std::vector<ObjectInfo>& objects() const { return infos_; }
@@ -437,6 +577,7 @@ class Scene {
     ShapeSet shapes;
     int instance = 0;
     SurfaceClass surface = SurfaceClass::object;
+    std::int64_t owner = 0;  // the surfaces' owner for materials: the instance, or -(n-th piece of structure)
   };
   struct Mover {
     ShapeSet shapes;  // local frame
@@ -447,14 +588,6 @@ class Scene {
     float local_radius = 0.0f;
     int instance = 0;
   };
-
-  static void take(float t, const Body& b, float& best, int& instance, SurfaceClass& surface) {
-    if (t < best) {
-      best = t;
-      instance = b.instance;
-      surface = b.surface;
-    }
-  }
 
   static void check_object(const ShapeSet& shapes, const char* where) {
     if (shapes.empty() || shapes.unbounded()) {
@@ -472,6 +605,8 @@ class Scene {
   std::vector<Eigen::Vector3f> anchors_;
   std::optional<Terrain> ground_;
   int next_id_ = 1;
+  std::int64_t structure_pieces_ = 0;
+  std::uint64_t material_seed_ = 0;
 };
 
 }  // namespace streamclust::sim

@@ -80,28 +80,46 @@ inline Eigen::Vector3f place(const Eigen::Vector3f& center, float yaw, float x, 
 }
 
 /// A car of length l, width w, height h standing on z = 0 at `base`
-/// (footprint center), facing `yaw`: lower body, cabin and four wheels.
+/// (footprint center), facing `yaw`: lower body (car paint), cabin (glass,
+/// with a painted roof decal), four wheels (rubber) and a licence plate
+/// front and back (retroreflective decals, 0.52 x 0.12 m, centred 0.5 m up).
 inline ShapeSet car_shapes(const Eigen::Vector3f& base, float yaw, float l, float w, float h) {
   ShapeSet s;
   const float body_low = 0.3f;
   const float body_high = 0.55f * h + 0.1f;
   s.add(Box::rotated(place(base, yaw, 0.0f, 0.0f, 0.5f * (body_low + body_high)),
-                     Eigen::Vector3f(0.5f * l, 0.5f * w, 0.5f * (body_high - body_low)), yaw));
+                     Eigen::Vector3f(0.5f * l, 0.5f * w, 0.5f * (body_high - body_low)), yaw),
+        Material::car_paint);
   const float cabin_l = 0.55f * l;
   s.add(Box::rotated(place(base, yaw, -0.05f * l, 0.0f, 0.5f * (body_high + h)),
-                     Eigen::Vector3f(0.5f * cabin_l, 0.45f * w, 0.5f * (h - body_high)), yaw));
+                     Eigen::Vector3f(0.5f * cabin_l, 0.45f * w, 0.5f * (h - body_high)), yaw),
+        Material::glass);
   for (float fx : {-0.32f, 0.32f})
     for (float fy : {-1.0f, 1.0f}) {
       s.add(Box::rotated(place(base, yaw, fx * l, fy * (0.5f * w - 0.12f), 0.32f), Eigen::Vector3f(0.32f, 0.11f, 0.32f),
-                         yaw));
+                         yaw),
+            Material::rubber);
     }
+  const Eigen::Vector3f forward(std::cos(yaw), std::sin(yaw), 0.0f);
+  const Eigen::Vector3f left(-std::sin(yaw), std::cos(yaw), 0.0f);
+  s.decal(Plane::rectangle(place(base, yaw, -0.05f * l, 0.0f, h), forward, left, 0.5f * cabin_l, 0.45f * w),
+          Material::car_paint);
+  for (float fx : {-0.5f, 0.5f}) {
+    s.decal(Plane::rectangle(place(base, yaw, fx * l, 0.0f, 0.5f), left, Eigen::Vector3f::UnitZ(), 0.26f, 0.06f),
+            Material::retroreflector);
+  }
   return s;
 }
 
-/// A standing person (capsule, feet at `base`).
+/// A standing person (capsule of clothing fabric, feet at `base`).
 inline ShapeSet person_shapes(const Eigen::Vector3f& base, float height = 1.7f, float radius = 0.3f) {
-  return ShapeSet().add(Capsule::standing(base.x(), base.y(), base.z(), height, radius));
+  return ShapeSet().add(Capsule::standing(base.x(), base.y(), base.z(), height, radius), Material::fabric);
 }
+
+/// The stream a scene draws its material choices from (which material a
+/// cabinet or a facade is made of): its own, so that geometry never depends
+/// on it.
+inline SplitMix64 material_rng(std::uint64_t seed) { return make_rng(seed, 0x3A7E21A1); }
 
 /// A uniform point of [x_lo, x_hi) x [y_lo, y_hi). Draws are sequenced (x
 /// first): never put two draws in one argument list, whose evaluation order

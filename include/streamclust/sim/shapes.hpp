@@ -381,4 +381,55 @@ inline std::optional<float> intersect(const Capsule& c, const Eigen::Vector3f& o
   return detail::entry(detail::interval(c, origin, direction));
 }
 
+/// Unit surface normals at a point on (or within float rounding of) a
+/// primitive's surface, for the simulator's incidence angle: `normal_at(shape,
+/// point)`. The side is unspecified (the simulator uses |n . d|). A box
+/// takes the face the point is closest to in units of its half extents, a
+/// cylinder its side or the nearer cap, a capsule the direction from its
+/// axis segment. O(1), pure.
+inline Eigen::Vector3f normal_at(const Plane& p, const Eigen::Vector3f& /*point*/) { return p.normal; }
+
+inline Eigen::Vector3f normal_at(const Box& b, const Eigen::Vector3f& point) {
+  const Eigen::Vector3f r = point - b.center;
+  const Eigen::Vector3f q(b.cos_yaw * r.x() + b.sin_yaw * r.y(), -b.sin_yaw * r.x() + b.cos_yaw * r.y(), r.z());
+  int axis = 0;
+  float best = -1.0f;
+  for (int k = 0; k < 3; ++k) {
+    const float f = b.half[k] > 0.0f ? std::abs(q[k]) / b.half[k] : std::numeric_limits<float>::infinity();
+    if (f > best) {
+      best = f;
+      axis = k;
+    }
+  }
+  if (axis == 2) return Eigen::Vector3f::UnitZ();
+  const float nx = axis == 0 ? 1.0f : 0.0f;
+  const float ny = axis == 1 ? 1.0f : 0.0f;
+  return Eigen::Vector3f(b.cos_yaw * nx - b.sin_yaw * ny, b.sin_yaw * nx + b.cos_yaw * ny, 0.0f);
+}
+
+inline Eigen::Vector3f normal_at(const Cylinder& c, const Eigen::Vector3f& point) {
+  const Eigen::Vector2f radial(point.x() - c.x, point.y() - c.y);
+  const float side = std::abs(radial.norm() - c.radius);
+  const float cap = std::min(std::abs(point.z() - c.z_min), std::abs(point.z() - c.z_max));
+  if (cap < side || !(radial.squaredNorm() > 0.0f)) return Eigen::Vector3f::UnitZ();
+  const Eigen::Vector2f n = radial.normalized();
+  return Eigen::Vector3f(n.x(), n.y(), 0.0f);
+}
+
+inline Eigen::Vector3f normal_at(const Sphere& s, const Eigen::Vector3f& point) {
+  const Eigen::Vector3f r = point - s.center;
+  return r.squaredNorm() > 0.0f ? Eigen::Vector3f(r.normalized()) : Eigen::Vector3f::UnitZ();
+}
+
+inline Eigen::Vector3f normal_at(const Ellipsoid& e, const Eigen::Vector3f& point) {
+  const Eigen::Vector3f g = (point - e.center).cwiseQuotient(e.radii.cwiseProduct(e.radii));  // gradient / 2
+  return g.squaredNorm() > 0.0f ? Eigen::Vector3f(g.normalized()) : Eigen::Vector3f::UnitZ();
+}
+
+inline Eigen::Vector3f normal_at(const Capsule& c, const Eigen::Vector3f& point) {
+  const Eigen::Vector3f axis_point(c.x, c.y, std::clamp(point.z(), c.z_low, c.z_high));
+  const Eigen::Vector3f r = point - axis_point;
+  return r.squaredNorm() > 0.0f ? Eigen::Vector3f(r.normalized()) : Eigen::Vector3f::UnitZ();
+}
+
 }  // namespace streamclust::sim

@@ -37,6 +37,7 @@
 
 #include <streamclust/motion/pose.hpp>
 #include <streamclust/detail/parameter_check.hpp>
+#include <streamclust/sim/intensity.hpp>
 #include <streamclust/sim/ray.hpp>
 #include <streamclust/sim/scene.hpp>
 
@@ -67,14 +68,6 @@ struct is_sim_sensor<S, std::void_t<decltype(std::declval<S&>().next()), decltyp
 
 inline void require_param(bool ok, const char* name, double value, const char* allowed) {
   streamclust::detail::require_parameter(ok, "Simulator::Params", name, value, allowed);
-}
-
-/// Reflectivity in [0.15, 0.85) hashed from the instance id; 0.35 for structure.
-inline float reflectivity(int instance) {
-  if (instance <= 0) return 0.35f;
-  std::uint64_t h = static_cast<std::uint64_t>(instance) * 0x9E3779B97F4A7C15ull;
-  h ^= h >> 29;
-  return 0.15f + 0.7f * static_cast<float>(h % 1000u) / 1000.0f;
 }
 
 }  // namespace detail
@@ -116,13 +109,17 @@ inline constexpr bool is_sim_sensor_v = detail::is_sim_sensor<S>::value;
 /// 5. The point is `direction * measured range` in the SENSOR frame at
 ///    capture time, stamped `ray.time`, with the hit's instance id, its
 ///    surface class (`object`, or the structure's: ground, wall, ceiling) and an
-///    intensity `255 * reflectivity(instance)` (a fixed per-object value in
-///    [38, 217], 89 for structure, like the calibrated reflectivity a Livox
-///    reports: no range fall-off).
+///    intensity: the reflectivity a Livox reports (intensity.hpp) for the
+///    hit's reflectance (its material, drawn per object and surface, times
+///    the texture: materials.hpp), the incidence angle between the ray and
+///    the surface normal and the true range, with measurement noise from a
+///    stream of its own.
 ///
 /// Deterministic: the same sensor, scene, and params (seed included) give a
 /// bit-identical stream (the generator is SplitMix64 with its own
-/// distributions, independent of the standard library).
+/// distributions, independent of the standard library). Positions, times
+/// and ground truth do not depend on `intensity` (the intensity noise has
+/// its own random stream).
 template <class Sensor>
 class Simulator {
   static_assert(is_sim_sensor_v<Sensor>,
@@ -149,6 +146,8 @@ class Simulator {
     Pose mount;
     /// With a scene that has a terrain: the vehicle's height follows it.
     bool follow_terrain = true;
+    /// The reported reflectivity's range fall-off and noise (intensity.hpp).
+    IntensityModel intensity;
   };
 
   /// What happened to the firings so far.
@@ -167,7 +166,11 @@ class Simulator {
   /// parameter, its value and the allowed range). Takes the first ray from
   /// the sensor (so that time() can report it).
   Simulator(Sensor sensor, Scene scene, const Params& params)
-      : sensor_(std::move(sensor)), scene_(std::move(scene)), params_(params), rng_(detail::make_rng(params.seed, 0x5115)) {
+      : sensor_(std::move(sensor)),
+        scene_(std::move(scene)),
+        params_(params),
+        rng_(detail::make_rng(params.seed, 0x5115)),
+        intensity_rng_(detail::make_rng(params.seed, 0x1A7E)) {
     validate(params_);
     build_knots();
     const Eigen::Quaterniond& q = params_.mount.rotation;
@@ -275,6 +278,7 @@ class Simulator {
                           "a unit quaternion (mount_from_roll_pitch_yaw_deg)");
     detail::require_param(p.mount.translation.allFinite(), "mount translation (a component)",
                           p.mount.translation.sum(), "finite components [m]");
+    p.intensity.validate();
     double previous = 0.0;
     for (const MotionSegment& m : p.motion_profile) {
       detail::require_param(std::isfinite(m.start) && m.start >= previous, "motion_profile start", m.start,
@@ -368,13 +372,17 @@ class Simulator {
       return std::nullopt;
     }
     const Eigen::Vector3f p = range * d;
-    return SimPoint{p.x(), p.y(), p.z(), 255.0f * detail::reflectivity(hit->instance), t, hit->instance, hit->surface};
+    const float intensity = reported_reflectivity(params_.intensity, hit->reflectance,
+                                                  material_properties(hit->material).retroreflective,
+                                                  hit->normal.dot(world), hit->range, intensity_rng_.normal());
+    return SimPoint{p.x(), p.y(), p.z(), intensity, t, hit->instance, hit->surface};
   }
 
   Sensor sensor_;
   Scene scene_;
   Params params_;
-  detail::SplitMix64 rng_;
+  detail::SplitMix64 rng_;            // range noise and dropout
+  detail::SplitMix64 intensity_rng_;  // intensity noise: its own stream, so geometry never depends on it
   Ray pending_;
   Stats stats_;
   std::vector<Knot> knots_;

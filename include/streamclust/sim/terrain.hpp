@@ -150,6 +150,31 @@ class Terrain {
   /// exists over the rectangle). O(waves + ramps + steps).
   float height(float x, float y) const { return smooth_height(x, y) + step_height(x, y); }
 
+  /// Unit normal at a surface point (a hit): on a step's vertical face (the
+  /// point more than 1 cm off the height field) the step's direction, else
+  /// the smooth part's normal (central differences over +-2 cm). The side is
+  /// unspecified. O(waves + ramps + steps).
+  Eigen::Vector3f normal_at(const Eigen::Vector3f& point) const {
+    const float x = point.x(), y = point.y();
+    if (std::abs(point.z() - height(x, y)) > 0.01f && !p_.steps.empty()) {
+      const TerrainStep* nearest = &p_.steps.front();
+      float gap = std::numeric_limits<float>::infinity();
+      for (const TerrainStep& s : p_.steps) {
+        const float u = s.direction.dot(Eigen::Vector2f(x, y));
+        const float d = std::min(std::abs(u - s.from), std::isfinite(s.to) ? std::abs(u - s.to) : gap);
+        if (d < gap) {
+          gap = d;
+          nearest = &s;
+        }
+      }
+      return Eigen::Vector3f(nearest->direction.x(), nearest->direction.y(), 0.0f);
+    }
+    constexpr float kDelta = 0.02f;
+    const float gx = (smooth_height(x + kDelta, y) - smooth_height(x - kDelta, y)) / (2.0f * kDelta);
+    const float gy = (smooth_height(x, y + kDelta) - smooth_height(x, y - kDelta)) / (2.0f * kDelta);
+    return Eigen::Vector3f(-gx, -gy, 1.0f).normalized();
+  }
+
   /// True when (x, y) is over the rectangle.
   bool contains(float x, float y) const { return x >= p_.lo.x() && x <= p_.hi.x() && y >= p_.lo.y() && y <= p_.hi.y(); }
 

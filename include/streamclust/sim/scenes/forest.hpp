@@ -71,7 +71,8 @@ inline Scene forest_scene(std::uint64_t seed) {
   detail::require_count(static_cast<int>(vehicles.size()), 2, "vehicle");
 
   Scene scene;
-  scene.add_structure(ShapeSet().add(Plane::infinite({-sx, -sy, 1.0f}, {0, 0, 0})), SurfaceClass::ground);
+  scene.set_material_seed(seed);
+  scene.add_structure(ShapeSet().add(Plane::infinite({-sx, -sy, 1.0f}, {0, 0, 0}), Material::soil), SurfaceClass::ground);
 
   const int n_trees = rng.uniform_int(30, 60);
   int placed = 0;
@@ -85,8 +86,8 @@ inline Scene forest_scene(std::uint64_t seed) {
     const float crown_v = std::min(rng.uniform(1.5f, 3.0f), (height - 3.0f) / 1.5f);
     const float crown_h = rng.uniform(1.0f, 2.5f);
     ShapeSet tree;
-    tree.add(Cylinder{c.x(), c.y(), r, z0 - 0.1f, z0 + height});
-    tree.add(Ellipsoid{{c.x(), c.y(), z0 + height - 0.5f * crown_v}, {crown_h, crown_h, crown_v}});
+    tree.add(Cylinder{c.x(), c.y(), r, z0 - 0.1f, z0 + height}, Material::bark);
+    tree.add(Ellipsoid{{c.x(), c.y(), z0 + height - 0.5f * crown_v}, {crown_h, crown_h, crown_v}}, Material::foliage);
     scene.add_object("tree", tree);
     ++placed;
   }
@@ -105,10 +106,11 @@ inline Scene forest_scene(std::uint64_t seed) {
     layout.occupy_disc(c, reach);
     ShapeSet bush;
     const Eigen::Vector2f p0 = c - offset;
-    bush.add(Ellipsoid{{p0.x(), p0.y(), ground(p0.x(), p0.y()) + 0.6f * rv}, {rh, 0.8f * rh, rv}});
+    bush.add(Ellipsoid{{p0.x(), p0.y(), ground(p0.x(), p0.y()) + 0.6f * rv}, {rh, 0.8f * rh, rv}}, Material::foliage);
     if (twin) {
       const Eigen::Vector2f p1 = c + offset;
-      bush.add(Ellipsoid{{p1.x(), p1.y(), ground(p1.x(), p1.y()) + 0.5f * rv}, {0.8f * rh, rh, 0.8f * rv}});
+      bush.add(Ellipsoid{{p1.x(), p1.y(), ground(p1.x(), p1.y()) + 0.5f * rv}, {0.8f * rh, rh, 0.8f * rv}},
+               Material::foliage);
     }
     scene.add_object("bush", bush);
     ++placed;

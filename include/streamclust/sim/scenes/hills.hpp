@@ -166,7 +166,8 @@ inline Scene hills_scene(std::uint64_t seed) {
   detail::require_count(static_cast<int>(walks.size()), n_walkers, "walking person");
 
   Scene scene;
-  scene.add_terrain(terrain);
+  scene.set_material_seed(seed);
+  scene.add_terrain(terrain, Material::grass);
 
   // Static objects: place(r, off_ramps, gap) finds a footprint center.
   const auto place = [&](float r, bool off_ramps, float gap, Eigen::Vector2f& c) {
@@ -204,8 +205,8 @@ inline Scene hills_scene(std::uint64_t seed) {
     if (!place(r, false, 1.2f, c)) detail::require_count(i, n_trees, "tree");
     const float z0 = detail::footprint_base(terrain, c, r);
     ShapeSet tree;
-    tree.add(Cylinder{c.x(), c.y(), r, z0, z0 + height});
-    tree.add(Ellipsoid{{c.x(), c.y(), z0 + height - 0.5f * crown_v}, {crown_h, crown_h, crown_v}});
+    tree.add(Cylinder{c.x(), c.y(), r, z0, z0 + height}, Material::bark);
+    tree.add(Ellipsoid{{c.x(), c.y(), z0 + height - 0.5f * crown_v}, {crown_h, crown_h, crown_v}}, Material::foliage);
     scene.add_object("tree", tree);
   }
   for (const Parked& p : cars) scene.add_object("car", detail::car_shapes(p.base, p.yaw, p.l, p.w, p.h));
@@ -218,7 +219,8 @@ inline Scene hills_scene(std::uint64_t seed) {
     const float r = 0.5f * std::hypot(sx, sy);
     if (!place(r, true, 0.4f, c)) detail::require_count(i, n_boxes, "box");
     const float z0 = detail::footprint_base(terrain, c, r);
-    scene.add_object("box", ShapeSet().add(Box::rotated({c.x(), c.y(), z0 + 0.5f * sz}, {0.5f * sx, 0.5f * sy, 0.5f * sz}, yaw)));
+    scene.add_object("box", ShapeSet().add(Box::rotated({c.x(), c.y(), z0 + 0.5f * sz}, {0.5f * sx, 0.5f * sy, 0.5f * sz}, yaw),
+                                           Material::wood));
   }
   const int n_poles = rng.uniform_int(4, 8);
   for (int i = 0; i < n_poles; ++i) {
@@ -226,7 +228,7 @@ inline Scene hills_scene(std::uint64_t seed) {
     const float height = rng.uniform(2.5f, 6.0f);
     if (!place(r, false, 0.5f, c)) detail::require_count(i, n_poles, "pole");
     const float z0 = detail::footprint_base(terrain, c, r);
-    scene.add_object("pole", ShapeSet().add(Cylinder{c.x(), c.y(), r, z0, z0 + height}));
+    scene.add_object("pole", ShapeSet().add(Cylinder{c.x(), c.y(), r, z0, z0 + height}, Material::metal));
   }
   const int n_standing = rng.uniform_int(3, 6);
   for (int i = 0; i < n_standing; ++i) {

@@ -77,13 +77,16 @@ inline Scene office_scene(std::uint64_t seed) {
   detail::require_count(static_cast<int>(walkers.size()), n_people, "person");
 
   Scene scene;
-  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, 0})), SurfaceClass::ground);
-  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, kHeight})), SurfaceClass::ceiling);
+  scene.set_material_seed(seed);
+  detail::SplitMix64 looks = detail::material_rng(seed);
+  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, 0}), Material::floor), SurfaceClass::ground);
+  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, kHeight}), Material::ceiling_tile),
+                      SurfaceClass::ceiling);
   scene.add_structure(ShapeSet()
-                          .add(Plane::infinite({1, 0, 0}, {-kHalfX, 0, 0}))
-                          .add(Plane::infinite({1, 0, 0}, {kHalfX, 0, 0}))
-                          .add(Plane::infinite({0, 1, 0}, {0, -kHalfY, 0}))
-                          .add(Plane::infinite({0, 1, 0}, {0, kHalfY, 0})),
+                          .add(Plane::infinite({1, 0, 0}, {-kHalfX, 0, 0}), Material::painted_wall)
+                          .add(Plane::infinite({1, 0, 0}, {kHalfX, 0, 0}), Material::painted_wall)
+                          .add(Plane::infinite({0, 1, 0}, {0, -kHalfY, 0}), Material::painted_wall)
+                          .add(Plane::infinite({0, 1, 0}, {0, kHalfY, 0}), Material::painted_wall),
                       SurfaceClass::wall);
 
   // Pillars.
@@ -94,7 +97,7 @@ inline Scene office_scene(std::uint64_t seed) {
     const Eigen::Vector2f c = detail::uniform2(rng, -kHalfX + 1.5f, kHalfX - 1.5f, -kHalfY + 1.5f, kHalfY - 1.5f);
     if (!layout.free_disc(c, r, 0.6f)) continue;
     layout.occupy_disc(c, r);
-    scene.add_object("pillar", ShapeSet().add(Cylinder{c.x(), c.y(), r, 0.0f, kHeight}));
+    scene.add_object("pillar", ShapeSet().add(Cylinder{c.x(), c.y(), r, 0.0f, kHeight}, Material::painted_wall));
     ++placed;
   }
   detail::require_count(placed, n_pillars, "pillar");
@@ -113,10 +116,12 @@ inline Scene office_scene(std::uint64_t seed) {
     layout.occupy_disc(c, r);
     const Eigen::Vector3f base(c.x(), c.y(), 0.0f);
     ShapeSet desk;
-    desk.add(Box::rotated(detail::place(base, yaw, 0, 0, 0.735f), {0.5f * l, 0.5f * w, 0.015f}, yaw));
+    desk.add(Box::rotated(detail::place(base, yaw, 0, 0, 0.735f), {0.5f * l, 0.5f * w, 0.015f}, yaw), Material::wood);
+    const Material panels = looks.below(2) == 0 ? Material::wood : Material::metal;
     for (float side : {-1.0f, 1.0f})
       desk.add(Box::rotated(detail::place(base, yaw, side * (0.5f * l - 0.03f), 0, 0.36f), {0.015f, 0.5f * w - 0.02f, 0.36f},
-                            yaw));
+                            yaw),
+               panels);
     scene.add_object("desk", desk);
     ++placed;
   }
@@ -143,8 +148,10 @@ inline Scene office_scene(std::uint64_t seed) {
     const float r = half.norm();
     if (!layout.free_disc(c, r, 0.3f)) continue;
     layout.occupy_disc(c, r);
+    const Material body = looks.below(2) == 0 ? Material::wood : Material::metal;
     scene.add_object("cabinet", ShapeSet().add(Box::aligned({c.x() - half.x(), c.y() - half.y(), 0.0f},
-                                                            {c.x() + half.x(), c.y() + half.y(), height})));
+                                                            {c.x() + half.x(), c.y() + half.y(), height}),
+                                               body));
     ++placed;
   }
   detail::require_count(placed, n_cabinets, "cabinet");

@@ -39,13 +39,17 @@ inline Scene street_scene(std::uint64_t seed) {
   constexpr float kLength = 150.0f;
 
   Scene scene;
-  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, 0})), SurfaceClass::ground);  // road
+  scene.set_material_seed(seed);
+  detail::SplitMix64 looks = detail::material_rng(seed);
+  constexpr Material kFacades[] = {Material::concrete, Material::brick, Material::painted_wall, Material::glass};
+  scene.add_structure(ShapeSet().add(Plane::infinite({0, 0, 1}, {0, 0, 0}), Material::asphalt), SurfaceClass::ground);  // road
   for (float side : {-1.0f, 1.0f}) {
     const float y0 = side * kRoad;
     const float y1 = side * kFacade;
     // Sidewalk: its top and its kerb face are ground.
     scene.add_structure(
-        ShapeSet().add(Box::aligned({-kLength, std::min(y0, y1), -0.05f}, {kLength, std::max(y0, y1), kCurb})),
+        ShapeSet().add(Box::aligned({-kLength, std::min(y0, y1), -0.05f}, {kLength, std::max(y0, y1), kCurb}),
+                       Material::concrete),
         SurfaceClass::ground);
     // Buildings.
     float x = -kLength;
@@ -56,8 +60,10 @@ inline Scene street_scene(std::uint64_t seed) {
       const float x1 = std::min(x + width, kLength);
       const float ya = side * (kFacade + setback);
       const float yb = side * (kFacade + setback + 10.0f);
-      scene.add_structure(ShapeSet().add(Box::aligned({x, std::min(ya, yb), 0.0f}, {x1, std::max(ya, yb), height})),
-                          SurfaceClass::wall);
+      const Material facade = kFacades[looks.below(4)];
+      scene.add_structure(
+          ShapeSet().add(Box::aligned({x, std::min(ya, yb), 0.0f}, {x1, std::max(ya, yb), height}), facade),
+          SurfaceClass::wall);
       x = x1 + (rng.uniform_int(0, 3) == 0 ? rng.uniform(2.0f, 5.0f) : 0.0f);
     }
   }
@@ -86,9 +92,11 @@ inline Scene street_scene(std::uint64_t seed) {
       const float h = rng.uniform(6.0f, 8.0f);
       const float y = side * 7.4f;
       ShapeSet pole;
-      pole.add(Cylinder{x, y, r, 0.0f, h});
-      pole.add(Box::aligned({x - 0.06f, std::min(y, y - side * 1.4f), h - 0.12f}, {x + 0.06f, std::max(y, y - side * 1.4f), h}));
-      pole.add(Box::aligned({x - 0.25f, side * 5.9f - 0.15f, h - 0.25f}, {x + 0.25f, side * 5.9f + 0.15f, h - 0.1f}));
+      pole.add(Cylinder{x, y, r, 0.0f, h}, Material::metal);
+      pole.add(Box::aligned({x - 0.06f, std::min(y, y - side * 1.4f), h - 0.12f}, {x + 0.06f, std::max(y, y - side * 1.4f), h}),
+               Material::metal);
+      pole.add(Box::aligned({x - 0.25f, side * 5.9f - 0.15f, h - 0.25f}, {x + 0.25f, side * 5.9f + 0.15f, h - 0.1f}),
+               Material::glass);
       scene.add_object("pole", pole);
     }
   }
@@ -101,8 +109,8 @@ inline Scene street_scene(std::uint64_t seed) {
       const float rh = rng.uniform(0.8f, 1.1f);
       const float rv = rng.uniform(1.0f, 1.5f);
       ShapeSet tree;
-      tree.add(Cylinder{x, y, rng.uniform(0.12f, 0.25f), 0.0f, h});
-      tree.add(Ellipsoid{{x, y, h}, {rh, rh, rv}});
+      tree.add(Cylinder{x, y, rng.uniform(0.12f, 0.25f), 0.0f, h}, Material::bark);
+      tree.add(Ellipsoid{{x, y, h}, {rh, rh, rv}}, Material::foliage);
       scene.add_object("tree", tree);
     }
   }
@@ -131,8 +139,8 @@ inline Scene street_scene(std::uint64_t seed) {
     const float phase0 = rng.uniform(0.0f, loop_len);
     for (int i = 0; i < 2; ++i) {
       ShapeSet bike;
-      bike.add(Box::aligned({-0.85f, -0.08f, 0.0f}, {0.85f, 0.08f, 1.0f}));
-      bike.add(Capsule{0.0f, 0.0f, 0.22f, 1.05f, 1.55f});
+      bike.add(Box::aligned({-0.85f, -0.08f, 0.0f}, {0.85f, 0.08f, 1.0f}), Material::metal);
+      bike.add(Capsule{0.0f, 0.0f, 0.22f, 1.05f, 1.55f}, Material::fabric);
       scene.add_moving_object(
           "cyclist", bike,
           Trajectory::loop({{-loop_x, 3.8f, 0.0f}, {loop_x, 3.8f, 0.0f}, {loop_x, -3.8f, 0.0f}, {-loop_x, -3.8f, 0.0f}}, 5.0f,
