@@ -2,7 +2,7 @@
 # streamclust_add_tool: the `streamclust` command-line tool (cluster,
 # evaluate, evaluate --objects, info, simulate) built with a researcher's
 # own policies beside the stock ones, each selectable by its registered name
-# and its options parsed (docs/extending.md):
+# and its options parsed (docs/cli.md, "Your own policies in the tool"):
 #
 #   find_package(streamclust REQUIRED COMPONENTS io sim eval)
 #   streamclust_add_tool(my_streamclust
@@ -41,6 +41,12 @@ function(streamclust_add_tool target)
   if(NOT ARG_LIBRARY)
     set(ARG_LIBRARY ${target}_lib)
   endif()
+  foreach(_part IN ITEMS io sim eval)
+    if(NOT TARGET streamclust::${_part})
+      message(FATAL_ERROR "streamclust_add_tool(${target}): the tool reads recordings, simulates and evaluates; "
+                          "find the package with find_package(streamclust REQUIRED COMPONENTS io sim eval)")
+    endif()
+  endforeach()
   find_package(nlohmann_json 3 REQUIRED)
   set(_dir "${CMAKE_CURRENT_BINARY_DIR}/${target}_generated")
   set(_src "${STREAMCLUST_TOOL_SOURCE_DIR}")
