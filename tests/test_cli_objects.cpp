@@ -179,11 +179,12 @@ TEST_CASE("cluster --preset objects*: with a mount and a height, the labels of t
     const CycleLabels library = library_labels(input, sc::objects_params(c.sensor_fov, setup));
     REQUIRE(library.size() >= 5);
     std::size_t ground = 0;
-    for (const auto& [cycle, rows] : library) {
+    for (const auto& entry : library) {  // not a structured binding: CAPTURE takes it into a lambda
+      const auto cycle = entry.first;
       CAPTURE(cycle);
       REQUIRE(tool.count(cycle) == 1);
-      CHECK(tool.at(cycle) == rows);
-      for (const auto& row : rows) ground += row.second == -2 ? 1 : 0;
+      CHECK(tool.at(cycle) == entry.second);
+      for (const auto& row : entry.second) ground += row.second == -2 ? 1 : 0;
     }
     CHECK(ground > 1000);  // the structure removal ran
   }
