@@ -101,6 +101,87 @@ template <class P, class L, class... Ls>
 struct combinator_links_many<P, L, Ls...> : std::bool_constant<!std::is_void_v<P> && has_linkage_link_many_v<L>> {};
 }  // namespace detail
 
+namespace detail {
+/// The body of AllOf (kAll true: a pair is linked when every child links it)
+/// and AnyOf (kAll false: when any child does): the children, built from
+/// their Params tuple, asked left to right with a short circuit, on Samples
+/// or on their parts of the combined payload.
+template <bool kAll, class... Ls>
+class Junction : public CombinatorPayload<CombinedPayload<Ls...>>,
+                 public CombinatorLinkMany<Junction<kAll, Ls...>, typename CombinedPayload<Ls...>::type,
+                                           combinator_links_many<typename CombinedPayload<Ls...>::type, Ls...>::value> {
+  using combined = CombinedPayload<Ls...>;
+  using payload_type = typename combined::type;  // void: none
+  template <class, class, bool>
+  friend struct CombinatorLinkMany;
+  /// link_many: the other children decide where the first linked (AllOf),
+  /// or where it did not (AnyOf).
+  static constexpr bool kRestWhenFirstLinks = kAll;
+  static_assert((check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
+
+ public:
+  using Params = std::tuple<typename Ls::Params...>;
+
+  explicit Junction(const Params& params) : Junction(params, std::index_sequence_for<Ls...>{}) {}
+
+  /// The children's verdict on a and b. Short-circuits.
+  bool operator()(const Sample& a, const Sample& b) const {
+    if constexpr (!std::is_void_v<payload_type>) {
+      return (*this)(this->make_payload(a), this->make_payload(b));
+    } else {
+      return std::apply([&](const auto&... l) { return join([&] { return static_cast<bool>(l(a, b)); }...); },
+                        children_);
+    }
+  }
+
+  /// The children's verdict on the two payloads (each its part).
+  /// Short-circuits. Only with a payload.
+  template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
+  bool operator()(const P& a, const P& b) const {
+    return on_payloads(a, b, std::index_sequence_for<Ls...>{});
+  }
+
+  /// The I-th child linkage.
+  template <std::size_t I>
+  const auto& child() const {
+    return std::get<I>(children_);
+  }
+
+ private:
+  template <std::size_t... I>
+  Junction(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
+
+  /// The fold of the junction: all (kAll) or any of the verdicts, each
+  /// computed only when the ones before did not decide.
+  template <class... Verdicts>
+  static bool join(Verdicts&&... v) {
+    if constexpr (kAll) {
+      return (true && ... && v());
+    } else {
+      return (false || ... || v());
+    }
+  }
+
+  /// Children `Offset + I...` on their parts of the two payloads, left to
+  /// right, short-circuit.
+  template <std::size_t Offset = 0, class P, std::size_t... I>
+  bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
+    return join([&] {
+      using Child = std::tuple_element_t<Offset + I, std::tuple<Ls...>>;
+      return static_cast<bool>(
+          std::get<Offset + I>(children_)(combined::template part_of<Child>(a), combined::template part_of<Child>(b)));
+    }...);
+  }
+  /// Every child but the first on the two payloads (for link_many).
+  template <class P>
+  bool rest_decides(const P& a, const P& b) const {
+    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
+  }
+
+  std::tuple<Ls...> children_;
+};
+}  // namespace detail
+
 /// Links a and b iff EVERY child linkage does (short-circuit, left to right).
 ///
 /// `Params` is `std::tuple<typename Ls::Params...>`, default- and
@@ -130,65 +211,9 @@ struct combinator_links_many<P, L, Ls...> : std::bool_constant<!std::is_void_v<P
 ///   streamclust::AllOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.2f}, {1.0f}}};
 /// \endcode
 template <class... Ls>
-class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
-              public detail::CombinatorLinkMany<
-                  AllOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
-                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
-  using combined = detail::CombinedPayload<Ls...>;
-  using payload_type = typename combined::type;  // void: none
-  template <class, class, bool>
-  friend struct detail::CombinatorLinkMany;
-  /// link_many: the other children decide where the first linked.
-  static constexpr bool kRestWhenFirstLinks = true;
-  static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
-
+class AllOf : public detail::Junction<true, Ls...> {
  public:
-  using Params = std::tuple<typename Ls::Params...>;
-
-  explicit AllOf(const Params& params) : AllOf(params, std::index_sequence_for<Ls...>{}) {}
-
-  /// True iff all children link a and b. Short-circuits.
-  bool operator()(const Sample& a, const Sample& b) const {
-    if constexpr (!std::is_void_v<payload_type>) {
-      return (*this)(this->make_payload(a), this->make_payload(b));
-    } else {
-      return std::apply([&](const auto&... l) { return (true && ... && static_cast<bool>(l(a, b))); }, children_);
-    }
-  }
-
-  /// True iff all children link the two payloads (each its part).
-  /// Short-circuits. Only with a payload.
-  template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
-  bool operator()(const P& a, const P& b) const {
-    return on_payloads(a, b, std::index_sequence_for<Ls...>{});
-  }
-
-  /// The I-th child linkage.
-  template <std::size_t I>
-  const auto& child() const {
-    return std::get<I>(children_);
-  }
-
- private:
-  template <std::size_t... I>
-  AllOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
-
-  /// Children `Offset + I...` on their parts of the two payloads, left to
-  /// right, short-circuit.
-  template <std::size_t Offset = 0, class P, std::size_t... I>
-  bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
-    return (true && ... &&
-            static_cast<bool>(std::get<Offset + I>(children_)(
-                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
-                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
-  }
-  /// Every child but the first on the two payloads (for link_many).
-  template <class P>
-  bool rest_decides(const P& a, const P& b) const {
-    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
-  }
-
-  std::tuple<Ls...> children_;
+  using detail::Junction<true, Ls...>::Junction;
 };
 
 /// Links a and b iff ANY child linkage does (short-circuit, left to right:
@@ -210,65 +235,9 @@ class AllOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
 ///   streamclust::AnyOf<streamclust::AngularLinkage, streamclust::EuclideanLinkage> link{{{10.0f, 0.0f}, {0.1f}}};
 /// \endcode
 template <class... Ls>
-class AnyOf : public detail::CombinatorPayload<detail::CombinedPayload<Ls...>>,
-              public detail::CombinatorLinkMany<
-                  AnyOf<Ls...>, typename detail::CombinedPayload<Ls...>::type,
-                  detail::combinator_links_many<typename detail::CombinedPayload<Ls...>::type, Ls...>::value> {
-  using combined = detail::CombinedPayload<Ls...>;
-  using payload_type = typename combined::type;  // void: none
-  template <class, class, bool>
-  friend struct detail::CombinatorLinkMany;
-  /// link_many: the other children decide where the first did not link.
-  static constexpr bool kRestWhenFirstLinks = false;
-  static_assert((detail::check_linkage_capabilities<Ls>() && ...), "STREAMCLUST_LINKAGE_CAPABILITY_INVALID");
-
+class AnyOf : public detail::Junction<false, Ls...> {
  public:
-  using Params = std::tuple<typename Ls::Params...>;
-
-  explicit AnyOf(const Params& params) : AnyOf(params, std::index_sequence_for<Ls...>{}) {}
-
-  /// True iff at least one child links a and b. Short-circuits.
-  bool operator()(const Sample& a, const Sample& b) const {
-    if constexpr (!std::is_void_v<payload_type>) {
-      return (*this)(this->make_payload(a), this->make_payload(b));
-    } else {
-      return std::apply([&](const auto&... l) { return (false || ... || static_cast<bool>(l(a, b))); }, children_);
-    }
-  }
-
-  /// True iff at least one child links the two payloads (each its part).
-  /// Short-circuits. Only with a payload.
-  template <class P, std::enable_if_t<std::is_same_v<P, payload_type>, int> = 0>
-  bool operator()(const P& a, const P& b) const {
-    return on_payloads(a, b, std::index_sequence_for<Ls...>{});
-  }
-
-  /// The I-th child linkage.
-  template <std::size_t I>
-  const auto& child() const {
-    return std::get<I>(children_);
-  }
-
- private:
-  template <std::size_t... I>
-  AnyOf(const Params& params, std::index_sequence<I...>) : children_(Ls{std::get<I>(params)}...) {}
-
-  /// Children `Offset + I...` on their parts of the two payloads, left to
-  /// right, short-circuit.
-  template <std::size_t Offset = 0, class P, std::size_t... I>
-  bool on_payloads(const P& a, const P& b, std::index_sequence<I...>) const {
-    return (false || ... ||
-            static_cast<bool>(std::get<Offset + I>(children_)(
-                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(a),
-                combined::template part_of<std::tuple_element_t<Offset + I, std::tuple<Ls...>>>(b))));
-  }
-  /// Every child but the first on the two payloads (for link_many).
-  template <class P>
-  bool rest_decides(const P& a, const P& b) const {
-    return on_payloads<1>(a, b, std::make_index_sequence<sizeof...(Ls) - 1>{});
-  }
-
-  std::tuple<Ls...> children_;
+  using detail::Junction<false, Ls...>::Junction;
 };
 
 /// The angular criterion OR a small Euclidean distance: the second remedy for
