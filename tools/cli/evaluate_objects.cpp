@@ -5,12 +5,11 @@
 #include "cli/evaluate_objects.hpp"
 
 #include "cli/euclidean_clusters.hpp"
+#include "cli/objects_engine.hpp"
 
-#include <streamclust/batch_clusterer.hpp>
 #include <streamclust/eval/object_metrics.hpp>
 #include <streamclust/motion/trajectory.hpp>
 #include <streamclust/objects_presets.hpp>
-#include <streamclust/partition_compare.hpp>
 #include <streamclust/percentiles.hpp>
 #include <streamclust/presets.hpp>
 #include <streamclust/retrieval_schedule.hpp>
@@ -134,31 +133,12 @@ std::size_t labels_from(const Clustering& result, std::size_t lo, std::vector<st
   return outside;
 }
 
-/// The objects engine's last retrieval against the batch clusterer on its
-/// object points (tests/support/oracle_input.hpp): "" when equal.
-std::string verify_objects(const StreamClusterer<ObjectsConfig>& engine, BatchClusterer<ObjectsConfig>& batch,
-                           const std::vector<io::Record>& records, std::size_t outside) {
-  const Clustering& result = engine.last_result();
-  if (outside != 0) return std::to_string(outside) + " labelled points outside the scored window";
-  if (result.structure.size() != engine.structure_size()) return "the structure list and the structure ring differ";
-  if (engine.calibrating()) return result.points.empty() ? "" : "labels while calibrating";
-  if (result.points.size() != engine.size()) return "the result and the window differ in size";
-  std::vector<io::Record> window;
-  std::vector<ComponentId> continuous;
-  window.reserve(result.points.size());
-  for (const PointLabel& p : result.points) {
-    window.push_back(records[static_cast<std::size_t>(p.stream_index)]);
-    continuous.push_back(p.label);
+/// True when `option` is an option of a registered linkage.
+bool is_linkage_option(const std::string& option) {
+  for (const registry::OptionInfo& info : ToolRegistry::options()) {
+    if (info.slot == Slot::linkage && info.name == option) return true;
   }
-  if (window.empty()) return "";
-  batch.set_grid({engine.grid().rows, engine.grid().cols});
-  const BatchResult& reference = batch.cluster(window);
-  if (reference.rejections.rejected() != 0) return "the batch rejected a point the engine accepted";
-  const auto m = first_partition_mismatch(continuous, reference.labels);
-  if (!m) return "";
-  if (m->sizes_differ) return "the batch labelled a different number of points";
-  return "window point " + std::to_string(m->position) + ": engine label " + std::to_string(continuous[m->position]) +
-         ", batch label " + std::to_string(reference.labels[m->position]);
+  return false;
 }
 
 void summarize(ObjectsMethodResult& m) {
@@ -215,9 +195,16 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
     } else if (a == "--rate") {
       o.rate_hz = parse_positive(a, c.value());
       if (o.rate_hz > 10000.0) throw UsageError("--rate: expected (0, 10000] Hz");
+    } else if (a == "--linkage") {
+      o.linkage = ToolRegistry::choose(Slot::linkage, c.value());
     } else if (a == "--distance") {
-      o.euclidean_distance = parse_positive_float(a, c.value());
+      // The peers' radius, and that of every linkage with a --distance option.
+      const std::string text = c.value();
+      o.euclidean_distance = parse_positive_float(a, text);
       if (o.euclidean_distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
+      ToolRegistry::parse_option(a, [&] { return text; }, o.linkage_params);
+    } else if (is_linkage_option(a)) {
+      ToolRegistry::parse_option(a, [&] { return c.value(); }, o.linkage_params);
     } else if (a == "--plane-distance") {
       o.plane_distance = parse_positive_float(a, c.value());
       if (o.plane_distance > 10.0f) throw UsageError("--plane-distance: expected (0, 10] m");
@@ -277,14 +264,13 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     for (const StampedPose& p : stream.trajectory) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
     setup.trajectory = std::make_shared<const PoseTrajectory>(std::move(vehicle));
   }
-  std::optional<EngineRun<ObjectsConfig>> objects;
-  std::optional<BatchClusterer<ObjectsConfig>> batch;
+  // Its linkage slot is the chosen linkage (the preset's by default).
+  std::unique_ptr<ObjectsEngine> objects;
   // The paper's preset, sensor frame.
   std::optional<EngineRun<CArcFastConfig>> carc;
   try {
     const ClustererParams<ObjectsConfig> objects_parameters = objects_params(*sensor.facts, setup);
-    if (o.run_objects) objects.emplace(objects_parameters);
-    if (o.verify) batch.emplace(objects_parameters);
+    if (o.run_objects) objects = make_objects_engine(o.linkage, o.linkage_params, objects_parameters, o.verify);
     CArcParams paper;
     paper.theta_deg = sensor.carc_theta_deg;
     paper.field_of_view = field_of_view_of(*sensor.facts);
@@ -341,7 +327,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     // no engine still buffers its first window (the objects engine's starts
     // at its first object point).
     if (time - first < o.window_seconds - 1e-9) return;
-    if ((objects && objects->engine.calibrating()) || (carc && carc->engine.calibrating())) return;
+    if ((objects && objects->calibrating()) || (carc && carc->engine.calibrating())) return;
     const std::size_t n = hi - lo;
     truth.resize(n);
     classes.resize(n);
@@ -377,9 +363,9 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
         if (predicted[k] == eval::kClassedGround) ++d.classed_ground[c];
         if (predicted[k] == eval::kClassedCeiling) ++d.classed_ceiling[c];
       }
-      if (batch) {
+      if (o.verify) {
         ++e.verified;
-        const std::string mismatch = verify_objects(objects->engine, *batch, records, outside);
+        const std::string mismatch = objects->verify(records, outside);
         if (!mismatch.empty()) {
           char at[48];
           std::snprintf(at, sizeof at, "retrieval at %.3f s: ", time);
@@ -453,6 +439,20 @@ Json mean_json(const ObjectsMethodResult& m) {
               {"pooled_object_point_coverage", m.average.pooled_object_point_coverage()}};
 }
 
+/// The options of the objects engine's linkage by their JSON key
+/// ({"min_distance": 0.2, "range_factor": 0.01}).
+Json linkage_parameters_json(const EvaluateObjectsOptions& o) {
+  Json parameters = Json::object();
+  ToolRegistry::with_policy<Slot::linkage>(o.linkage, [&](auto tag) {
+    using Linkage = typename decltype(tag)::type;
+    for (const auto& option : registry::PolicyDescriptor<Linkage>::options()) {
+      const double v = option.value(o.linkage_params.template get<Linkage>());
+      parameters[option.key] = option.integral ? Json(static_cast<std::int64_t>(v)) : Json(v);
+    }
+  });
+  return parameters;
+}
+
 }  // namespace
 
 Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvaluation& e) {
@@ -475,7 +475,9 @@ Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvalu
                      {"distance", o.euclidean_distance},
                      {"plane_distance", o.plane_distance},
                      {"ransac_iterations", o.ransac_iterations},
-                     {"min_points", o.min_points}};
+                     {"min_points", o.min_points},
+                     {"linkage", o.linkage},
+                     {"linkage_parameters", linkage_parameters_json(o)}};
   doc["records"] = e.records;
   doc["retrievals"] = e.retrievals;
   doc["window_points"] = e.window_points;
@@ -526,7 +528,9 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
   } else {
     std::snprintf(line, sizeof line, "at rest; objects engine %s", o.poses ? "with the vehicle's poses" : "with the mount only");
   }
-  out << line << "\n";
+  out << line;
+  if (o.run_objects) out << ", linkage " << ToolRegistry::describe(Slot::linkage, o.linkage, o.linkage_params);
+  out << "\n";
   std::snprintf(line, sizeof line, "T_B %.3g s, retrievals %.3g Hz: %zu scored, %.0f points per window", o.window_seconds,
                 o.rate_hz, e.retrievals, e.window_points);
   out << line << "\n\n";
