@@ -4,7 +4,6 @@
 # a bad value is the usual usage error (exit 2), `cluster --verify` runs the
 # linkage on a simulated stream (continuous partition = batch partition), and
 # `evaluate` and `evaluate --objects` run with it.
-# the linkage on a simulated stream (continuous partition = batch partition).
 function(run expected_code)
   execute_process(COMMAND "${TOOL}" ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL expected_code)
