@@ -114,6 +114,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(objects.height >= 0.0f && objects.height <= 100.0f, "--height: (0, 100] m, or 0 for the default");
     require(finite_positive(objects.euclidean_distance) && finite_positive(objects.plane_distance),
             "--distance, --plane-distance: finite and > 0");
+    require(cli::ToolRegistry::choose(streamclust::registry::Slot::linkage, objects.linkage) == objects.linkage,
+            "--linkage: a registered linkage");
   }
   for (const std::string& a : args) {
     std::array<double, 3> mount{};

@@ -252,3 +252,57 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
     }
   }
 }
+
+TEST_CASE("evaluate --objects --linkage: the objects preset with another registered linkage") {
+  // Parsing: the preset's linkage by default, any registered one by name,
+  // its options into its Params; --distance is the peers' radius and the
+  // euclidean linkage's.
+  const cli::EvaluateObjectsOptions preset = cli::parse_evaluate_objects_options({});
+  CHECK(preset.linkage == "range-adaptive");
+  const cli::EvaluateObjectsOptions euclidean =
+      cli::parse_evaluate_objects_options({"--linkage", "euclidean", "--distance", "0.4", "--min-distance", "0.3"});
+  CHECK(euclidean.linkage == "euclidean");
+  CHECK(euclidean.euclidean_distance == doctest::Approx(0.4f));
+  CHECK(euclidean.linkage_params.get<streamclust::EuclideanLinkage>().max_distance == doctest::Approx(0.4f));
+  CHECK(euclidean.linkage_params.get<streamclust::RangeAdaptiveLinkage>().min_distance == doctest::Approx(0.3f));
+  CHECK(preset.linkage_params.get<streamclust::RangeAdaptiveLinkage>().min_distance ==
+        streamclust::objects_mid360_params().linkage.min_distance);
+
+  const RunResult unknown = run_cli({"evaluate", "--objects", "--linkage", "nearest"});
+  CHECK(unknown.code == 2);
+  CHECK(unknown.err.find("--linkage: expected angular|euclidean|range-adaptive, got 'nearest'") != std::string::npos);
+  const RunResult bad_value = run_cli({"evaluate", "--objects", "--linkage", "angular", "--theta", "x"});
+  CHECK(bad_value.code == 2);
+  CHECK(bad_value.err.find("--theta: expected a number, got 'x'") != std::string::npos);
+  CHECK(run_cli({"evaluate", "--objects", "--cap", "3"}).code == 2);  // not a linkage's option
+  CHECK(run_cli({"evaluate", "--objects", "--help"}).out.find("--linkage angular|euclidean|range-adaptive") !=
+        std::string::npos);
+
+  // Runs: each linkage's partition equals the batch partition of the
+  // same configuration, and the report names the linkage and its values.
+  const streamclust::test::TempDir dir("evaluate_objects", "linkage");
+  const auto run = [&](const std::string& name, std::vector<std::string> linkage) {
+    const std::string json = dir.path(name + ".json");
+    std::vector<std::string> args{"evaluate", "--objects", "--duration", "0.75", "--window-time", "0.25",
+                                  "--method",  "objects",   "--verify",   "--json", json};
+    args.insert(args.end(), linkage.begin(), linkage.end());
+    const RunResult r = run_cli(args);
+    INFO(r.out << r.err);
+    REQUIRE(r.code == 0);
+    CHECK(r.out.find("equals the batch partition") != std::string::npos);
+    std::ifstream f(json);
+    return nlohmann::json::parse(f);
+  };
+  const nlohmann::json by_preset = run("preset", {});
+  const nlohmann::json by_euclidean = run("euclidean", {"--linkage", "euclidean", "--distance", "0.25"});
+  CHECK(by_preset["settings"]["linkage"] == "range-adaptive");
+  CHECK(by_preset["settings"]["linkage_parameters"]["min_distance"].get<double>() ==
+        doctest::Approx(streamclust::objects_mid360_params().linkage.min_distance));
+  CHECK(by_euclidean["settings"]["linkage"] == "euclidean");
+  CHECK(by_euclidean["settings"]["linkage_parameters"]["distance"].get<double>() == doctest::Approx(0.25));
+  CHECK(by_euclidean["settings"]["linkage_parameters"].size() == 1);
+  // The same stream and structure removal, another partition of the objects.
+  CHECK(by_euclidean["retrievals"] == by_preset["retrievals"]);
+  CHECK(by_euclidean["methods"][0]["mean"]["ground_f1"] == by_preset["methods"][0]["mean"]["ground_f1"]);
+  CHECK(by_euclidean["methods"][0]["mean"]["ari"] != by_preset["methods"][0]["mean"]["ari"]);
+}

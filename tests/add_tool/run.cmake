@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: MIT
 # The add_tool test's checks, run as `cmake -DTOOL=<tool> -DWORK=<dir> -P run.cmake`:
 # the help lists the researcher's linkage and its option, the option parses,
-# a bad value is the usual usage error (exit 2), and `cluster --verify` runs
-# the linkage on a simulated stream (continuous partition = batch partition).
+# a bad value is the usual usage error (exit 2), `cluster --verify` runs the
+# linkage on a simulated stream (continuous partition = batch partition), and
+# `evaluate` and `evaluate --objects` run with it.
 function(run expected_code)
   execute_process(COMMAND "${TOOL}" ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL expected_code)
@@ -32,4 +33,21 @@ file(READ "${WORK}/e.json" json)
 string(FIND "${json}" "\"intensity_gap\": 5" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "evaluate --json lacks the linkage's option:\n${json}")
+endif()
+# `evaluate --objects` with the researcher's linkage in the objects preset's
+# linkage slot: its option parsed, the partition verified against the batch,
+# the JSON naming the linkage and its values.
+run(0 evaluate --objects --linkage intensity-gated --intensity-gap 7 --duration 0.75 --window-time 0.25
+    --method objects --verify --quiet --json "${WORK}/objects.json")
+file(READ "${WORK}/objects.json" json)
+foreach(expected "\"linkage\": \"intensity-gated\"" "\"intensity_gap\": 7")
+  string(FIND "${json}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "evaluate --objects --json lacks '${expected}':\n${json}")
+  endif()
+endforeach()
+run(2 evaluate --objects --linkage intensity-gated --intensity-gap 0)
+string(FIND "${out}" "--intensity-gap: expected a positive number, got '0'" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "unexpected message: ${out}")
 endif()

@@ -5,12 +5,12 @@
 #include "cli/evaluate_objects.hpp"
 
 #include "cli/euclidean_clusters.hpp"
+#include "cli/objects_engine.hpp"
+#include "cli/objects_sensors.hpp"
 
-#include <streamclust/batch_clusterer.hpp>
 #include <streamclust/eval/object_metrics.hpp>
 #include <streamclust/motion/trajectory.hpp>
 #include <streamclust/objects_presets.hpp>
-#include <streamclust/partition_compare.hpp>
 #include <streamclust/percentiles.hpp>
 #include <streamclust/presets.hpp>
 #include <streamclust/retrieval_schedule.hpp>
@@ -20,31 +20,11 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
 namespace streamclust::cli {
 namespace {
-
-/// The sensors this evaluation knows: their facts (FOV) and the paper's theta.
-struct SensorChoice {
-  const char* name;
-  const SensorFacts* facts;
-  float carc_theta_deg;  ///< the paper's per-sensor theta; 10 (Bogoslavskyi's) where the paper gives none
-};
-
-constexpr SensorChoice kSensors[] = {{"mid360", &livox_mid360, 30.0f},
-                                     {"avia", &livox_avia, 80.0f},
-                                     {"mid40", &livox_mid40, 10.0f},
-                                     {"mid70", &livox_mid70, 10.0f}};
-
-const SensorChoice& sensor_choice(const std::string& name) {
-  for (const SensorChoice& s : kSensors) {
-    if (name == s.name) return s;
-  }
-  throw UsageError("--sensor: evaluate --objects needs a Livox model: mid360|avia|mid40|mid70, got '" + name + "'");
-}
 
 /// Fills `stream` like simulate_stream, with the sensor `height` above the
 /// ground at the start (the simulator keeps it over a terrain).
@@ -134,33 +114,6 @@ std::size_t labels_from(const Clustering& result, std::size_t lo, std::vector<st
   return outside;
 }
 
-/// The objects engine's last retrieval against the batch clusterer on its
-/// object points (tests/support/oracle_input.hpp): "" when equal.
-std::string verify_objects(const StreamClusterer<ObjectsConfig>& engine, BatchClusterer<ObjectsConfig>& batch,
-                           const std::vector<io::Record>& records, std::size_t outside) {
-  const Clustering& result = engine.last_result();
-  if (outside != 0) return std::to_string(outside) + " labelled points outside the scored window";
-  if (result.structure.size() != engine.structure_size()) return "the structure list and the structure ring differ";
-  if (engine.calibrating()) return result.points.empty() ? "" : "labels while calibrating";
-  if (result.points.size() != engine.size()) return "the result and the window differ in size";
-  std::vector<io::Record> window;
-  std::vector<ComponentId> continuous;
-  window.reserve(result.points.size());
-  for (const PointLabel& p : result.points) {
-    window.push_back(records[static_cast<std::size_t>(p.stream_index)]);
-    continuous.push_back(p.label);
-  }
-  if (window.empty()) return "";
-  batch.set_grid({engine.grid().rows, engine.grid().cols});
-  const BatchResult& reference = batch.cluster(window);
-  if (reference.rejections.rejected() != 0) return "the batch rejected a point the engine accepted";
-  const auto m = first_partition_mismatch(continuous, reference.labels);
-  if (!m) return "";
-  if (m->sizes_differ) return "the batch labelled a different number of points";
-  return "window point " + std::to_string(m->position) + ": engine label " + std::to_string(continuous[m->position]) +
-         ", batch label " + std::to_string(reference.labels[m->position]);
-}
-
 void summarize(ObjectsMethodResult& m) {
   m.cost_median_ms = percentile(m.cost_ms, 50.0);
   m.cost_p99_ms = percentile(m.cost_ms, 99.0);
@@ -168,92 +121,8 @@ void summarize(ObjectsMethodResult& m) {
 
 }  // namespace
 
-EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::string>& args) {
-  EvaluateObjectsOptions o;
-  o.scenario.seconds = 3.0;
-  for (ArgCursor c(args); !c.done(); c.next()) {
-    const std::string& a = c.option();
-    if (a == "--velocity") {
-      o.scenario.speed = static_cast<float>(parse_number(a, c.value()));
-      continue;
-    }
-    if (a == "--burst" || a == "--burst-speed" || a == "--burst-yaw-rate" || a == "--point-rate") {
-      throw UsageError(a + ": not an option of evaluate --objects (see streamclust evaluate --objects --help)");
-    }
-    if (parse_simulation_option(c, o.scenario)) continue;
-    if (a == "--height") {
-      o.height = parse_positive_float(a, c.value());
-      if (o.height > 100.0f) throw UsageError("--height: expected (0, 100] m");
-    } else if (a == "--poses") {
-      o.poses = c.choice({"on", "off"}) == "on";
-    } else if (a == "--method") {
-      const std::string v = c.value();
-      o.run_objects = o.run_carc = o.run_euclidean = o.run_frame = false;
-      std::stringstream list(v);
-      std::string item;
-      bool any = false;
-      while (std::getline(list, item, ',')) {
-        any = true;
-        if (item == "all") {
-          o.run_objects = o.run_carc = o.run_euclidean = o.run_frame = true;
-        } else if (item == "objects") {
-          o.run_objects = true;
-        } else if (item == "carc") {
-          o.run_carc = true;
-        } else if (item == "euclidean") {
-          o.run_euclidean = true;
-        } else if (item == "frame") {
-          o.run_frame = true;
-        } else {
-          throw UsageError("--method: expected all|objects|carc|euclidean|frame (comma-separated), got '" + v + "'");
-        }
-      }
-      if (!any) throw UsageError("--method: expected all|objects|carc|euclidean|frame, got ''");
-    } else if (a == "--window-time") {
-      o.window_seconds = parse_positive(a, c.value());
-      if (o.window_seconds > 60.0) throw UsageError("--window-time: expected (0, 60] s");
-    } else if (a == "--rate") {
-      o.rate_hz = parse_positive(a, c.value());
-      if (o.rate_hz > 10000.0) throw UsageError("--rate: expected (0, 10000] Hz");
-    } else if (a == "--distance") {
-      o.euclidean_distance = parse_positive_float(a, c.value());
-      if (o.euclidean_distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
-    } else if (a == "--plane-distance") {
-      o.plane_distance = parse_positive_float(a, c.value());
-      if (o.plane_distance > 10.0f) throw UsageError("--plane-distance: expected (0, 10] m");
-    } else if (a == "--ransac-iterations") {
-      o.ransac_iterations = static_cast<std::size_t>(parse_count(a, c.value()));
-      if (o.ransac_iterations > 100000) throw UsageError("--ransac-iterations: expected [1, 100000]");
-    } else if (a == "--min-points") {
-      o.min_points = static_cast<std::size_t>(parse_count(a, c.value()));
-    } else if (a == "--verify") {
-      o.verify = true;
-    } else if (a == "--json") {
-      o.json_path = c.value();
-    } else if (a == "--quiet" || a == "-q") {
-      o.quiet = true;
-    } else {
-      throw UsageError("unknown option '" + a + "' (see streamclust evaluate --objects --help)");
-    }
-  }
-  validate_simulation_options(o.scenario);
-  sensor_choice(o.scenario.sensor);  // throws for the others
-  if (!(o.scenario.speed >= -10.0f && o.scenario.speed <= 10.0f)) throw UsageError("--speed: expected [-10, 10] m/s");
-  if (!(o.scenario.yaw_rate >= -5.0f && o.scenario.yaw_rate <= 5.0f)) {
-    throw UsageError("--yaw-rate: expected [-5, 5] rad/s");
-  }
-  if (o.verify && !o.run_objects) throw UsageError("--verify checks the objects method: add it to --method");
-  const double period = 1.0 / o.rate_hz;
-  if (o.scenario.seconds < o.window_seconds + period) {
-    throw UsageError("--duration: at least one retrieval after the first window is needed: expected >= T_B + 1/rate = " +
-                     std::to_string(o.window_seconds + period) + " s, got " + std::to_string(o.scenario.seconds) +
-                     " s");
-  }
-  return o;
-}
-
 ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
-  const SensorChoice& sensor = sensor_choice(o.scenario.sensor);
+  const ObjectsSensor& sensor = objects_sensor(o.scenario.sensor);
   ObjectsEvaluation e;
   e.height = effective_height(o);
   const SimulatedStream stream = simulate_objects_stream(o, e.height);
@@ -277,14 +146,13 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     for (const StampedPose& p : stream.trajectory) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
     setup.trajectory = std::make_shared<const PoseTrajectory>(std::move(vehicle));
   }
-  std::optional<EngineRun<ObjectsConfig>> objects;
-  std::optional<BatchClusterer<ObjectsConfig>> batch;
+  // Its linkage slot is the chosen linkage (the preset's by default).
+  std::unique_ptr<ObjectsEngine> objects;
   // The paper's preset, sensor frame.
   std::optional<EngineRun<CArcFastConfig>> carc;
   try {
     const ClustererParams<ObjectsConfig> objects_parameters = objects_params(*sensor.facts, setup);
-    if (o.run_objects) objects.emplace(objects_parameters);
-    if (o.verify) batch.emplace(objects_parameters);
+    if (o.run_objects) objects = make_objects_engine(o.linkage, o.linkage_params, objects_parameters, o.verify);
     CArcParams paper;
     paper.theta_deg = sensor.carc_theta_deg;
     paper.field_of_view = field_of_view_of(*sensor.facts);
@@ -341,7 +209,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     // no engine still buffers its first window (the objects engine's starts
     // at its first object point).
     if (time - first < o.window_seconds - 1e-9) return;
-    if ((objects && objects->engine.calibrating()) || (carc && carc->engine.calibrating())) return;
+    if ((objects && objects->calibrating()) || (carc && carc->engine.calibrating())) return;
     const std::size_t n = hi - lo;
     truth.resize(n);
     classes.resize(n);
@@ -377,9 +245,9 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
         if (predicted[k] == eval::kClassedGround) ++d.classed_ground[c];
         if (predicted[k] == eval::kClassedCeiling) ++d.classed_ceiling[c];
       }
-      if (batch) {
+      if (o.verify) {
         ++e.verified;
-        const std::string mismatch = verify_objects(objects->engine, *batch, records, outside);
+        const std::string mismatch = objects->verify(records, outside);
         if (!mismatch.empty()) {
           char at[48];
           std::snprintf(at, sizeof at, "retrieval at %.3f s: ", time);
@@ -453,6 +321,20 @@ Json mean_json(const ObjectsMethodResult& m) {
               {"pooled_object_point_coverage", m.average.pooled_object_point_coverage()}};
 }
 
+/// The options of the objects engine's linkage by their JSON key
+/// ({"min_distance": 0.2, "range_factor": 0.01}).
+Json linkage_parameters_json(const EvaluateObjectsOptions& o) {
+  Json parameters = Json::object();
+  ToolRegistry::with_policy<Slot::linkage>(o.linkage, [&](auto tag) {
+    using Linkage = typename decltype(tag)::type;
+    for (const auto& option : registry::PolicyDescriptor<Linkage>::options()) {
+      const double v = option.value(o.linkage_params.template get<Linkage>());
+      parameters[option.key] = option.integral ? Json(static_cast<std::int64_t>(v)) : Json(v);
+    }
+  });
+  return parameters;
+}
+
 }  // namespace
 
 Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvaluation& e) {
@@ -475,7 +357,9 @@ Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvalu
                      {"distance", o.euclidean_distance},
                      {"plane_distance", o.plane_distance},
                      {"ransac_iterations", o.ransac_iterations},
-                     {"min_points", o.min_points}};
+                     {"min_points", o.min_points},
+                     {"linkage", o.linkage},
+                     {"linkage_parameters", linkage_parameters_json(o)}};
   doc["records"] = e.records;
   doc["retrievals"] = e.retrievals;
   doc["window_points"] = e.window_points;
@@ -526,7 +410,9 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
   } else {
     std::snprintf(line, sizeof line, "at rest; objects engine %s", o.poses ? "with the vehicle's poses" : "with the mount only");
   }
-  out << line << "\n";
+  out << line;
+  if (o.run_objects) out << ", linkage " << ToolRegistry::describe(Slot::linkage, o.linkage, o.linkage_params);
+  out << "\n";
   std::snprintf(line, sizeof line, "T_B %.3g s, retrievals %.3g Hz: %zu scored, %.0f points per window", o.window_seconds,
                 o.rate_hz, e.retrievals, e.window_points);
   out << line << "\n\n";

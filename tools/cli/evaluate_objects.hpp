@@ -7,7 +7,9 @@
 /// the same stream and scores every retrieval of a 20 Hz schedule after the
 /// first window with eval::object_metrics:
 /// - objects: StreamClusterer<ObjectsConfig> from objects_params (structure
-///   removal, range-adaptive linkage, poses or mount, sensor height);
+///   removal, range-adaptive linkage, poses or mount, sensor height), or
+///   with --linkage that preset with another registered linkage in its
+///   linkage slot (cli/objects_engine.hpp);
 /// - carc: the paper's preset (CArcFastConfig, theta 30 for the Mid-360, 80
 ///   for the Avia, the sensor's FOV), every point clustered;
 /// - euclidean: exact Euclidean single linkage at 0.3 m of each window
@@ -18,6 +20,7 @@
 /// Results and definitions: docs/evaluation.md, section "Objects".
 
 #include "cli/json.hpp"
+#include "cli/objects_engine.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
 
@@ -41,6 +44,12 @@ struct EvaluateObjectsOptions {
   double window_seconds = 0.5;     ///< T_B [s], every method
   double rate_hz = 20.0;           ///< retrievals per second of stream time
   bool run_objects = true, run_carc = true, run_euclidean = true, run_frame = true;
+  /// The objects engine's linkage, a registered name: the preset's
+  /// (range-adaptive) by default; every other slot stays the preset's.
+  std::string linkage = objects_preset_linkage();
+  /// Every linkage's parameters (--theta, --min-distance, a registered
+  /// linkage's own): the preset's for its linkage, else the defaults.
+  ToolRegistry::Values linkage_params = objects_linkage_values();
   float euclidean_distance = 0.3f;  ///< [m] euclidean and frame
   float plane_distance = 0.2f;      ///< [m] frame: points this close to the RANSAC plane are ground
   std::size_t ransac_iterations = 100;  ///< frame
@@ -119,14 +128,15 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
 /// std::runtime_error for an unwritable output (exit 4).
 int run_evaluate_objects(const EvaluateObjectsOptions& o, std::ostream& out, std::ostream& err);
 
-inline const char* evaluate_objects_help() {
-  return R"(usage: streamclust evaluate --objects [scenario options] [method options] [--verify] [--json FILE]
+/// The help of `evaluate --objects`, the linkages of the tool's registry included.
+inline std::string evaluate_objects_help() {
+  return std::string(R"(usage: streamclust evaluate --objects [scenario options] [method options] [--verify] [--json FILE]
 
 Simulates one scenario with ground truth and scores, at every retrieval of a
 --rate Hz schedule after the first window, four methods on the window's points
 (eval::object_metrics; docs/evaluation.md, section Objects):
   objects    the objects preset (StreamClusterer<ObjectsConfig>, objects_params):
-             ground / ceiling removal, range-adaptive linkage, poses or mount
+             ground / ceiling removal, range-adaptive linkage (--linkage: any other), poses or mount
   carc       the paper's preset (theta 30 Mid-360, 80 Avia; the sensor's FOV), all points clustered
   euclidean  Euclidean single linkage at --distance of each window (PCL's definition)
   frame      RANSAC removal of the dominant plane (points within --plane-distance: ground),
@@ -152,6 +162,10 @@ methods:
   --distance M (default 0.3)        euclidean and frame linkage radius
   --plane-distance M (default 0.2)  --ransac-iterations N (default 100)
   --min-points N (default 10)       objects smaller than N points are not rated
+the objects engine's linkage (every other slot and parameter stays the objects preset's;
+--distance also sets the radius of a linkage with a --distance option):
+)") + ToolRegistry::help(Slot::linkage, objects_preset_linkage()) +
+         R"(verification:
   --verify                          objects: at every retrieval, the partition must equal the batch
                                     partition of its object points; exit 3 otherwise
 outputs:
@@ -159,6 +173,7 @@ outputs:
 
 examples:
   streamclust evaluate --objects --sensor mid360 --scene office
+  streamclust evaluate --objects --sensor mid360 --scene office --linkage euclidean --distance 0.3
   streamclust evaluate --objects --sensor avia --scene hills --mount 0,30,0 --speed 1.5 --yaw-rate 0.3
   streamclust evaluate --objects --scene office --mount 180,0,0 --verify --json office_up.json
 )";
