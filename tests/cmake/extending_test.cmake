@@ -14,21 +14,8 @@
 
 cmake_minimum_required(VERSION 3.20)
 
-foreach(_var BUILD_DIR EXAMPLE_DIR WORK_DIR CXX_COMPILER)
-  if(NOT DEFINED ${_var})
-    message(FATAL_ERROR "extending_test.cmake: -D${_var}=... is required")
-  endif()
-endforeach()
-
-function(run_step what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out)
-  if(NOT _rc EQUAL 0)
-    list(JOIN ARGN " " _cmd)
-    message(FATAL_ERROR "FAILED: ${what} (exit ${_rc})\ncommand: ${_cmd}\n${_out}")
-  endif()
-  message(STATUS "ok: ${what}")
-  set(out "${_out}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/script_steps.cmake")
+require_defined(extending_test.cmake BUILD_DIR EXAMPLE_DIR WORK_DIR CXX_COMPILER)
 
 set(_prefix "${WORK_DIR}/prefix")
 set(_build "${WORK_DIR}/build")
