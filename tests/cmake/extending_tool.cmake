@@ -37,11 +37,12 @@ run(0 evaluate --duration 0.4 --linkage upright --stretch 3 --method carc --quie
 file(READ "${WORK}/e.json" json)
 expect_in("${json}" "evaluate --json" "\"stretch\": 3")
 # The objects preset with the linkage swapped in: its parameters reach it (a
-# bad one is its usage error) and --verify exits 3 unless every objects
-# partition equals the batch partition of its object points.
+# bad one is its usage error), --verify exits 3 unless every objects
+# partition equals the batch partition of its object points, and the JSON
+# names the linkage and its values.
 run(2 evaluate --objects --linkage upright --stretch 0.5 --duration 0.4 --window-time 0.2 --method objects --quiet)
 expect_in("${out}" "evaluate --objects's message" "UprightLinkage: stretch = 0.500000 is invalid" "allowed: [1, 10]")
 run(0 evaluate --objects --linkage upright --stretch 3 --duration 0.4 --window-time 0.2 --method objects --verify
     --quiet --json "${WORK}/objects.json")
 file(READ "${WORK}/objects.json" json)
-expect_in("${json}" "evaluate --objects --json" "\"mismatches\": []")
+expect_in("${json}" "evaluate --objects --json" "\"mismatches\": []" "\"linkage\": \"upright\"" "\"stretch\": 3")
