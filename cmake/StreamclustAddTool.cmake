@@ -2,7 +2,8 @@
 # streamclust_add_tool: the `streamclust` command-line tool (cluster,
 # evaluate, evaluate --objects, info, simulate) built with a researcher's
 # own policies beside the stock ones, each selectable by its registered name
-# and its options parsed (docs/cli.md, "Your own policies in the tool"):
+# and its options parsed (docs/cli.md, "Your own policies in the tool"; a
+# whole project with one, examples/extending: docs/extending.md):
 #
 #   find_package(streamclust REQUIRED COMPONENTS io sim eval)
 #   streamclust_add_tool(my_streamclust

@@ -17,23 +17,11 @@
 
 cmake_minimum_required(VERSION 3.18)
 
-foreach(_var BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CXX_COMPILER)
-  if(NOT DEFINED ${_var})
-    message(FATAL_ERROR "consumer_test.cmake: -D${_var}=... is required")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/script_steps.cmake")
+require_defined(consumer_test.cmake BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CXX_COMPILER)
 if(NOT BUILD_TYPE)
   set(BUILD_TYPE Release)
 endif()
-
-function(run_step what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out)
-  if(NOT _rc EQUAL 0)
-    list(JOIN ARGN " " _cmd)
-    message(FATAL_ERROR "FAILED: ${what} (exit ${_rc})\ncommand: ${_cmd}\n${_out}")
-  endif()
-  message(STATUS "ok: ${what}")
-endfunction()
 
 set(_prefix "${WORK_DIR}/prefix")
 set(_build "${WORK_DIR}/build")

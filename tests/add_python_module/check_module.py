@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """The add_python_module test's checks (PYTHONPATH: the module built by
-streamclust_add_python_module in tests/add_tool): the researcher's linkage is
+streamclust_add_python_module in tests/add_python_module): the researcher's linkage is
 a choice of the `linkage` keyword, its option a keyword, a bad value the usual
 ValueError naming it, and its gate decides the labels that come back."""
 
