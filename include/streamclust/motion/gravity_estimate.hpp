@@ -109,25 +109,31 @@ struct MountEstimateParams {
   double contact_band = 0.5;       ///< [m] points up to this far off a plane touch it, (2 inlier_distance, 10]
   double contact_ratio = 2.0;      ///< planes on both sides: the ground's touches per cell over the other's, >= 1
   double standing_fraction = 0.5;  ///< one plane: share of what stands near it that touches it, (0, 1]
+  double ceiling_fraction = 0.15;  ///< one plane: most share of what stands near it, columns aside, touching a
+                                   ///< ceiling, [0, standing_fraction)
 };
 
 /// What estimate_ground could tell.
 enum class GroundStatus : std::uint8_t {
   found,      ///< the ground plane, told from a ceiling by what stands on it
   ambiguous,  ///< planes, but nothing tells which is below: the fields hold plane A as a guess; give the mount
+  /// One plane, a ceiling (what stands near it does not touch it, columns
+  /// aside); the floor is out of view: the mount (up away from the ceiling)
+  /// and the ceiling's distance are known, the sensor's height is not (0).
+  floor_out_of_view,
 };
 
 /// The ground found by estimate_ground.
 struct GroundEstimate {
   Pose mount;                                        ///< roll and pitch, yaw 0, no translation: up -> +z
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();     ///< the ground's unit normal towards the sensor, sensor frame
-  double height = 0.0;                               ///< [m] the sensor's distance from the ground plane
+  double height = 0.0;  ///< [m] the sensor's distance from the ground plane (0: floor_out_of_view, unknown)
   double roll_deg = 0.0, pitch_deg = 0.0;            ///< [deg] of the mount (mount_from_roll_pitch_yaw_deg's)
-  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2)
+  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2, or none)
   std::size_t points_used = 0;                       ///< finite points used
-  GroundStatus status = GroundStatus::found;         ///< found, or ambiguous (then the fields are a guess)
+  GroundStatus status = GroundStatus::found;         ///< found, ambiguous (the fields a guess) or floor_out_of_view
   double opposite_distance = 0.0;  ///< [m] the sensor's distance from the plane across it (a ceiling), 0: none seen
-  double contact = 0.0;            ///< the evidence for this plane (touches per cell; one plane: share touching)
+  double contact = 0.0;  ///< the evidence for this plane (touches per cell; one plane: share touching; 0: not seen)
   double opposite_contact = 0.0;   ///< the same for the plane across (0: none)
 };
 
@@ -152,6 +158,8 @@ inline void check_mount_estimate_params(const MountEstimateParams& p) {
   if (!(p.contact_ratio >= 1.0 && p.contact_ratio <= 1e6)) fail("contact_ratio", p.contact_ratio, "[1, 1e6]");
   if (!(p.standing_fraction > 0.0 && p.standing_fraction <= 1.0))
     fail("standing_fraction", p.standing_fraction, "(0, 1]");
+  if (!(p.ceiling_fraction >= 0.0 && p.ceiling_fraction < p.standing_fraction))
+    fail("ceiling_fraction", p.ceiling_fraction, "[0, standing_fraction)");
 }
 
 /// A plane n . p + d = 0 with unit n.
@@ -315,10 +323,13 @@ inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& poi
 /// What stands on plane A (at distance `distance_a` along -axis) and plane B
 /// (at `distance_b` along +axis; 0: none), rule 3 of the file comment, in
 /// cells of `cell` m across the axis. Per plane: cells showing it, cells
-/// touching it, and cells holding points 2 tolerance to `reach` m off it
-/// where it goes on behind them (`standing`).
+/// touching it, cells holding points 2 tolerance to `reach` m off it
+/// where it goes on behind them (`standing`), and the touching cells that
+/// also hold points 2 tolerance to 1 m past the sensor's level, away from
+/// the plane (`columns`: a pillar, a trunk, a person taller than the
+/// sensor's height; what reaches past the sensor may stand on either side).
 struct PlaneContacts {
-  std::size_t shows = 0, touches = 0, standing = 0;
+  std::size_t shows = 0, touches = 0, standing = 0, columns = 0;
   /// Touching cells per cell showing the plane.
   double per_cell() const { return shows > 0 ? static_cast<double>(touches) / static_cast<double>(shows) : 0.0; }
   /// Share of the standing cells that touch the plane.
@@ -335,6 +346,7 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
   constexpr double kCell = 0.5;    // [m]
   constexpr double kBeyond = 1.0;  // [m] the plane goes on at least this much farther out
   constexpr double kReach = 2.0;   // [m] what stands near a plane: up to this far off it
+  constexpr double kPast = 1.0;    // [m] a column's points past the sensor's level: up to this far
   constexpr int kSectors = 180;    // 2 deg each
   constexpr double kPi = 3.14159265358979323846;
   const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
@@ -358,26 +370,27 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
       }
     }
   }
-  // Pass 2: per cell, per plane: shows, near (within band), touches (near, plane goes on), standing.
-  enum : std::uint8_t { kShows = 1, kNear = 2, kTouches = 4, kStanding = 8 };
-  std::unordered_map<std::uint64_t, std::uint8_t> cells;  // plane A's flags in bits 0-3, B's in 4-7
+  // Pass 2: per cell, per plane: shows, near (within band), touches (near, plane goes on), standing, past the
+  // sensor's level.
+  enum : std::uint8_t { kShows = 1, kNear = 2, kTouches = 4, kStanding = 8, kPastSensor = 16 };
+  std::unordered_map<std::uint64_t, std::uint16_t> cells;  // plane A's flags in bits 0-4, B's in 8-12
   for (const Eigen::Vector3f& pf : points) {
     if (!pf.allFinite()) continue;
     const Eigen::Vector3d p = pf.cast<double>();
     const double s = axis.dot(p), x = e1.dot(p), y = e2.dot(p);
-    std::uint8_t flags = 0;
+    std::uint16_t flags = 0;
     for (int k = 0; k < planes; ++k) {
       const double off = sign[k] * s + offset[k];  // >= 0 on the sensor's side
-      std::uint8_t f = 0;
+      std::uint8_t f = sign[k] * s > 2.0 * tolerance && sign[k] * s <= kPast ? kPastSensor : 0;
       if (std::abs(off) <= tolerance) {
         f = kShows;
       } else if (off > 2.0 * tolerance && off <= kReach &&
                  reach[k][static_cast<std::size_t>(sector(x, y))] >= std::hypot(x, y) + kBeyond) {
-        f = off <= band ? (kNear | kTouches | kStanding) : kStanding;
+        f |= off <= band ? (kNear | kTouches | kStanding) : kStanding;
       } else if (off > 2.0 * tolerance && off <= band) {
-        f = kNear;  // near, the plane not going on behind: it still marks a pillar's cell
+        f |= kNear;  // near, the plane not going on behind: it still marks a pillar's cell
       }
-      flags |= static_cast<std::uint8_t>(f << (4 * k));
+      flags = static_cast<std::uint16_t>(flags | (f << (8 * k)));
     }
     if (flags == 0) continue;
     const auto i = static_cast<std::int64_t>(std::floor(x / kCell)), j = static_cast<std::int64_t>(std::floor(y / kCell));
@@ -385,14 +398,15 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
   }
   PlaneContacts out[2];
   for (const auto& entry : cells) {
-    const std::uint8_t flags[2] = {static_cast<std::uint8_t>(entry.second & 15u),
-                                   static_cast<std::uint8_t>(entry.second >> 4)};
+    const std::uint8_t flags[2] = {static_cast<std::uint8_t>(entry.second & 0xffu),
+                                   static_cast<std::uint8_t>(entry.second >> 8)};
     const bool near_both = (flags[0] & kNear) != 0 && (flags[1] & kNear) != 0;  // a pillar, a wall
     for (int k = 0; k < 2; ++k) {
       out[k].shows += (flags[k] & kShows) != 0;
       if (near_both) continue;
       out[k].touches += (flags[k] & kTouches) != 0;
       out[k].standing += (flags[k] & kStanding) != 0;
+      out[k].columns += (flags[k] & kTouches) != 0 && (flags[k] & kPastSensor) != 0;
     }
   }
   return {out[0], out[1]};
@@ -459,13 +473,25 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
     contact = a_is_ground ? a : b;
     opposite_contact = a_is_ground ? b : a;
   } else {
+    // Columns (touching and reaching past the sensor's level) may stand on either side; the other touches
+    // are the evidence of a floor.
     contact = on_a.standing_share();
-    if (on_a.standing < kMinStandingCells || contact >= params.standing_fraction) status = GroundStatus::found;
+    const std::size_t low_touches = on_a.touches - on_a.columns, low_standing = on_a.standing - on_a.columns;
+    const bool few_low_touches = static_cast<double>(low_touches) <=
+                                 params.ceiling_fraction * static_cast<double>(low_standing);
+    if (on_a.standing < kMinStandingCells || (contact >= params.standing_fraction && low_touches > 0)) {
+      status = GroundStatus::found;
+    } else if (contact < params.standing_fraction && few_low_touches) {
+      status = GroundStatus::floor_out_of_view;
+      a_is_ground = false;
+      contact = 0.0;
+      opposite_contact = low_standing > 0 ? static_cast<double>(low_touches) / static_cast<double>(low_standing) : 0.0;
+    }
   }
   GroundEstimate g;
   g.status = status;
   g.up = a_is_ground ? side_a->plane.n : side_b ? side_b->plane.n : Eigen::Vector3d(-axis);
-  g.height = a_is_ground ? side_a->plane.d : distance_b;
+  g.height = a_is_ground ? side_a->plane.d : distance_b;  // 0 with the floor out of view
   g.opposite_distance = a_is_ground ? distance_b : side_a->plane.d;
   g.inliers = a_is_ground ? side_a->inliers : (side_b ? side_b->inliers : 0);
   g.points_used = points.size();
@@ -480,12 +506,13 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
 }
 
 /// The mount (roll and pitch, yaw 0, no translation) that makes the ground
-/// of `sensor_points` horizontal: `estimate_ground(...)->mount`, or nullopt
-/// (also when the estimate is ambiguous).
+/// of `sensor_points` horizontal: `estimate_ground(...)->mount` when the
+/// ground is found or the floor is out of view (a ceiling tells which way is
+/// up), else nullopt (also when the estimate is ambiguous).
 inline std::optional<Pose> estimate_mount(const std::vector<Eigen::Vector3f>& sensor_points,
                                           const MountEstimateParams& params = {}) {
   const std::optional<GroundEstimate> ground = estimate_ground(sensor_points, params);
-  if (!ground || ground->status != GroundStatus::found) return std::nullopt;
+  if (!ground || ground->status == GroundStatus::ambiguous) return std::nullopt;
   return ground->mount;
 }
 
