@@ -31,21 +31,37 @@
 ///    `contact_band` m off it, the plane goes on at least 1 m farther out
 ///    in its 2-degree sector (a floor continues behind what stands on it;
 ///    a wall ends it) and no point of its 0.5 m cell is that near the other
-///    plane (a pillar touches both). With planes on both sides, the ground
-///    is the one touched in at least `contact_ratio` times as many cells
-///    per cell showing it as the other, and in 2 cells more at least. With one
-///    plane, it is the ground when at least `standing_fraction` of the
-///    cells holding points up to 2 m off it (where it goes on behind them)
-///    touch it, or when fewer than 15 cells hold such points (no evidence
-///    against the lone plane: outdoors, the ground). Otherwise the status
-///    is `ambiguous`.
-///    Up is the ground's normal pointing towards the sensor: an upside-down
-///    sensor (roll 180) finds roll 180, whichever plane is nearer.
+///    plane (a pillar touches both). A touching cell that also holds points
+///    up to 1 m past the sensor's level (short of the other plane) is a
+///    *column*: a pillar, a trunk, anything taller than the sensor's
+///    height; it may stand on either plane.
+///    With planes on both sides, the ground is the one touched in at least
+///    `contact_ratio` times as many cells per cell showing it as the other,
+///    and in 2 cells more at least; when neither is, the same test on the
+///    touches but the columns.
+///    With one plane (the *standing* cells hold points up to 2 m off it
+///    where it goes on behind them): fewer than 15 standing cells are no
+///    evidence against it (outdoors, the ground): found. Else it is the
+///    ground when at least `standing_fraction` of the standing cells touch
+///    it and not all of them are columns; a ceiling when fewer do and at
+///    most `ceiling_fraction` of the standing cells but the columns touch
+///    it: status `floor_out_of_view` (pillars alone reach a ceiling; the
+///    floor beyond the sensor's lowest rays, its height unknown).
+///    Otherwise the status is `ambiguous`.
+///    Up is the ground's normal pointing towards the sensor (away from the
+///    ceiling with the floor out of view): an upside-down sensor (roll 180)
+///    finds roll 180, whichever plane is nearer.
+///
+/// The floor out of view: a level Mid-360 (rays from -7 deg) 1.2 or 1.5 m
+/// up in a 20 x 12 m room meets the floor 9.8 or 12 m out, at or beyond the
+/// walls: one plane, the ceiling, with pillars alone touching it. Its
+/// normal gives roll and pitch; the sensor's height cannot be measured:
+/// `floor_out_of_view`.
 ///
 /// Failure cases (the estimate is then wrong, ambiguous or nullopt):
-/// - the floor out of view: a level Mid-360 (rays from -7 deg) 1.5 m up in
-///   a 20 x 12 m room meets the floor 12 m out, beyond the walls: one plane,
-///   the ceiling, with pillars alone touching it: ambiguous;
+/// - a lone plane that about as many standing cells touch as not, columns
+///   aside (tables on a floor seen from 1.2 m, their tops not touching):
+///   ambiguous;
 /// - mirror-symmetric evidence (two parallel planes, nothing standing on
 ///   either or as much on both): ambiguous;
 /// - the sensor is tilted more than `max_tilt_deg`: the ground is no
@@ -70,7 +86,9 @@
 /// \code
 /// std::vector<Eigen::Vector3f> first_window = ...;     // sensor frame [m]
 /// const auto ground = streamclust::estimate_ground(first_window);
-/// if (ground && ground->status == streamclust::GroundStatus::found) params.mount = ground->mount;
+/// streamclust::ObjectsSetup setup;                     // objects_presets.hpp
+/// if (ground && ground->status != streamclust::GroundStatus::ambiguous) setup.mount = ground->mount;
+/// if (ground && ground->status == streamclust::GroundStatus::found) setup.sensor_height = float(ground->height);
 /// \endcode
 ///
 /// Thread safety: free functions without shared state.
@@ -331,7 +349,13 @@ inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& poi
 struct PlaneContacts {
   std::size_t shows = 0, touches = 0, standing = 0, columns = 0;
   /// Touching cells per cell showing the plane.
-  double per_cell() const { return shows > 0 ? static_cast<double>(touches) / static_cast<double>(shows) : 0.0; }
+  double per_cell() const { return per_cell(touches); }
+  /// `cells` per cell showing the plane.
+  double per_cell(std::size_t cells) const {
+    return shows > 0 ? static_cast<double>(cells) / static_cast<double>(shows) : 0.0;
+  }
+  /// Touching cells but the columns: what touches the plane and ends before the sensor's level.
+  std::size_t low_touches() const { return touches - columns; }
   /// Share of the standing cells that touch the plane.
   double standing_share() const {
     return standing > 0 ? static_cast<double>(touches) / static_cast<double>(standing) : 0.0;
@@ -353,6 +377,9 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
   const double offset[2] = {distance_a, distance_b};  // off plane k (>= 0 on the sensor's side): sign_k s + offset_k
   const double sign[2] = {1.0, -1.0};
   const int planes = distance_b > 0.0 ? 2 : 1;
+  // Past the sensor's level, away from plane k: up to kPast m, short of the other plane.
+  const double past_limit[2] = {planes == 2 ? std::min(kPast, distance_b - 2.0 * tolerance) : kPast,
+                                std::min(kPast, distance_a - 2.0 * tolerance)};
   const auto sector = [&](double x, double y) {
     const int k = static_cast<int>(std::floor((std::atan2(y, x) + kPi) / (2.0 * kPi) * kSectors));
     return std::min(std::max(k, 0), kSectors - 1);
@@ -381,7 +408,7 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
     std::uint16_t flags = 0;
     for (int k = 0; k < planes; ++k) {
       const double off = sign[k] * s + offset[k];  // >= 0 on the sensor's side
-      std::uint8_t f = sign[k] * s > 2.0 * tolerance && sign[k] * s <= kPast ? kPastSensor : 0;
+      std::uint8_t f = sign[k] * s > 2.0 * tolerance && sign[k] * s <= past_limit[k] ? kPastSensor : 0;
       if (std::abs(off) <= tolerance) {
         f = kShows;
       } else if (off > 2.0 * tolerance && off <= kReach &&
@@ -463,20 +490,25 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
   GroundStatus status = GroundStatus::ambiguous;
   double contact = 0.0, opposite_contact = 0.0;
   if (distance_b > 0.0) {
-    const double a = on_a.per_cell(), b = on_b.per_cell();
-    if (on_a.touches >= on_b.touches + kMinTouches && a >= params.contact_ratio * b) {
-      status = GroundStatus::found;
-    } else if (on_b.touches >= on_a.touches + kMinTouches && b >= params.contact_ratio * a) {
-      status = GroundStatus::found;
-      a_is_ground = false;
-    }
-    contact = a_is_ground ? a : b;
-    opposite_contact = a_is_ground ? b : a;
+    // The plane touched more wins; when neither is, the touches but the columns (which may stand on either).
+    const auto decide = [&](std::size_t touches_a, std::size_t touches_b) {
+      const double a = on_a.per_cell(touches_a), b = on_b.per_cell(touches_b);
+      if (touches_a >= touches_b + kMinTouches && a >= params.contact_ratio * b) {
+        status = GroundStatus::found;
+      } else if (touches_b >= touches_a + kMinTouches && b >= params.contact_ratio * a) {
+        status = GroundStatus::found;
+        a_is_ground = false;
+      }
+    };
+    decide(on_a.touches, on_b.touches);
+    if (status == GroundStatus::ambiguous) decide(on_a.low_touches(), on_b.low_touches());
+    contact = (a_is_ground ? on_a : on_b).per_cell();
+    opposite_contact = (a_is_ground ? on_b : on_a).per_cell();
   } else {
     // Columns (touching and reaching past the sensor's level) may stand on either side; the other touches
     // are the evidence of a floor.
     contact = on_a.standing_share();
-    const std::size_t low_touches = on_a.touches - on_a.columns, low_standing = on_a.standing - on_a.columns;
+    const std::size_t low_touches = on_a.low_touches(), low_standing = on_a.standing - on_a.columns;
     const bool few_low_touches = static_cast<double>(low_touches) <=
                                  params.ceiling_fraction * static_cast<double>(low_standing);
     if (on_a.standing < kMinStandingCells || (contact >= params.standing_fraction && low_touches > 0)) {
