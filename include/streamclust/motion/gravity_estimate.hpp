@@ -491,8 +491,9 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
   double contact = 0.0, opposite_contact = 0.0;
   if (distance_b > 0.0) {
     // The plane touched more wins; when neither is, the touches but the columns (which may stand on either).
-    const auto decide = [&](std::size_t touches_a, std::size_t touches_b) {
-      const double a = on_a.per_cell(touches_a), b = on_b.per_cell(touches_b);
+    const auto decide = [&](const detail::PlaneContacts& plane_a, std::size_t touches_a,
+                            const detail::PlaneContacts& plane_b, std::size_t touches_b) {
+      const double a = plane_a.per_cell(touches_a), b = plane_b.per_cell(touches_b);
       if (touches_a >= touches_b + kMinTouches && a >= params.contact_ratio * b) {
         status = GroundStatus::found;
       } else if (touches_b >= touches_a + kMinTouches && b >= params.contact_ratio * a) {
@@ -500,8 +501,8 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
         a_is_ground = false;
       }
     };
-    decide(on_a.touches, on_b.touches);
-    if (status == GroundStatus::ambiguous) decide(on_a.low_touches(), on_b.low_touches());
+    decide(on_a, on_a.touches, on_b, on_b.touches);
+    if (status == GroundStatus::ambiguous) decide(on_a, on_a.low_touches(), on_b, on_b.low_touches());
     contact = (a_is_ground ? on_a : on_b).per_cell();
     opposite_contact = (a_is_ground ? on_b : on_a).per_cell();
   } else {
