@@ -88,7 +88,9 @@
 /// const auto ground = streamclust::estimate_ground(first_window);
 /// streamclust::ObjectsSetup setup;                     // objects_presets.hpp
 /// if (ground && ground->status != streamclust::GroundStatus::ambiguous) setup.mount = ground->mount;
-/// if (ground && ground->status == streamclust::GroundStatus::found) setup.sensor_height = float(ground->height);
+/// if (ground && ground->status == streamclust::GroundStatus::found) {
+///   setup.sensor_height = static_cast<float>(ground->height);  // unknown (0) with the floor out of view
+/// }
 /// \endcode
 ///
 /// Thread safety: free functions without shared state.
@@ -152,7 +154,7 @@ struct GroundEstimate {
   GroundStatus status = GroundStatus::found;         ///< found, ambiguous (the fields a guess) or floor_out_of_view
   double opposite_distance = 0.0;  ///< [m] the sensor's distance from the plane across it (a ceiling), 0: none seen
   double contact = 0.0;  ///< the evidence for this plane (touches per cell; one plane: share touching; 0: not seen)
-  double opposite_contact = 0.0;   ///< the same for the plane across (0: none)
+  double opposite_contact = 0.0;   ///< the same for the plane across (0: none; a lone ceiling: columns aside)
 };
 
 namespace detail {
@@ -344,8 +346,9 @@ inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& poi
 /// touching it, cells holding points 2 tolerance to `reach` m off it
 /// where it goes on behind them (`standing`), and the touching cells that
 /// also hold points 2 tolerance to 1 m past the sensor's level, away from
-/// the plane (`columns`: a pillar, a trunk, a person taller than the
-/// sensor's height; what reaches past the sensor may stand on either side).
+/// the plane and short of the other (`columns`: a pillar, a trunk, a person
+/// taller than the sensor's height; what reaches past the sensor may stand
+/// on either side).
 struct PlaneContacts {
   std::size_t shows = 0, touches = 0, standing = 0, columns = 0;
   /// Touching cells per cell showing the plane.
@@ -410,7 +413,7 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
       const double off = sign[k] * s + offset[k];  // >= 0 on the sensor's side
       std::uint8_t f = sign[k] * s > 2.0 * tolerance && sign[k] * s <= past_limit[k] ? kPastSensor : 0;
       if (std::abs(off) <= tolerance) {
-        f = kShows;
+        f |= kShows;
       } else if (off > 2.0 * tolerance && off <= kReach &&
                  reach[k][static_cast<std::size_t>(sector(x, y))] >= std::hypot(x, y) + kBeyond) {
         f |= off <= band ? (kNear | kTouches | kStanding) : kStanding;
