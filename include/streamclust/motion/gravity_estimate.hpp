@@ -66,8 +66,8 @@
 ///   either or as much on both): ambiguous;
 /// - the sensor is tilted more than `max_tilt_deg`: the ground is no
 ///   candidate, and a wall then within max_tilt_deg of the z axis is taken
-///   for it (raising max_tilt_deg admits walls, and a wall nearer than the
-///   ground wins);
+///   for it or for a ceiling (raising max_tilt_deg admits walls, and a wall
+///   nearer than the ground wins);
 /// - a large horizontal surface nearer than the ground on its side (a
 ///   platform, a big table top) is taken for the ground (its tilt is
 ///   usually the ground's);
