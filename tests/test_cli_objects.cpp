@@ -3,7 +3,8 @@
 // objects presets (the same labels as the library's presets), --ground with
 // the labels -2/-3 and the report's ground fields, --poses/--mount with
 // --verify, the mount and sensor height estimated from the first window (the
-// office floor under a level Mid-360; ambiguous planes named as such), and
+// office floor under a level Mid-360; ambiguous planes named as such; the
+// ceiling alone, the floor out of view: the mount from it, no height), and
 // the usage and input errors.
 
 #include <doctest/doctest.h>
@@ -13,6 +14,9 @@
 #include <streamclust/io/reader.hpp>
 #include <streamclust/objects_presets.hpp>
 #include <streamclust/retrieval_schedule.hpp>
+#include <streamclust/sim/scenes.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
+#include <streamclust/sim/simulator.hpp>
 #include <streamclust/stream_clusterer.hpp>
 
 #include <nlohmann/json.hpp>
@@ -244,6 +248,50 @@ TEST_CASE("cluster --ground, two parallel planes with nothing on them: ambiguous
   const auto doc = nlohmann::json::parse(slurp(tmp.dir / "report.json"));
   CHECK_FALSE(doc.at("ground").at("sensor_height_estimated").get<bool>());
   CHECK_FALSE(doc.at("ground").contains("estimated_mount"));
+}
+
+TEST_CASE("cluster --ground, a level Mid-360 1.5 m up in the office: the ceiling alone, the mount from it, no height") {
+  namespace sc = streamclust;
+  namespace sim = streamclust::sim;
+  // The first 0.5 s: the lowest ray (-7 deg) meets the floor 12 m out, beyond the walls.
+  sim::Simulator<sim::Mid360Model>::Params params;
+  params.start_position = Eigen::Vector3f(0.0f, 0.0f, 1.5f);
+  sim::Simulator<sim::Mid360Model> simulator(sim::Mid360Model{}, sim::make_scene("office", 1), params);
+  std::vector<Eigen::Vector3f> window;
+  while (simulator.time() < 0.5) {
+    const sim::SimPoint p = simulator.next();
+    window.emplace_back(p.x, p.y, p.z);
+  }
+  std::ostringstream err;
+  const auto setup = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"in.csv", "--preset", "objects-mid360"});
+    err.str("");
+    return sc::cli::make_run_setup(sc::cli::parse_cluster_options(args), false, err, &window);
+  };
+  const sc::cli::RunSetup estimated = setup({});
+  INFO(err.str());
+  CHECK(err.str().find("the first window shows a ceiling 1.50 m above the sensor and no floor: level from the "
+                       "ceiling (roll ") != std::string::npos);
+  CHECK(err.str().find("height unknown (give --sensor-height)") != std::string::npos);
+  REQUIRE(estimated.estimate.has_value());
+  CHECK(estimated.estimate->status == sc::GroundStatus::floor_out_of_view);
+  CHECK(std::abs(estimated.estimate->roll_deg) < 0.5);
+  CHECK(std::abs(estimated.estimate->pitch_deg) < 0.5);
+  CHECK(estimated.motion.enabled);
+  CHECK(estimated.estimated_mount);
+  CHECK(estimated.motion.posed.mount.rotation.coeffs() == estimated.estimate->mount.rotation.coeffs());
+  CHECK_FALSE(estimated.estimated_height);
+  CHECK(estimated.ground.height_map.sensor_height == 0.0f);  // unknown, as without a ground plane
+  // A height given is used with the mount from the ceiling; a mount given is used, the height still unknown.
+  const sc::cli::RunSetup with_height = setup({"--sensor-height", "1.5"});
+  CHECK(err.str().find("and no floor: level from the ceiling") != std::string::npos);
+  CHECK(err.str().find("the height given is used") != std::string::npos);
+  CHECK(with_height.estimated_mount);
+  CHECK(with_height.ground.height_map.sensor_height == 1.5f);
+  const sc::cli::RunSetup with_mount = setup({"--mount", "0,0,0"});
+  CHECK(err.str().find("and no floor: the mount given is used, height unknown") != std::string::npos);
+  CHECK_FALSE(with_mount.estimated_mount);
+  CHECK(with_mount.ground.height_map.sensor_height == 0.0f);
 }
 
 TEST_CASE("cluster --poses with a moving, turning sensor: verified; points outside the poses' span are no_pose") {

@@ -4,9 +4,10 @@
 // (level, pitched, upside down, rolled and pitched); floor and ceiling (the
 // boxes stand on the floor; nothing or as much on both: ambiguous); no
 // ground; parameters; determinism. Then simulated first windows: a level
-// Mid-360 and Avia in the office at several heights, pitched and upside-down
-// mounts in the office, forest, street and hills (the Mid-360 from the real
-// scan table when the shared data has it, else the analytic model).
+// Mid-360 and Avia in the office at several heights (the Mid-360 above 1.2 m
+// sees the ceiling and no floor), pitched and upside-down mounts in the
+// office, forest, street and hills (the Mid-360 from the real scan table when
+// the shared data has it, else the analytic model).
 
 #include <doctest/doctest.h>
 
@@ -24,6 +25,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <random>
 #include <string>
@@ -183,7 +185,10 @@ TEST_CASE("estimate_ground: no large near-horizontal plane, too few points: null
   const auto wall = sc::estimate_ground(sensor_points(world_points(Scene{}, 3), steep, 1.0));
   REQUIRE(wall.has_value());
   CHECK(tilt_error_deg(wall->mount, steep) > 45.0);
-  CHECK(wall->height == doctest::Approx(8.0).epsilon(0.05));
+  // The wall taken for the ground (found or ambiguous) or, the ground's points near it not touching, for a ceiling.
+  const double wall_distance =
+      wall->status == sc::GroundStatus::floor_out_of_view ? wall->opposite_distance : wall->height;
+  CHECK(wall_distance == doctest::Approx(8.0).epsilon(0.05));
   sc::MountEstimateParams wide;
   wide.max_tilt_deg = 70.0;
   const auto found = sc::estimate_mount(sensor_points(world_points(Scene{}, 3), steep, 1.0), wide);
@@ -228,6 +233,9 @@ TEST_CASE("estimate_ground: deterministic for a seed; non-finite points skipped;
         std::string::npos);
   CHECK(message([](sc::MountEstimateParams& p) { p.standing_fraction = 0.0; }).find("standing_fraction = 0") !=
         std::string::npos);
+  // ceiling_fraction not below standing_fraction
+  CHECK(message([](sc::MountEstimateParams& p) { p.ceiling_fraction = 0.5; }).find("ceiling_fraction = 0.5") !=
+        std::string::npos);
 }
 
 namespace {
@@ -235,13 +243,14 @@ namespace {
 namespace sim = streamclust::sim;
 
 /// The first 0.5 s (the objects presets' window) of `sensor` in the scene
-/// `scene` (seed 1), `height` m above the ground with `mount`: sensor frame.
+/// `scene` (seed `seed`), `height` m above the ground with `mount`: sensor frame.
 template <class Sensor>
-std::vector<Eigen::Vector3f> first_window(Sensor sensor, const char* scene, const sc::Pose& mount, float height) {
+std::vector<Eigen::Vector3f> first_window(Sensor sensor, const char* scene, const sc::Pose& mount, float height,
+                                          std::uint64_t seed = 1) {
   typename sim::Simulator<Sensor>::Params params;
   params.start_position = Eigen::Vector3f(0.0f, 0.0f, height);
   params.mount = mount;
-  sim::Simulator<Sensor> simulator(std::move(sensor), sim::make_scene(scene, 1), params);
+  sim::Simulator<Sensor> simulator(std::move(sensor), sim::make_scene(scene, seed), params);
   std::vector<Eigen::Vector3f> out;
   while (simulator.time() < 0.5) {
     const sim::SimPoint p = simulator.next();
@@ -283,12 +292,39 @@ TEST_CASE("estimate_ground: a level Mid-360 or Avia in the simulated office is l
     CHECK(g->height == doctest::Approx(height).epsilon(0.02));
     CHECK(g->opposite_distance == doctest::Approx(3.0 - height).epsilon(0.02));  // the ceiling at 3 m
   }
-  // 1.5 m up, the Mid-360's lowest ray (-7 deg) meets the floor 12 m out, beyond the 20 x 12 m room: the
-  // ceiling alone, pillars alone touching it. Ambiguous, not the ceiling taken for the ground.
-  const std::optional<sc::GroundEstimate> high = sc::estimate_ground(livox_window("mid360", "office", level, 1.5f));
-  REQUIRE(high.has_value());
-  CHECK(high->status == sc::GroundStatus::ambiguous);
-  CHECK(high->height == doctest::Approx(1.5).epsilon(0.02));  // the guess: the ceiling's distance
+  // 1.2 and 1.5 m up, the Mid-360's lowest ray (-7 deg) meets the floor 9.8 and 12 m out, at or beyond the
+  // walls of the 20 x 12 m room: the ceiling alone, pillars alone touching it. Level from the ceiling, the
+  // height unknown; not the ceiling taken for the ground.
+  for (const float height : {1.2f, 1.5f}) {
+    CAPTURE(height);
+    const std::vector<Eigen::Vector3f> points = livox_window("mid360", "office", level, height);
+    const std::optional<sc::GroundEstimate> high = sc::estimate_ground(points);
+    REQUIRE(high.has_value());
+    CHECK(high->status == sc::GroundStatus::floor_out_of_view);
+    CHECK(tilt_error_deg(high->mount, level) < 0.5);
+    CHECK(high->height == 0.0);
+    CHECK(high->opposite_distance == doctest::Approx(3.0 - height).epsilon(0.02));
+    const std::optional<sc::Pose> mount = sc::estimate_mount(points);
+    REQUIRE(mount.has_value());
+    CHECK(mount->rotation.coeffs() == high->mount.rotation.coeffs());
+  }
+  // 1.0 m up in the scene of seed 3, the analytic Mid-360 sees a floor strip of 58 cells beyond 8 m, touched
+  // in 3 as the ceiling is by the pillars: the touches but the columns tell the floor.
+  const std::optional<sc::GroundEstimate> strip =
+      sc::estimate_ground(first_window(sim::Mid360Model{}, "office", level, 1.0f, 3));
+  REQUIRE(strip.has_value());
+  CHECK(strip->status == sc::GroundStatus::found);
+  CHECK(tilt_error_deg(strip->mount, level) < 0.5);
+  CHECK(strip->height == doctest::Approx(1.0).epsilon(0.02));
+  // The Avia pitched 30 deg 1.2 m up in the scene of seed 4: one plane, the floor, 9 of the 21 standing cells
+  // but the columns touching it (desk tops do not): neither a floor nor a ceiling by the evidence.
+  const sc::Pose pitched = sc::mount_from_roll_pitch_yaw_deg(0.0, 30.0, 0.0);
+  const std::vector<Eigen::Vector3f> middle = first_window(sim::AviaModel{}, "office", pitched, 1.2f, 4);
+  const std::optional<sc::GroundEstimate> unsure = sc::estimate_ground(middle);
+  REQUIRE(unsure.has_value());
+  CHECK(unsure->status == sc::GroundStatus::ambiguous);
+  CHECK(unsure->opposite_distance == 0.0);  // one plane
+  CHECK_FALSE(sc::estimate_mount(middle).has_value());
 }
 
 TEST_CASE("estimate_ground: pitched and upside-down mounts in the office, forest, street and hills") {

@@ -67,7 +67,9 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
 /// what is not given (the mount when neither --mount nor --poses is, the
 /// sensor height without --sensor-height; see estimate_ground) and notes it
 /// on `err` unless quiet; an ambiguous estimate (floor and ceiling not told
-/// apart) is noted and not used. `timed` times the ground and placement stages (the
+/// apart) is noted and not used; with the floor out of view (a ceiling
+/// alone) the mount is used and the height stays unknown, as without a
+/// ground plane. `timed` times the ground and placement stages (the
 /// report). `first_window`, when given, replaces the first window read from
 /// `o.input` (a caller that holds the stream in memory). Throws UsageError
 /// for a value a policy rejects.
@@ -102,21 +104,33 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
                       "(give --mount and --sensor-height)\n", planes);
         err << line;
       }
-    } else if (s.estimate) {
+    } else if (s.estimate) {  // found, or the floor out of view: the mount, and the height when the floor is seen
+      const bool floor_seen = s.estimate->status == GroundStatus::found;
       if (!s.motion.enabled) {
         s.motion.enabled = true;
         s.motion.posed.mount = s.estimate->mount;
         s.estimated_mount = true;
       }
-      if (!o.sensor_height) {
+      if (floor_seen && !o.sensor_height) {
         g.sensor_height = static_cast<float>(s.estimate->height);
         s.estimated_height = true;
       }
       if (!o.quiet) {
-        char line[200];
-        std::snprintf(line, sizeof line, "streamclust: ground of the first window: roll %.1f deg, pitch %.1f deg, "
-                      "sensor %.2f m above it%s\n", s.estimate->roll_deg, s.estimate->pitch_deg, s.estimate->height,
-                      s.estimated_mount ? "" : " (the mount given is used)");
+        char line[320];
+        if (floor_seen) {
+          std::snprintf(line, sizeof line, "streamclust: ground of the first window: roll %.1f deg, pitch %.1f deg, "
+                        "sensor %.2f m above it%s\n", s.estimate->roll_deg, s.estimate->pitch_deg, s.estimate->height,
+                        s.estimated_mount ? "" : " (the mount given is used)");
+        } else {
+          char mount[96] = "the mount given is used";
+          if (s.estimated_mount) {
+            std::snprintf(mount, sizeof mount, "level from the ceiling (roll %.1f deg, pitch %.1f deg)",
+                          s.estimate->roll_deg, s.estimate->pitch_deg);
+          }
+          std::snprintf(line, sizeof line, "streamclust: the first window shows a ceiling %.2f m above the sensor "
+                        "and no floor: %s, %s\n", s.estimate->opposite_distance, mount,
+                        o.sensor_height ? "the height given is used" : "height unknown (give --sensor-height)");
+        }
         err << line;
       }
     } else if (!o.quiet) {

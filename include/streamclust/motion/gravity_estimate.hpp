@@ -31,27 +31,43 @@
 ///    `contact_band` m off it, the plane goes on at least 1 m farther out
 ///    in its 2-degree sector (a floor continues behind what stands on it;
 ///    a wall ends it) and no point of its 0.5 m cell is that near the other
-///    plane (a pillar touches both). With planes on both sides, the ground
-///    is the one touched in at least `contact_ratio` times as many cells
-///    per cell showing it as the other, and in 2 cells more at least. With one
-///    plane, it is the ground when at least `standing_fraction` of the
-///    cells holding points up to 2 m off it (where it goes on behind them)
-///    touch it, or when fewer than 15 cells hold such points (no evidence
-///    against the lone plane: outdoors, the ground). Otherwise the status
-///    is `ambiguous`.
-///    Up is the ground's normal pointing towards the sensor: an upside-down
-///    sensor (roll 180) finds roll 180, whichever plane is nearer.
+///    plane (a pillar touches both). A touching cell that also holds points
+///    up to 1 m past the sensor's level (short of the other plane) is a
+///    *column*: a pillar, a trunk, anything taller than the sensor's
+///    height; it may stand on either plane.
+///    With planes on both sides, the ground is the one touched in at least
+///    `contact_ratio` times as many cells per cell showing it as the other,
+///    and in 2 cells more at least; when neither is, the same test on the
+///    touches but the columns.
+///    With one plane (the *standing* cells hold points up to 2 m off it
+///    where it goes on behind them): fewer than 15 standing cells are no
+///    evidence against it (outdoors, the ground): found. Else it is the
+///    ground when at least `standing_fraction` of the standing cells touch
+///    it and not all of them are columns; a ceiling when fewer do and at
+///    most `ceiling_fraction` of the standing cells but the columns touch
+///    it: status `floor_out_of_view` (pillars alone reach a ceiling; the
+///    floor beyond the sensor's lowest rays, its height unknown).
+///    Otherwise the status is `ambiguous`.
+///    Up is the ground's normal pointing towards the sensor (away from the
+///    ceiling with the floor out of view): an upside-down sensor (roll 180)
+///    finds roll 180, whichever plane is nearer.
+///
+/// The floor out of view: a level Mid-360 (rays from -7 deg) 1.2 or 1.5 m
+/// up in a 20 x 12 m room meets the floor 9.8 or 12 m out, at or beyond the
+/// walls: one plane, the ceiling, with pillars alone touching it. Its
+/// normal gives roll and pitch; the sensor's height cannot be measured:
+/// `floor_out_of_view`.
 ///
 /// Failure cases (the estimate is then wrong, ambiguous or nullopt):
-/// - the floor out of view: a level Mid-360 (rays from -7 deg) 1.5 m up in
-///   a 20 x 12 m room meets the floor 12 m out, beyond the walls: one plane,
-///   the ceiling, with pillars alone touching it: ambiguous;
+/// - a lone plane that about as many standing cells touch as not, columns
+///   aside (tables on a floor seen from 1.2 m, their tops not touching):
+///   ambiguous;
 /// - mirror-symmetric evidence (two parallel planes, nothing standing on
 ///   either or as much on both): ambiguous;
 /// - the sensor is tilted more than `max_tilt_deg`: the ground is no
 ///   candidate, and a wall then within max_tilt_deg of the z axis is taken
-///   for it (raising max_tilt_deg admits walls, and a wall nearer than the
-///   ground wins);
+///   for it or for a ceiling (raising max_tilt_deg admits walls, and a wall
+///   nearer than the ground wins);
 /// - a large horizontal surface nearer than the ground on its side (a
 ///   platform, a big table top) is taken for the ground (its tilt is
 ///   usually the ground's);
@@ -70,7 +86,11 @@
 /// \code
 /// std::vector<Eigen::Vector3f> first_window = ...;     // sensor frame [m]
 /// const auto ground = streamclust::estimate_ground(first_window);
-/// if (ground && ground->status == streamclust::GroundStatus::found) params.mount = ground->mount;
+/// streamclust::ObjectsSetup setup;                     // objects_presets.hpp
+/// if (ground && ground->status != streamclust::GroundStatus::ambiguous) setup.mount = ground->mount;
+/// if (ground && ground->status == streamclust::GroundStatus::found) {
+///   setup.sensor_height = static_cast<float>(ground->height);  // unknown (0) with the floor out of view
+/// }
 /// \endcode
 ///
 /// Thread safety: free functions without shared state.
@@ -109,26 +129,32 @@ struct MountEstimateParams {
   double contact_band = 0.5;       ///< [m] points up to this far off a plane touch it, (2 inlier_distance, 10]
   double contact_ratio = 2.0;      ///< planes on both sides: the ground's touches per cell over the other's, >= 1
   double standing_fraction = 0.5;  ///< one plane: share of what stands near it that touches it, (0, 1]
+  double ceiling_fraction = 0.15;  ///< one plane: most share of what stands near it, columns aside, touching a
+                                   ///< ceiling, [0, standing_fraction)
 };
 
 /// What estimate_ground could tell.
 enum class GroundStatus : std::uint8_t {
   found,      ///< the ground plane, told from a ceiling by what stands on it
   ambiguous,  ///< planes, but nothing tells which is below: the fields hold plane A as a guess; give the mount
+  /// One plane, a ceiling (what stands near it does not touch it, columns
+  /// aside); the floor is out of view: the mount (up away from the ceiling)
+  /// and the ceiling's distance are known, the sensor's height is not (0).
+  floor_out_of_view,
 };
 
 /// The ground found by estimate_ground.
 struct GroundEstimate {
   Pose mount;                                        ///< roll and pitch, yaw 0, no translation: up -> +z
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();     ///< the ground's unit normal towards the sensor, sensor frame
-  double height = 0.0;                               ///< [m] the sensor's distance from the ground plane
+  double height = 0.0;  ///< [m] the sensor's distance from the ground plane (0: floor_out_of_view, unknown)
   double roll_deg = 0.0, pitch_deg = 0.0;            ///< [deg] of the mount (mount_from_roll_pitch_yaw_deg's)
-  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2)
+  std::size_t inliers = 0;  ///< points on the ground plane among those used (0: the plane across, rule 2, or none)
   std::size_t points_used = 0;                       ///< finite points used
-  GroundStatus status = GroundStatus::found;         ///< found, or ambiguous (then the fields are a guess)
+  GroundStatus status = GroundStatus::found;         ///< found, ambiguous (the fields a guess) or floor_out_of_view
   double opposite_distance = 0.0;  ///< [m] the sensor's distance from the plane across it (a ceiling), 0: none seen
-  double contact = 0.0;            ///< the evidence for this plane (touches per cell; one plane: share touching)
-  double opposite_contact = 0.0;   ///< the same for the plane across (0: none)
+  double contact = 0.0;  ///< the evidence for this plane (touches per cell; one plane: share touching; 0: not seen)
+  double opposite_contact = 0.0;   ///< the same for the plane across (0: none; a lone ceiling: columns aside)
 };
 
 namespace detail {
@@ -152,6 +178,8 @@ inline void check_mount_estimate_params(const MountEstimateParams& p) {
   if (!(p.contact_ratio >= 1.0 && p.contact_ratio <= 1e6)) fail("contact_ratio", p.contact_ratio, "[1, 1e6]");
   if (!(p.standing_fraction > 0.0 && p.standing_fraction <= 1.0))
     fail("standing_fraction", p.standing_fraction, "(0, 1]");
+  if (!(p.ceiling_fraction >= 0.0 && p.ceiling_fraction < p.standing_fraction))
+    fail("ceiling_fraction", p.ceiling_fraction, "[0, standing_fraction)");
 }
 
 /// A plane n . p + d = 0 with unit n.
@@ -315,12 +343,22 @@ inline PlanePeak farthest_parallel_plane(const std::vector<Eigen::Vector3f>& poi
 /// What stands on plane A (at distance `distance_a` along -axis) and plane B
 /// (at `distance_b` along +axis; 0: none), rule 3 of the file comment, in
 /// cells of `cell` m across the axis. Per plane: cells showing it, cells
-/// touching it, and cells holding points 2 tolerance to `reach` m off it
-/// where it goes on behind them (`standing`).
+/// touching it, cells holding points 2 tolerance to `reach` m off it
+/// where it goes on behind them (`standing`), and the touching cells that
+/// also hold points 2 tolerance to 1 m past the sensor's level, away from
+/// the plane and short of the other (`columns`: a pillar, a trunk, a person
+/// taller than the sensor's height; what reaches past the sensor may stand
+/// on either side).
 struct PlaneContacts {
-  std::size_t shows = 0, touches = 0, standing = 0;
+  std::size_t shows = 0, touches = 0, standing = 0, columns = 0;
   /// Touching cells per cell showing the plane.
-  double per_cell() const { return shows > 0 ? static_cast<double>(touches) / static_cast<double>(shows) : 0.0; }
+  double per_cell() const { return per_cell(touches); }
+  /// `cells` per cell showing the plane.
+  double per_cell(std::size_t cells) const {
+    return shows > 0 ? static_cast<double>(cells) / static_cast<double>(shows) : 0.0;
+  }
+  /// Touching cells but the columns: what touches the plane and ends before the sensor's level.
+  std::size_t low_touches() const { return touches - columns; }
   /// Share of the standing cells that touch the plane.
   double standing_share() const {
     return standing > 0 ? static_cast<double>(touches) / static_cast<double>(standing) : 0.0;
@@ -335,12 +373,16 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
   constexpr double kCell = 0.5;    // [m]
   constexpr double kBeyond = 1.0;  // [m] the plane goes on at least this much farther out
   constexpr double kReach = 2.0;   // [m] what stands near a plane: up to this far off it
+  constexpr double kPast = 1.0;    // [m] a column's points past the sensor's level: up to this far
   constexpr int kSectors = 180;    // 2 deg each
   constexpr double kPi = 3.14159265358979323846;
   const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
   const double offset[2] = {distance_a, distance_b};  // off plane k (>= 0 on the sensor's side): sign_k s + offset_k
   const double sign[2] = {1.0, -1.0};
   const int planes = distance_b > 0.0 ? 2 : 1;
+  // Past the sensor's level, away from plane k: up to kPast m, short of the other plane.
+  const double past_limit[2] = {planes == 2 ? std::min(kPast, distance_b - 2.0 * tolerance) : kPast,
+                                std::min(kPast, distance_a - 2.0 * tolerance)};
   const auto sector = [&](double x, double y) {
     const int k = static_cast<int>(std::floor((std::atan2(y, x) + kPi) / (2.0 * kPi) * kSectors));
     return std::min(std::max(k, 0), kSectors - 1);
@@ -358,26 +400,27 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
       }
     }
   }
-  // Pass 2: per cell, per plane: shows, near (within band), touches (near, plane goes on), standing.
-  enum : std::uint8_t { kShows = 1, kNear = 2, kTouches = 4, kStanding = 8 };
-  std::unordered_map<std::uint64_t, std::uint8_t> cells;  // plane A's flags in bits 0-3, B's in 4-7
+  // Pass 2: per cell, per plane: shows, near (within band), touches (near, plane goes on), standing, past the
+  // sensor's level.
+  enum : std::uint8_t { kShows = 1, kNear = 2, kTouches = 4, kStanding = 8, kPastSensor = 16 };
+  std::unordered_map<std::uint64_t, std::uint16_t> cells;  // plane A's flags in bits 0-4, B's in 8-12
   for (const Eigen::Vector3f& pf : points) {
     if (!pf.allFinite()) continue;
     const Eigen::Vector3d p = pf.cast<double>();
     const double s = axis.dot(p), x = e1.dot(p), y = e2.dot(p);
-    std::uint8_t flags = 0;
+    std::uint16_t flags = 0;
     for (int k = 0; k < planes; ++k) {
       const double off = sign[k] * s + offset[k];  // >= 0 on the sensor's side
-      std::uint8_t f = 0;
+      std::uint8_t f = sign[k] * s > 2.0 * tolerance && sign[k] * s <= past_limit[k] ? kPastSensor : 0;
       if (std::abs(off) <= tolerance) {
-        f = kShows;
+        f |= kShows;
       } else if (off > 2.0 * tolerance && off <= kReach &&
                  reach[k][static_cast<std::size_t>(sector(x, y))] >= std::hypot(x, y) + kBeyond) {
-        f = off <= band ? (kNear | kTouches | kStanding) : kStanding;
+        f |= off <= band ? (kNear | kTouches | kStanding) : kStanding;
       } else if (off > 2.0 * tolerance && off <= band) {
-        f = kNear;  // near, the plane not going on behind: it still marks a pillar's cell
+        f |= kNear;  // near, the plane not going on behind: it still marks a pillar's cell
       }
-      flags |= static_cast<std::uint8_t>(f << (4 * k));
+      flags = static_cast<std::uint16_t>(flags | (f << (8 * k)));
     }
     if (flags == 0) continue;
     const auto i = static_cast<std::int64_t>(std::floor(x / kCell)), j = static_cast<std::int64_t>(std::floor(y / kCell));
@@ -385,14 +428,15 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
   }
   PlaneContacts out[2];
   for (const auto& entry : cells) {
-    const std::uint8_t flags[2] = {static_cast<std::uint8_t>(entry.second & 15u),
-                                   static_cast<std::uint8_t>(entry.second >> 4)};
+    const std::uint8_t flags[2] = {static_cast<std::uint8_t>(entry.second & 0xffu),
+                                   static_cast<std::uint8_t>(entry.second >> 8)};
     const bool near_both = (flags[0] & kNear) != 0 && (flags[1] & kNear) != 0;  // a pillar, a wall
     for (int k = 0; k < 2; ++k) {
       out[k].shows += (flags[k] & kShows) != 0;
       if (near_both) continue;
       out[k].touches += (flags[k] & kTouches) != 0;
       out[k].standing += (flags[k] & kStanding) != 0;
+      out[k].columns += (flags[k] & kTouches) != 0 && (flags[k] & kPastSensor) != 0;
     }
   }
   return {out[0], out[1]};
@@ -449,23 +493,41 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
   GroundStatus status = GroundStatus::ambiguous;
   double contact = 0.0, opposite_contact = 0.0;
   if (distance_b > 0.0) {
-    const double a = on_a.per_cell(), b = on_b.per_cell();
-    if (on_a.touches >= on_b.touches + kMinTouches && a >= params.contact_ratio * b) {
-      status = GroundStatus::found;
-    } else if (on_b.touches >= on_a.touches + kMinTouches && b >= params.contact_ratio * a) {
-      status = GroundStatus::found;
-      a_is_ground = false;
-    }
-    contact = a_is_ground ? a : b;
-    opposite_contact = a_is_ground ? b : a;
+    // The plane touched more wins; when neither is, the touches but the columns (which may stand on either).
+    const auto decide = [&](const detail::PlaneContacts& plane_a, std::size_t touches_a,
+                            const detail::PlaneContacts& plane_b, std::size_t touches_b) {
+      const double a = plane_a.per_cell(touches_a), b = plane_b.per_cell(touches_b);
+      if (touches_a >= touches_b + kMinTouches && a >= params.contact_ratio * b) {
+        status = GroundStatus::found;
+      } else if (touches_b >= touches_a + kMinTouches && b >= params.contact_ratio * a) {
+        status = GroundStatus::found;
+        a_is_ground = false;
+      }
+    };
+    decide(on_a, on_a.touches, on_b, on_b.touches);
+    if (status == GroundStatus::ambiguous) decide(on_a, on_a.low_touches(), on_b, on_b.low_touches());
+    contact = (a_is_ground ? on_a : on_b).per_cell();
+    opposite_contact = (a_is_ground ? on_b : on_a).per_cell();
   } else {
+    // Columns (touching and reaching past the sensor's level) may stand on either side; the other touches
+    // are the evidence of a floor.
     contact = on_a.standing_share();
-    if (on_a.standing < kMinStandingCells || contact >= params.standing_fraction) status = GroundStatus::found;
+    const std::size_t low_touches = on_a.low_touches(), low_standing = on_a.standing - on_a.columns;
+    const bool few_low_touches = static_cast<double>(low_touches) <=
+                                 params.ceiling_fraction * static_cast<double>(low_standing);
+    if (on_a.standing < kMinStandingCells || (contact >= params.standing_fraction && low_touches > 0)) {
+      status = GroundStatus::found;
+    } else if (contact < params.standing_fraction && few_low_touches) {
+      status = GroundStatus::floor_out_of_view;
+      a_is_ground = false;
+      contact = 0.0;
+      opposite_contact = low_standing > 0 ? static_cast<double>(low_touches) / static_cast<double>(low_standing) : 0.0;
+    }
   }
   GroundEstimate g;
   g.status = status;
   g.up = a_is_ground ? side_a->plane.n : side_b ? side_b->plane.n : Eigen::Vector3d(-axis);
-  g.height = a_is_ground ? side_a->plane.d : distance_b;
+  g.height = a_is_ground ? side_a->plane.d : distance_b;  // 0 with the floor out of view
   g.opposite_distance = a_is_ground ? distance_b : side_a->plane.d;
   g.inliers = a_is_ground ? side_a->inliers : (side_b ? side_b->inliers : 0);
   g.points_used = points.size();
@@ -480,12 +542,13 @@ inline std::optional<GroundEstimate> estimate_ground(const std::vector<Eigen::Ve
 }
 
 /// The mount (roll and pitch, yaw 0, no translation) that makes the ground
-/// of `sensor_points` horizontal: `estimate_ground(...)->mount`, or nullopt
-/// (also when the estimate is ambiguous).
+/// of `sensor_points` horizontal: `estimate_ground(...)->mount` when the
+/// ground is found or the floor is out of view (a ceiling tells which way is
+/// up), else nullopt (also when the estimate is ambiguous).
 inline std::optional<Pose> estimate_mount(const std::vector<Eigen::Vector3f>& sensor_points,
                                           const MountEstimateParams& params = {}) {
   const std::optional<GroundEstimate> ground = estimate_ground(sensor_points, params);
-  if (!ground || ground->status != GroundStatus::found) return std::nullopt;
+  if (!ground || ground->status == GroundStatus::ambiguous) return std::nullopt;
   return ground->mount;
 }
 
