@@ -62,6 +62,9 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
   return points;
 }
 
+/// An angle [deg] for a "%.1f" field: a hair below zero prints 0.0, not -0.0.
+inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : deg; }
+
 /// Resolves `o` for a run: loads --poses (io::InputError on a malformed
 /// file), builds the mount; with --ground, estimates from the first window
 /// what is not given (the mount when neither --mount nor --poses is, the
@@ -119,13 +122,14 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
         char line[320];
         if (floor_seen) {
           std::snprintf(line, sizeof line, "streamclust: ground of the first window: roll %.1f deg, pitch %.1f deg, "
-                        "sensor %.2f m above it%s\n", s.estimate->roll_deg, s.estimate->pitch_deg, s.estimate->height,
+                        "sensor %.2f m above it%s\n", printable_deg(s.estimate->roll_deg),
+                        printable_deg(s.estimate->pitch_deg), s.estimate->height,
                         s.estimated_mount ? "" : " (the mount given is used)");
         } else {
           char mount[96] = "the mount given is used";
           if (s.estimated_mount) {
             std::snprintf(mount, sizeof mount, "level from the ceiling (roll %.1f deg, pitch %.1f deg)",
-                          s.estimate->roll_deg, s.estimate->pitch_deg);
+                          printable_deg(s.estimate->roll_deg), printable_deg(s.estimate->pitch_deg));
           }
           std::snprintf(line, sizeof line, "streamclust: the first window shows a ceiling %.2f m above the sensor "
                         "and no floor: %s, %s\n", s.estimate->opposite_distance, mount,
