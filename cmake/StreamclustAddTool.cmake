@@ -101,10 +101,11 @@ function(streamclust_add_tool target)
   if(NOT ARG_LIBRARY)
     set(ARG_LIBRARY ${target}_lib)
   endif()
-  foreach(_part IN ITEMS io sim eval)
+  foreach(_part IN ITEMS io sim eval live)
     if(NOT TARGET streamclust::${_part})
-      message(FATAL_ERROR "streamclust_add_tool(${target}): the tool reads recordings, simulates and evaluates; "
-                          "find the package with find_package(streamclust REQUIRED COMPONENTS io sim eval)")
+      message(FATAL_ERROR "streamclust_add_tool(${target}): the tool reads recordings and live sensors, simulates "
+                          "and evaluates; find the package with "
+                          "find_package(streamclust REQUIRED COMPONENTS io sim eval live)")
     endif()
   endforeach()
   find_package(nlohmann_json 3 REQUIRED)
@@ -124,12 +125,13 @@ function(streamclust_add_tool target)
 
   add_library(${ARG_LIBRARY} STATIC
     "${_src}/cli/cluster.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
-    "${_src}/cli/evaluate_objects_options.cpp" ${_units})
+    "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" ${_units})
   target_include_directories(${ARG_LIBRARY} PUBLIC "${_src}")
   if(_STREAMCLUST_OWN_POLICIES)  # without policies of its own, the tool's default: registry::StockRegistry
     target_compile_definitions(${ARG_LIBRARY} PUBLIC "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")
   endif()
-  target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::streamclust streamclust::io nlohmann_json::nlohmann_json)
+  target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::streamclust streamclust::io streamclust::live
+                        nlohmann_json::nlohmann_json)
   target_compile_features(${ARG_LIBRARY} PUBLIC cxx_std_17)
 
   add_executable(${target} "${_src}/streamclust.cpp")

@@ -126,7 +126,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   }
 
   stage = Stage::reading;
-  auto reader = io::open_reader(o.input, o.read);
+  std::unique_ptr<io::PointReader> reader = o.open_input ? o.open_input() : io::open_reader(o.input, o.read);
   const CycleSelection selection(o);
   std::ofstream labels_file;
   if (!o.labels_path.empty()) {
@@ -168,7 +168,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   std::uint64_t valid_times = 0;
   std::uint64_t inserted_since = 0;
   CycleClock clock;
-  const bool progress = !o.quiet && stderr_is_terminal();
+  const bool progress = !o.quiet && !o.on_cycle && stderr_is_terminal();  // a watcher prints its own status
   auto last_progress = std::chrono::steady_clock::now();
   const auto declared = reader->info().declared_points;
   std::vector<std::uint64_t> index;
@@ -184,7 +184,9 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   // gathered only when an output needs them: copying a window per cycle
   // would evict the clusterer's data from the caches and slow the next cycle.
   const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() ||
-                           !o.mcap_path.empty() || !o.png_path.empty() || o.verify;
+                           !o.mcap_path.empty() || !o.png_path.empty() || o.verify || o.cycle_windows;
+  const std::vector<io::Record> no_points;
+  const std::vector<std::int64_t> no_labels;
   std::optional<McapOutput> mcap;  // every cycle
   if (!o.mcap_path.empty()) {
     try {
@@ -287,6 +289,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     c.total_us = clock.take();
     if (!rows_wanted) {
       report.cycles.push_back(c);
+      if (o.on_cycle) o.on_cycle(c, no_points, no_labels);
       ++cycle;
       return kOk;
     }
@@ -331,6 +334,13 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
       }
     }
     report.cycles.push_back(c);
+    if (o.on_cycle) {
+      if (o.cycle_windows) {
+        o.on_cycle(c, window_out.points, window_out.point_labels);
+      } else {
+        o.on_cycle(c, no_points, no_labels);
+      }
+    }
     if (mcap) {
       stage = Stage::writing;
       mcap->write(window_out.points, window_out.point_labels, cycle_time, reader->time_origin());
@@ -444,7 +454,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     labels_file.flush();
     if (!labels_file) throw UsageError("--labels: writing '" + o.labels_path + "' failed");
   }
-  if (!o.report_path.empty()) write_report_file(o.report_path, report);
+  if (!o.report_path.empty()) write_report_file(o.report_path, report, o.report_extra);
   if (have_selected && !o.ply_path.empty())
     io::write_ply(o.ply_path, kept.points, kept.point_labels, true, report.time_origin);
   if (have_selected && !o.pcd_path.empty())

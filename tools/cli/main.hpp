@@ -10,6 +10,7 @@
 #include "cli/evaluate.hpp"
 #include "cli/evaluate_objects.hpp"
 #include "cli/info.hpp"
+#include "cli/live.hpp"
 #include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
@@ -32,6 +33,7 @@ usage: streamclust <command> [options]
 
 commands:
   cluster INPUT   cluster a recorded stream as the sensor delivered it
+  live SOURCE     cluster a Livox LiDAR's stream live from the network (livox-sdk2://, livox-sdk1://)
   info INPUT      format, fields, point count, time span and bounds of an input
   simulate        write a simulated stream with its ground truth
   evaluate        simulate a scenario, cluster it (C-ARC and/or the frame baseline)
@@ -41,7 +43,7 @@ commands:
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error,
-5 out of memory.
+5 out of memory, 6 network error (live).
 )";
 }
 
@@ -252,6 +254,9 @@ inline int report_exception(const std::string& command, std::ostream& err) {
   } catch (const OutOfMemory& e) {
     err << "streamclust: " << e.what() << "\n";
     return kOutOfMemory;
+  } catch (const NetworkError& e) {
+    err << "streamclust: network error: " << e.what() << "\n";
+    return kNetworkError;
   } catch (const std::bad_alloc&) {
     err << "streamclust: " << (command.empty() ? std::string("streamclust") : command) << ": out of memory\n";
     return kOutOfMemory;
@@ -278,6 +283,13 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
         return kOk;
       }
       return run_cluster(parse_cluster_options(rest), out, err);
+    }
+    if (command == "live") {
+      if (help) {
+        out << live_help();
+        return kOk;
+      }
+      return run_live(parse_live_options(rest), out, err);
     }
     if (command == "info") {
       if (help) {
@@ -310,7 +322,7 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       }
       return run_evaluate(parse_evaluate_options(rest), out);
     }
-    throw UsageError("unknown command '" + command + "' (expected cluster, info, simulate or evaluate)");
+    throw UsageError("unknown command '" + command + "' (expected cluster, live, info, simulate or evaluate)");
   } catch (...) {
     return report_exception(command, err);
   }

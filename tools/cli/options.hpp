@@ -10,12 +10,16 @@
 #include "cli/tool_policies.hpp"
 
 #include <streamclust/io/input_stream.hpp>
+#include <streamclust/io/point_reader.hpp>
 #include <streamclust/io/record.hpp>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <memory>
 #include <optional>
@@ -40,7 +44,8 @@ using registry::Slot;
 
 enum class Mode { continuous, frame };
 
-struct RunSetup;  // cli/run_setup.hpp: what the options resolve to before a run
+struct RunSetup;     // cli/run_setup.hpp: what the options resolve to before a run
+struct CycleReport;  // cli/report.hpp: one retrieval cycle as reported
 
 /// Everything `streamclust cluster` needs, after presets and overrides.
 struct ClusterOptions {
@@ -94,6 +99,17 @@ struct ClusterOptions {
   std::vector<std::uint64_t> cycle_list;  ///< empty and !all_cycles: last cycle only
   bool verify = false;
   bool quiet = false;
+  // A run that another command feeds and watches (`live`); all empty for `cluster`.
+  /// Opens the input instead of io::open_reader(input, read), for the
+  /// driver (a live source instead of a file).
+  std::function<std::unique_ptr<io::PointReader>()> open_input;
+  /// Called after every cycle with its report, its stream time [s] and,
+  /// when `cycle_windows`, the window's points and labels (-1 unlabelled,
+  /// -2 ground, -3 ceiling); otherwise both are empty.
+  std::function<void(const CycleReport&, const std::vector<io::Record>&, const std::vector<std::int64_t>&)> on_cycle;
+  bool cycle_windows = false;
+  /// Adds its own members to the --report JSON document.
+  std::function<void(nlohmann::ordered_json&)> report_extra;
 };
 
 struct InfoOptions {

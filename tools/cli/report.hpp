@@ -14,6 +14,7 @@
 #include <streamclust/types.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -137,7 +138,13 @@ inline Json report_json(const Report& r) {
   return doc;
 }
 
-inline void write_report_file(const std::string& path, const Report& r) { write_json_file("--report", path, report_json(r)); }
+/// Writes the report; `extra`, when set, adds its members to the document.
+inline void write_report_file(const std::string& path, const Report& r,
+                              const std::function<void(Json&)>& extra = nullptr) {
+  Json doc = report_json(r);
+  if (extra) extra(doc);
+  write_json_file("--report", path, doc);
+}
 
 inline std::string summary_line(const Report& r) {
   const LatencySummary latency = streamclust::summarize(cycle_latencies_us(r));

@@ -42,7 +42,7 @@ struct RunSetup {
 /// the first T_B seconds (or the first --window-count records), at most
 /// `max_points` finite ones. O(window).
 inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o, std::size_t max_points = 400000) {
-  auto reader = io::open_reader(o.input, o.read);
+  std::unique_ptr<io::PointReader> reader = o.open_input ? o.open_input() : io::open_reader(o.input, o.read);
   std::vector<Eigen::Vector3f> points;
   std::vector<io::Record> chunk;
   std::optional<double> t0;

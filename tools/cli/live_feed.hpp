@@ -1,0 +1,253 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The engine side of `streamclust live`: one LiDAR's queue drained,
+/// decoded and ordered (live::LivoxStream), handed to the clusterer as
+/// point records through `LiveReader`, an io::PointReader, so the driver of
+/// `cluster` runs a live source with all its outputs. The feed keeps what
+/// it has handed out while the run is being set up (the first window, read
+/// once for the ground estimate and then again by the driver), records the
+/// raw input (--record), and ends the stream on a stop request (SIGINT,
+/// SIGTERM), after --duration or after --idle-exit seconds without packets.
+///
+/// Not thread-safe: the engine thread owns it; the receiver thread only
+/// fills the queue.
+
+#include "cli/live_recorder.hpp"
+
+#include <streamclust/io/point_reader.hpp>
+#include <streamclust/live/livox_receiver.hpp>
+#include <streamclust/live/livox_stream.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace streamclust::cli {
+
+/// Why a live stream ended.
+enum class LiveEnd { running, stop_requested, duration, idle, receiver_failed };
+
+inline const char* describe(LiveEnd e) {
+  switch (e) {
+    case LiveEnd::running: return "running";
+    case LiveEnd::stop_requested: return "stopped by a signal";
+    case LiveEnd::duration: return "--duration reached";
+    case LiveEnd::idle: return "--idle-exit: no packets";
+    case LiveEnd::receiver_failed: return "the receiver failed";
+  }
+  return "unknown";
+}
+
+class LiveFeed {
+ public:
+  struct Limits {
+    std::chrono::steady_clock::duration duration{};   ///< zero: none
+    std::chrono::steady_clock::duration idle_exit{};  ///< zero: none
+    /// Held packets are released after this long without a datagram (the
+    /// reorder window must not keep a pausing stream's last points).
+    std::chrono::steady_clock::duration idle_flush = std::chrono::milliseconds(20);
+  };
+
+  /// `stop` is polled (a signal handler sets it); `recorder` may be null.
+  LiveFeed(live::LivoxReceiver& receiver, std::size_t device, live::LivoxStream& stream, Limits limits,
+           const std::atomic<bool>& stop, LiveRecorder* recorder)
+      : receiver_(receiver), device_(device), stream_(stream), limits_(limits), stop_(stop), recorder_(recorder),
+        start_(std::chrono::steady_clock::now()), last_datagram_(start_) {}
+
+  /// Waits for the first returns (a first packet), at most `timeout`;
+  /// false when none came (or the run was stopped).
+  bool wait_for_first(std::chrono::steady_clock::duration timeout) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    while (history_.empty()) {
+      if (!pull_more(until)) return false;
+    }
+    return true;
+  }
+
+  /// The device time of the first return [ns, host clock]; valid after
+  /// wait_for_first returned true.
+  std::uint64_t first_time_ns() const { return history_.front().time_ns; }
+
+  /// Keeps every return handed out in a history that new readers replay
+  /// from its start (while the run is set up); `false` drops it and feeds
+  /// only the reader created last.
+  void keep_history(bool keep) {
+    keep_history_ = keep;  // off: the history shrinks as the reader passes it
+  }
+
+  /// Returns for reader position `position` (a count of returns since the
+  /// stream started): appends up to `max` to `out` and advances `position`;
+  /// blocks until at least one is there. 0: the stream ended.
+  std::size_t read(std::uint64_t& position, std::vector<live::LivoxReturn>& out, std::size_t max) {
+    for (;;) {
+      if (position < history_base_) position = history_base_;  // dropped history: skip (not while setting up)
+      const std::uint64_t end = history_base_ + history_.size();
+      if (position < end) {
+        const std::size_t at = static_cast<std::size_t>(position - history_base_);
+        const std::size_t n = std::min<std::size_t>(max, history_.size() - at);
+        out.insert(out.end(), history_.begin() + static_cast<std::ptrdiff_t>(at),
+                   history_.begin() + static_cast<std::ptrdiff_t>(at + n));
+        position += n;
+        if (!keep_history_) {
+          // The driver's reader is the only one left: forget what it has read.
+          const std::size_t drop = static_cast<std::size_t>(position - history_base_);
+          history_.erase(history_.begin(), history_.begin() + static_cast<std::ptrdiff_t>(drop));
+          history_base_ = position;
+        }
+        return n;
+      }
+      if (!pull_more(std::chrono::steady_clock::time_point::max())) return 0;
+    }
+  }
+
+  /// IMU samples received so far that no one has taken (stream clock).
+  std::vector<live::LivoxImuSample> take_imu() {
+    std::vector<live::LivoxImuSample> taken;
+    taken.swap(imu_);
+    return taken;
+  }
+
+  /// Arrivals of the packets whose returns were handed out, oldest first;
+  /// the caller pops what it has accounted for.
+  std::deque<live::PacketArrival>& arrivals() { return arrivals_; }
+
+  LiveEnd end() const { return end_; }
+  std::size_t queue_depth() { return receiver_.queue(device_).size(); }
+  /// Wall time since the feed started.
+  std::chrono::steady_clock::duration elapsed() const { return std::chrono::steady_clock::now() - start_; }
+
+ private:
+  // Drains the queue into the history until it grows, the deadline passes
+  // (false) or the stream ends (false, end_ set).
+  bool pull_more(std::chrono::steady_clock::time_point deadline) {
+    const std::size_t before = history_.size();
+    for (;;) {
+      if (end_ != LiveEnd::running) return false;
+      bool any = false;
+      for (int burst = 0; burst < 256; ++burst) {
+        live::Datagram* d = receiver_.queue(device_).front();
+        if (d == nullptr) break;
+        scratch_.clear();
+        stream_.consume(*d, scratch_, imu_scratch_, arrival_scratch_);
+        receiver_.queue(device_).pop();
+        take_scratch();
+        any = true;
+      }
+      const auto now = std::chrono::steady_clock::now();
+      if (any) last_datagram_ = now;
+      if (history_.size() > before) return true;
+      if (!any) {
+        if (now - last_datagram_ > limits_.idle_flush && stream_.held() > 0) {
+          scratch_.clear();
+          stream_.flush(scratch_, arrival_scratch_);
+          take_scratch();
+          if (history_.size() > before) return true;
+        }
+        if (stop_.load(std::memory_order_relaxed)) {
+          finish(LiveEnd::stop_requested);
+        } else if (limits_.duration.count() > 0 && now - start_ >= limits_.duration) {
+          finish(LiveEnd::duration);
+        } else if (limits_.idle_exit.count() > 0 && now - last_datagram_ >= limits_.idle_exit) {
+          finish(LiveEnd::idle);
+        } else if (!receiver_.error().empty()) {
+          finish(LiveEnd::receiver_failed);
+        }
+        if (end_ != LiveEnd::running) return history_.size() > before;
+        if (now >= deadline) return false;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    }
+  }
+
+  // The stream ends: what the reorder window holds is released first.
+  void finish(LiveEnd why) {
+    scratch_.clear();
+    stream_.flush(scratch_, arrival_scratch_);
+    take_scratch();
+    end_ = why;
+  }
+
+  void take_scratch() {
+    history_.insert(history_.end(), scratch_.begin(), scratch_.end());
+    if (recorder_) {
+      recorder_->add_returns(scratch_);
+      for (const auto& s : imu_scratch_) recorder_->add_imu(s);
+    }
+    imu_.insert(imu_.end(), imu_scratch_.begin(), imu_scratch_.end());
+    if (imu_.size() > kMaxImuKept) imu_.erase(imu_.begin(), imu_.end() - static_cast<std::ptrdiff_t>(kMaxImuKept));
+    arrivals_.insert(arrivals_.end(), arrival_scratch_.begin(), arrival_scratch_.end());
+    if (arrivals_.size() > kMaxArrivalsKept)
+      arrivals_.erase(arrivals_.begin(), arrivals_.end() - static_cast<std::ptrdiff_t>(kMaxArrivalsKept));
+    scratch_.clear();
+    imu_scratch_.clear();
+    arrival_scratch_.clear();
+  }
+
+  // Bounds of what waits for a consumer: 10 s of a 200 Hz IMU, 10 s of
+  // point packets.
+  static constexpr std::size_t kMaxImuKept = 2000;
+  static constexpr std::size_t kMaxArrivalsKept = 20000;
+
+  live::LivoxReceiver& receiver_;
+  std::size_t device_;
+  live::LivoxStream& stream_;
+  Limits limits_;
+  const std::atomic<bool>& stop_;
+  LiveRecorder* recorder_;
+  std::chrono::steady_clock::time_point start_, last_datagram_;
+  LiveEnd end_ = LiveEnd::running;
+  bool keep_history_ = true;
+  std::deque<live::LivoxReturn> history_;
+  std::uint64_t history_base_ = 0;
+  std::vector<live::LivoxReturn> scratch_;
+  std::vector<live::LivoxImuSample> imu_scratch_, imu_;
+  std::vector<live::PacketArrival> arrival_scratch_;
+  std::deque<live::PacketArrival> arrivals_;
+};
+
+/// The feed as an io::PointReader: records in nanoseconds of the host
+/// clock from the given time origin, so they equal what `cluster` reads
+/// from the feed's --record file.
+class LiveReader : public io::PointReader {
+ public:
+  LiveReader(LiveFeed& feed, const std::string& name, io::TimeOrigin origin) : PointReader(name), feed_(feed) {
+    info_.format = io::Format::mcap;  // what --record writes; the report names the live source
+    info_.has_time = true;
+    info_.time_field = "offset_time";
+    info_.fields = {"x", "y", "z", "reflectivity", "offset_time"};
+    io::ReadOptions options;
+    options.time_origin = origin;
+    setup_time(options, io::TimeUnit::ns);
+  }
+
+  std::size_t read(std::vector<io::Record>& out, std::size_t max_records) override {
+    if (max_records == 0) return 0;
+    returns_.clear();
+    const std::size_t n = feed_.read(position_, returns_, max_records);
+    for (const live::LivoxReturn& r : returns_) {
+      io::Record rec;
+      rec.x = r.x;
+      rec.y = r.y;
+      rec.z = r.z;
+      rec.intensity = r.reflectivity;
+      rec.t = next_time_unsigned(r.time_ns);
+      out.push_back(rec);
+    }
+    return n;
+  }
+
+ private:
+  LiveFeed& feed_;
+  std::uint64_t position_ = 0;
+  std::vector<live::LivoxReturn> returns_;
+};
+
+}  // namespace streamclust::cli
