@@ -261,6 +261,65 @@ put("fuzz_cli_options", "evaluate",
     "--sensor\nmid70\n--scene\nstreet\n--linkage\neuclidean\n--distance\n0.3\n--structure\ndrop\n--frames\ntumbling\n"
     "--multiplicity\n1.25\n--min-points\n5\n")
 
+# ---------------------------------------------------------------- Livox SDK2 datagrams
+# Data packets (36-byte header, live/sdk2_packets.hpp) of every data type and
+# control frames (24-byte header, live/sdk2_control.hpp) of the messages both
+# sides exchange. binascii.crc32 is CRC-32/ISO-HDLC; crc16 is CCITT-FALSE.
+import binascii, math
+
+def crc16_ccitt_false(b):
+    c = 0xFFFF
+    for byte in b:
+        c ^= byte << 8
+        for _ in range(8):
+            c = ((c << 1) ^ 0x1021) & 0xFFFF if c & 0x8000 else (c << 1) & 0xFFFF
+    return c
+
+def sdk2_packet(data_type, slots, body, time_interval=4750, udp_cnt=1, time_type=0, crc=False, t0=1700000000123456789):
+    length = 36 + len(body)
+    head = struct.pack("<BHHHHBBB12sI", 0, length, time_interval, slots, udp_cnt, 0, data_type, time_type, bytes(12), 0)
+    b = bytearray(head + struct.pack("<Q", t0) + body)
+    if crc:
+        struct.pack_into("<I", b, 24, binascii.crc32(bytes(b[28:])))
+    return bytes(b)
+
+ring = [(2.0 * math.cos(0.3 * k), 2.0 * math.sin(0.3 * k), 0.1 * (k % 5) - 0.2) for k in range(12)]
+put("fuzz_livox_sdk2_packet", "type1_mm",
+    sdk2_packet(1, 12, b"".join(struct.pack("<iiiBB", round(x * 1000), round(y * 1000), round(z * 1000), 20 + k, k % 3)
+                                 if k != 4 else bytes(12) + bytes([60, 0]) for k, (x, y, z) in enumerate(ring))))
+put("fuzz_livox_sdk2_packet", "type2_cm_crc",
+    sdk2_packet(2, 12, b"".join(struct.pack("<hhhBB", round(x * 100), round(y * 100), round(z * 100), 7, 0x15)
+                                 for x, y, z in ring), udp_cnt=65535, time_type=1, crc=True))
+put("fuzz_livox_sdk2_packet", "type3_spherical",
+    sdk2_packet(3, 12, b"".join(struct.pack("<IHHBB", 0 if k == 7 else 1500 + 250 * k, 6000 + 900 * k, (3000 * k) % 36000,
+                                            k, 0) for k in range(12)), time_type=2))
+put("fuzz_livox_sdk2_packet", "type17_dual",
+    sdk2_packet(0x11, 6, b"".join(struct.pack("<iiiBB", round(x * 1000), round(y * 1000), round(z * 1000), 30, 1) +
+                                   (bytes(14) if k % 2 else struct.pack("<iiiBB", round(x * 1100), round(y * 1100), 0, 9, 2))
+                                   for k, (x, y, z) in enumerate(ring[:6]))))
+put("fuzz_livox_sdk2_packet", "imu_crc",
+    sdk2_packet(0, 1, struct.pack("<6f", 0.01, -0.02, 0.5, 0.0, -0.05, 0.998), time_interval=0, crc=True))
+
+def sdk2_control(seq, cmd_id, cmd_type, sender, data=b""):
+    head = bytearray(struct.pack("<BBHIHBB6s", 0xAA, 0, 24 + len(data), seq, cmd_id, cmd_type, sender, bytes(6)))
+    head += struct.pack("<HI", crc16_ccitt_false(head), binascii.crc32(data))
+    return bytes(head) + data
+
+def kv(key, value):
+    return struct.pack("<HH", key, len(value)) + value
+
+host = bytes([192, 168, 1, 50])
+put("fuzz_livox_sdk2_control", "discovery_req", sdk2_control(1, 0x0000, 0, 0))
+put("fuzz_livox_sdk2_control", "discovery_ack",
+    sdk2_control(1, 0x0000, 1, 1, struct.pack("<BB16s4sH", 0, 9, b"47MDL9A0020123", bytes([192, 168, 1, 123]), 56100)))
+put("fuzz_livox_sdk2_control", "set_parameters",
+    sdk2_control(2, 0x0100, 0, 0, struct.pack("<HH", 6, 0) +
+                 kv(0x0005, host + struct.pack("<HH", 56201, 56200)) + kv(0x0006, host + struct.pack("<HH", 56301, 56300)) +
+                 kv(0x0007, host + struct.pack("<HH", 56401, 56400)) + kv(0x001A, b"\x01") + kv(0x0000, b"\x01") +
+                 kv(0x001C, b"\x01")))
+put("fuzz_livox_sdk2_control", "set_parameters_ack", sdk2_control(2, 0x0100, 1, 1, struct.pack("<BH", 0x20, 0x001C)))
+put("fuzz_livox_sdk2_control", "status_push", sdk2_control(3, 0x0102, 0, 1, b'{"cur_work_state":1,"core_temp":4500}'))
+
 # ---------------------------------------------------------------- engine scenarios (engine/scenario.hpp)
 def engine_seed(config, preset, window, grid, mask, ground, linkage, stress, ops):
     return bytes([config, preset, window, grid, mask, ground, linkage, stress]) + bytes(ops)
