@@ -244,6 +244,49 @@ constexpr int days_in_month(std::int64_t y, int m) noexcept {
 
 }  // namespace detail
 
+/// The time [ns since 1970] of an SDK 1 type 3 (PPS + GPS, UTC) timestamp,
+/// the 8 bytes at `p`: year - 2000, month, day, hour (one byte each), then
+/// uint32 microseconds within the hour. False for fields out of range (an
+/// impossible date, hour 24, an hour of more than 3600 s). O(1), noexcept.
+inline bool decode_sdk1_utc_timestamp(const unsigned char* p, std::uint64_t& ns) noexcept {
+  const std::int64_t year = 2000 + p[0];
+  const int month = p[1], day = p[2], hour = p[3];
+  const std::uint32_t us = detail::load_le<std::uint32_t>(p + 4);
+  if (month < 1 || month > 12 || day < 1 || day > detail::days_in_month(year, month) || hour > 23 ||
+      us >= 3600000000u)
+    return false;
+  const std::int64_t seconds = detail::days_from_civil(year, month, day) * 86400 + hour * 3600;
+  ns = static_cast<std::uint64_t>(seconds) * 1000000000u + std::uint64_t{us} * 1000u;
+  return true;
+}
+
+/// The inverse of decode_sdk1_utc_timestamp: writes the 8 bytes of `ns`
+/// [since 1970] at `p`, rounded down to the microsecond. False (and nothing
+/// written) for a time outside the years 2000-2255 the format can hold. O(1).
+inline bool encode_sdk1_utc_timestamp(std::uint64_t ns, unsigned char* p) noexcept {
+  const std::uint64_t seconds = ns / 1000000000u;
+  const std::int64_t days = static_cast<std::int64_t>(seconds / 86400);
+  // Civil date from days since 1970-01-01 (the inverse of days_from_civil; days >= 0).
+  const std::int64_t z = days + 719468;
+  const std::int64_t era = z / 146097;
+  const std::int64_t doe = z - era * 146097;
+  const std::int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const std::int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const std::int64_t mp = (5 * doy + 2) / 153;
+  const int day = static_cast<int>(doy - (153 * mp + 2) / 5 + 1);
+  const int month = static_cast<int>(mp < 10 ? mp + 3 : mp - 9);
+  const std::int64_t year = yoe + era * 400 + (month <= 2 ? 1 : 0);
+  if (year < 2000 || year > 2255) return false;
+  const std::uint64_t second_of_day = seconds % 86400;
+  const auto us = static_cast<std::uint32_t>((second_of_day % 3600) * 1000000u + (ns % 1000000000u) / 1000u);
+  p[0] = static_cast<unsigned char>(year - 2000);
+  p[1] = static_cast<unsigned char>(month);
+  p[2] = static_cast<unsigned char>(day);
+  p[3] = static_cast<unsigned char>(second_of_day / 3600);
+  for (int k = 0; k < 4; ++k) p[4 + k] = static_cast<unsigned char>(us >> (8 * k));
+  return true;
+}
+
 /// The time [ns since 1970] of an SDK 1 (LVX 1.x) package timestamp of type
 /// `type`, the 8 bytes at `p`. Types 0 (no sync), 1 (PTP) and 4 (PPS) are a
 /// uint64 of nanoseconds; type 3 (PPS + GPS) is UTC: year - 2000, month, day,
@@ -256,20 +299,12 @@ inline bool decode_sdk1_timestamp(std::uint8_t type, const unsigned char* p, std
     return true;
   }
   if (type == 3) {
-    const std::int64_t year = 2000 + p[0];
-    const int month = p[1], day = p[2], hour = p[3];
-    const std::uint32_t us = detail::load_le<std::uint32_t>(p + 4);
-    if (month < 1 || month > 12 || day < 1 || day > detail::days_in_month(year, month) || hour > 23 ||
-        us >= 3600000000u) {
-      why = "timestamp type 3 (PPS + GPS, UTC): expected year - 2000, month 1-12, a day of that month, hour 0-23 "
-            "and microseconds within the hour (below 3600000000), found " +
-            std::to_string(p[0]) + ", " + std::to_string(month) + ", " + std::to_string(day) + ", " +
-            std::to_string(hour) + ", " + std::to_string(us);
-      return false;
-    }
-    const std::int64_t seconds = detail::days_from_civil(year, month, day) * 86400 + hour * 3600;
-    ns = static_cast<std::uint64_t>(seconds) * 1000000000u + std::uint64_t{us} * 1000u;
-    return true;
+    if (decode_sdk1_utc_timestamp(p, ns)) return true;
+    why = "timestamp type 3 (PPS + GPS, UTC): expected year - 2000, month 1-12, a day of that month, hour 0-23 "
+          "and microseconds within the hour (below 3600000000), found " +
+          std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ", " +
+          std::to_string(p[3]) + ", " + std::to_string(detail::load_le<std::uint32_t>(p + 4));
+    return false;
   }
   why = "unknown timestamp type " + std::to_string(type) +
         ": expected 0 (no sync), 1 (PTP), 3 (PPS + GPS, UTC) or 4 (PPS); type 2 is reserved";
