@@ -54,12 +54,7 @@ namespace streamclust::live {
 
 namespace detail {
 
-/// Writes `v` little-endian at `p` (the project assumes a little-endian host,
-/// as io's load_le does).
-template <class T>
-void store_le(std::uint8_t* p, T v) noexcept {
-  std::memcpy(p, &v, sizeof v);
-}
+using io::detail::store_le;
 
 }  // namespace detail
 
