@@ -85,7 +85,9 @@ TEST_CASE("UdpSocket: datagrams on loopback keep their source; oversize and time
   CHECK(receiver.receive(d, std::chrono::milliseconds(20)) == live::ReceiveStatus::timeout);
   CHECK(receiver.kernel_drops().value_or(0) == 0);
 
-  // Binding a held port (without the first socket's consent) names the endpoint.
+  // A port another socket holds is refused (its datagrams are not split).
+  CHECK_THROWS_WITH_AS(live::UdpSocket{to}, doctest::Contains("holds the port"), std::system_error);
+  // An address this host does not have: the error names the endpoint.
   CHECK_THROWS_WITH_AS(live::UdpSocket(live::Endpoint{0x0A0B0C0Du, 9}), doctest::Contains("10.11.12.13:9"),
                        std::system_error);
 }

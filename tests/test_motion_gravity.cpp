@@ -7,11 +7,13 @@
 // Mid-360 and Avia in the office at several heights (the Mid-360 above 1.2 m
 // sees the ceiling and no floor), pitched and upside-down mounts in the
 // office, forest, street and hills (the Mid-360 from the real scan table when
-// the shared data has it, else the analytic model).
+// the shared data has it, else the analytic model). And the mount from a
+// resting accelerometer (gravity_from_accelerometer).
 
 #include <doctest/doctest.h>
 
 #include <streamclust/motion/gravity_estimate.hpp>
+#include <streamclust/motion/imu_gravity.hpp>
 #include <streamclust/motion/pose.hpp>
 
 #include <streamclust/sim/scenes.hpp>
@@ -353,4 +355,39 @@ TEST_CASE("estimate_ground: pitched and upside-down mounts in the office, forest
       }
     }
   }
+}
+
+TEST_CASE("gravity_from_accelerometer: the mount of a resting IMU levels gravity; a moving one is refused") {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> noise(0.0f, 0.01f);  // [g], a MEMS accelerometer at rest
+  for (const auto& [roll, pitch] : std::vector<std::pair<double, double>>{{0, 0}, {10, 5}, {-20, 30}, {180, 0}, {3, -60}}) {
+    CAPTURE(roll);
+    CAPTURE(pitch);
+    const streamclust::Pose mount = streamclust::mount_from_roll_pitch_yaw_deg(roll, pitch, 0.0);
+    // The reading is the reaction to gravity, up in the world, in the sensor frame.
+    const Eigen::Vector3d up = mount.rotation.conjugate() * Eigen::Vector3d::UnitZ();
+    std::vector<std::array<float, 3>> samples;
+    for (int i = 0; i < 200; ++i) {
+      samples.push_back({static_cast<float>(up.x()) + noise(rng), static_cast<float>(up.y()) + noise(rng),
+                         static_cast<float>(up.z()) + noise(rng)});
+    }
+    const auto g = streamclust::gravity_from_accelerometer(samples);
+    REQUIRE(g);
+    CHECK(g->samples == 200);
+    CHECK(g->magnitude == doctest::Approx(1.0).epsilon(0.01));
+    // The estimated mount turns the measured up into the world's z.
+    const Eigen::Vector3d levelled = g->mount.rotation * g->up;
+    CHECK(levelled.z() > std::cos(0.1 * 3.14159265358979323846 / 180.0));
+    CHECK(std::abs(std::remainder(g->roll_deg - roll, 360.0)) < 0.2);
+    CHECK(std::abs(g->pitch_deg - pitch) < 0.2);
+  }
+  // Shaken (scatter 0.3 g), accelerating (|mean| 1.3 g) or too few samples: no estimate.
+  std::vector<std::array<float, 3>> shaken, pushed, few(5, {0.0f, 0.0f, 1.0f});
+  for (int i = 0; i < 200; ++i) {
+    shaken.push_back({0.0f, (i % 2 == 0) ? 0.3f : -0.3f, 1.0f});
+    pushed.push_back({0.83f, 0.0f, 1.0f});
+  }
+  CHECK_FALSE(streamclust::gravity_from_accelerometer(shaken));
+  CHECK_FALSE(streamclust::gravity_from_accelerometer(pushed));
+  CHECK_FALSE(streamclust::gravity_from_accelerometer(few));
 }

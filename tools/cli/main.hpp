@@ -11,6 +11,7 @@
 #include "cli/evaluate_objects.hpp"
 #include "cli/info.hpp"
 #include "cli/live.hpp"
+#include "cli/replay.hpp"
 #include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
@@ -34,6 +35,7 @@ usage: streamclust <command> [options]
 commands:
   cluster INPUT   cluster a recorded stream as the sensor delivered it
   live SOURCE     cluster a Livox LiDAR's stream live from the network (livox-sdk2://, livox-sdk1://)
+  replay INPUT --to URL   emulate a Livox LiDAR: send INPUT (or --simulate) as its packets
   info INPUT      format, fields, point count, time span and bounds of an input
   simulate        write a simulated stream with its ground truth
   evaluate        simulate a scenario, cluster it (C-ARC and/or the frame baseline)
@@ -291,6 +293,13 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       }
       return run_live(parse_live_options(rest), out, err);
     }
+    if (command == "replay") {
+      if (help) {
+        out << replay_help();
+        return kOk;
+      }
+      return run_replay(parse_replay_options(rest), out, err);
+    }
     if (command == "info") {
       if (help) {
         out << info_help();
@@ -322,7 +331,7 @@ inline int run_main(const std::vector<std::string>& args, std::ostream& out, std
       }
       return run_evaluate(parse_evaluate_options(rest), out);
     }
-    throw UsageError("unknown command '" + command + "' (expected cluster, live, info, simulate or evaluate)");
+    throw UsageError("unknown command '" + command + "' (expected cluster, live, replay, info, simulate or evaluate)");
   } catch (...) {
     return report_exception(command, err);
   }

@@ -89,14 +89,14 @@ enum class ReceiveStatus : std::uint8_t { datagram, timeout, oversize, interrupt
 class UdpSocket {
  public:
   /// A socket bound to `local` (address 0 = every interface, port 0 = any
-  /// free port). SO_REUSEADDR is set, so a second process can bind the same
-  /// port only with it too. Throws std::system_error.
+  /// free port). No SO_REUSEADDR: a port another program (a Livox driver)
+  /// holds is an error, not a silent split of its datagrams. Throws
+  /// std::system_error.
   explicit UdpSocket(Endpoint local) {
     fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     if (fd_ < 0) fail("cannot create a UDP socket for " + format_endpoint(local));
-    const int one = 1;
-    ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
 #ifdef SO_RXQ_OVFL
+    const int one = 1;
     // Linux: each datagram carries the socket's count of datagrams the
     // kernel dropped for want of buffer space (none while that count is 0).
     drops_reported_ = ::setsockopt(fd_, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one) == 0;

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+// `streamclust live` against `streamclust replay` (the emulated LiDAR) on
+// loopback, both in-process, with real UDP sockets: the live run's labels
+// equal `cluster` on its own --record file cycle for cycle, and the
+// recorded points are the input's (within the data type's quantum, 1 us);
+// discovery, configure and the SDK1 handshake; faults counted, not mixed in.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/io/reader.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_run.hpp"
+#include "support/temp_dir.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+using streamclust::test::run_cli;
+using streamclust::test::RunResult;
+using streamclust::test::slurp;
+using streamclust::test::TempDir;
+
+namespace {
+
+/// True once some socket of this host holds UDP `port` (Linux /proc/net/udp;
+/// looking never takes the port from the program under test).
+bool udp_port_held(unsigned port) {
+  std::ifstream f("/proc/net/udp");
+  std::string line;
+  std::getline(f, line);
+  while (std::getline(f, line)) {
+    std::istringstream s(line);
+    std::string slot, local;
+    s >> slot >> local;
+    const auto colon = local.find(':');
+    if (colon != std::string::npos && std::stoul(local.substr(colon + 1), nullptr, 16) == port) return true;
+  }
+  return false;
+}
+
+/// `live ARGS` on its own thread; `join` returns its result.
+class LiveThread {
+ public:
+  LiveThread(std::vector<std::string> args, unsigned wait_for_port) {
+    args.insert(args.begin(), "live");
+    thread_ = std::thread([this, args] { result_ = run_cli(args); });
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (!udp_port_held(wait_for_port) && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  RunResult join() {
+    thread_.join();
+    return result_;
+  }
+
+ private:
+  std::thread thread_;
+  RunResult result_;
+};
+
+std::vector<streamclust::io::Record> read_all(const std::string& path) {
+  auto reader = streamclust::io::open_reader(path, {});
+  std::vector<streamclust::io::Record> all, chunk;
+  while (chunk.clear(), reader->read(chunk, 65536) > 0) all.insert(all.end(), chunk.begin(), chunk.end());
+  return all;
+}
+
+std::vector<streamclust::io::Record> finite(const std::vector<streamclust::io::Record>& in) {
+  std::vector<streamclust::io::Record> out;
+  for (const auto& r : in)
+    if (std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z)) out.push_back(r);
+  return out;
+}
+
+/// Every recorded point is the input's point at the same position, within
+/// `metres` (the data type's quantum) and 1 us of relative time.
+void check_same_points(const std::string& input, const std::string& recorded, double metres) {
+  const auto a = finite(read_all(input));
+  const auto b = read_all(recorded);
+  REQUIRE(a.size() == b.size());
+  double worst_m = 0.0, worst_us = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = std::hypot(a[i].x - b[i].x, a[i].y - b[i].y, a[i].z - b[i].z);
+    worst_m = std::max(worst_m, d);
+    worst_us = std::max(worst_us, std::abs((a[i].t - a[0].t) - (b[i].t - b[0].t)) * 1e6);
+  }
+  CAPTURE(worst_m);
+  CAPTURE(worst_us);
+  CHECK(worst_m <= metres);
+  CHECK(worst_us <= 1.0);
+}
+
+/// `cluster RECORDED` with the live run's options gives the same label rows.
+void check_offline_equal(const TempDir& dir, const std::string& live_labels, const std::string& recorded,
+                         const std::vector<std::string>& preset) {
+  std::vector<std::string> args{"cluster", recorded, "--labels", dir.path("offline.csv"), "--cycles", "all", "-q"};
+  args.insert(args.end(), preset.begin(), preset.end());
+  const RunResult offline = run_cli(args);
+  REQUIRE_MESSAGE(offline.code == 0, offline.err);
+  const std::string a = slurp(live_labels), b = slurp(dir.path("offline.csv"));
+  CHECK(a.size() > 1000);  // many cycles of many points
+  CHECK(a == b);
+}
+
+nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
+
+}  // namespace
+
+TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --record file; points are the input's") {
+  TempDir dir("cli_live", "sdk2");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "1.2", "--out", input, "-q"})
+              .code == 0);
+  const std::vector<std::string> preset{"--preset", "carc-mid360", "--window-time", "0.2"};
+  const struct {
+    const char* type;
+    double quantum_m;
+  } types[] = {{"1", 0.0006}, {"2", 0.0051}, {"3", 0.004}};
+  unsigned port = 47301;
+  for (const auto& t : types) {
+    CAPTURE(t.type);
+    const std::string url = "livox-sdk2://127.0.0.1:" + std::to_string(port);
+    std::vector<std::string> args{url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all",
+                                  "--record", dir.path("live.mcap"), "--report", dir.path("live.json"), "-q"};
+    args.insert(args.end(), preset.begin(), preset.end());
+    LiveThread live(args, port);
+    const RunResult sent = run_cli({"replay", input, "--to", url, "--device-address", "127.0.0.2", "--data-type",
+                                    t.type, "-q"});
+    const RunResult got = live.join();
+    REQUIRE_MESSAGE(sent.code == 0, sent.err);
+    REQUIRE_MESSAGE(got.code == 0, got.err);
+    const auto report = read_json(dir.path("live.json"));
+    const auto& packets = report["live"]["packets"];
+    CHECK(packets["lost"] == 0);
+    CHECK(packets["queue_drops"] == 0);
+    CHECK(packets["malformed"] == 0);
+    CHECK(report["live"]["protocol"] == "livox-sdk2");
+    CHECK(report["live"]["end"] == "--idle-exit: no packets");
+    check_same_points(input, dir.path("live.mcap"), t.quantum_m);
+    check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), preset);
+    port += 2;
+  }
+}
+
+TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and points its streams at the host") {
+  TempDir dir("cli_live", "configure");
+  const std::string url = "livox-sdk2://127.0.0.9:47401";
+  LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--idle-exit",
+                   "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  56000);
+  const RunResult sent = run_cli({"replay", "--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
+                                  "livox-sdk2://127.0.0.9:1000", "--device-address", "127.0.0.8", "--serial",
+                                  "EMU2CONFIG", "--wait-configure", "-q"});
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  const auto report = read_json(dir.path("live.json"));
+  CHECK(report["live"]["address"] == "127.0.0.8");
+  CHECK(report["live"]["packets"]["point_packets"].get<int>() > 1000);
+  CHECK(report["live"]["packets"]["lost"] == 0);
+}
+
+TEST_CASE("live SDK1: broadcast, handshake, heartbeats; every data type equals cluster on its recording") {
+  TempDir dir("cli_live", "sdk1");
+  const std::string avia = dir.path("avia.csv"), mid40 = dir.path("mid40.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "avia", "--scene", "office", "--seconds", "1.2", "--out", avia, "-q"}).code == 0);
+  REQUIRE(run_cli({"simulate", "--sensor", "mid40", "--scene", "office", "--seconds", "1.2", "--out", mid40, "-q"}).code == 0);
+  const std::vector<std::string> preset{"--preset", "carc-avia", "--window-time", "0.2"};
+  unsigned port = 45000, device = 20;
+  for (const char* type : {"0", "1", "2", "3", "4", "5", "7", "8"}) {
+    CAPTURE(type);
+    const std::string input = (type[0] == '0' || type[0] == '1') ? mid40 : avia;
+    const std::string url = "livox-sdk1://127.0.0.1:" + std::to_string(port);
+    std::vector<std::string> args{url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all",
+                                  "--record", dir.path("live.mcap"), "--report", dir.path("live.json"), "-q"};
+    args.insert(args.end(), preset.begin(), preset.end());
+    LiveThread live(args, port);
+    const RunResult sent = run_cli({"replay", input, "--to", url, "--device-address",
+                                    "127.0.0." + std::to_string(device), "--data-type", type, "-q"});
+    const RunResult got = live.join();
+    REQUIRE_MESSAGE(sent.code == 0, sent.err);
+    REQUIRE_MESSAGE(got.code == 0, got.err);
+    const auto report = read_json(dir.path("live.json"));
+    CHECK(report["live"]["protocol"] == "livox-sdk1");
+    CHECK(report["live"]["packets"]["lost"] == 0);
+    const bool spherical = type[0] == '1' || type[0] == '3' || type[0] == '5' || type[0] == '8';
+    check_same_points(input, dir.path("live.mcap"), spherical ? 0.004 : 0.0006);
+    check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), preset);
+    port += 1100;  // listen, command (+500) and data (+1000) ports of the next run
+    ++device;
+  }
+}
+
+TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboot starts a new clock epoch") {
+  TempDir dir("cli_live", "faults");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.5", "--out", input, "-q"}).code == 0);
+  const std::string url = "livox-sdk2://127.0.0.1:47501";
+  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
+                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  47501);
+  const RunResult sent = run_cli({"replay", input, "--to", url, "--device-address", "127.0.0.3", "--drop", "0.02",
+                                  "--duplicate", "0.02", "--swap", "0.05", "--reboot-at", "0.8", "-q"});
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  const auto report = read_json(dir.path("live.json"));
+  const auto& packets = report["live"]["packets"];
+  CHECK(packets["lost"].get<int>() > 10);        // about 2 % of 3,100 packets
+  CHECK(packets["lost"].get<int>() < 150);
+  CHECK(packets["duplicates"].get<int>() > 10);
+  CHECK(packets["late"] == 0);                   // every swap within the reorder window
+  CHECK(report["live"]["clock_epochs"] == 2);    // the reboot
+  // No flood of rejections: the stream stays in order across the reboot.
+  CHECK(report["totals"]["rejected"]["time_backwards"].get<int>() == 0);
+  CHECK(report["totals"]["rejected"]["time_jump"].get<int>() == 0);
+  check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
+}
+
+TEST_CASE("live: bad sources and options are usage errors; silence is a network error (exit 6)") {
+  CHECK(run_cli({"live"}).code == 2);
+  CHECK(run_cli({"live", "udp://1.2.3.4"}).code == 2);
+  const RunResult bad_host = run_cli({"live", "livox-sdk2://1.2.3"});
+  CHECK(bad_host.code == 2);
+  CHECK(bad_host.err.find("dotted IPv4") != std::string::npos);
+  CHECK(run_cli({"live", "livox-sdk2://:70000"}).code == 2);
+  CHECK(run_cli({"live", "livox-sdk1://", "--configure"}).code == 2);
+  CHECK(run_cli({"live", "livox-sdk2://", "--verify"}).code == 2);
+  CHECK(run_cli({"live", "livox-sdk2://", "--format", "csv"}).code == 2);
+  const RunResult silent = run_cli({"live", "livox-sdk2://127.0.0.1:47601", "--wait", "0.3", "-q"});
+  CHECK(silent.code == 6);
+  CHECK(silent.err.find("127.0.0.1:47601") != std::string::npos);
+  CHECK(run_cli({"replay", "--simulate"}).code == 2);  // no --to
+  CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--data-type", "7"}).code == 2);
+}

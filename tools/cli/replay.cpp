@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// `streamclust replay`: options and the run of the Livox emulator.
+
+#include "cli/replay.hpp"
+
+#include <streamclust/io/reader.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace streamclust::cli {
+
+namespace {
+
+double parse_probability(const std::string& option, const std::string& value) {
+  const double p = parse_number(option, value);
+  if (!(p >= 0.0 && p <= 1.0)) throw UsageError(option + ": expected a probability in [0, 1], got '" + value + "'");
+  return p;
+}
+
+}  // namespace
+
+ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
+  ReplayOptions o;
+  bool to_given = false;
+  for (ArgCursor c(args); !c.done(); c.next()) {
+    const std::string& a = c.option();
+    if (parse_input_option(c, o.read)) continue;
+    if (o.simulate && parse_simulation_option(c, o.simulation)) continue;
+    if (a == "--simulate") {
+      o.simulate = true;
+    } else if (a == "--to") {
+      o.emulator.target = parse_livox_url(c.value());
+      to_given = true;
+    } else if (a == "--device-address") {
+      const std::string v = c.value();
+      const auto address = live::parse_address(v);
+      if (!address) throw UsageError("--device-address: expected a dotted IPv4 address, got '" + v + "'");
+      o.emulator.device_address = *address;
+    } else if (a == "--serial") {
+      o.emulator.serial = c.value();
+      if (o.emulator.serial.empty() || o.emulator.serial.size() > 16)
+        throw UsageError("--serial: expected 1 to 16 characters");
+    } else if (a == "--data-type") {
+      const std::string v = c.value();
+      std::int64_t n = 0;
+      if (!io::detail::parse_int64(v, n) || n < 0 || n > 17) throw UsageError("--data-type: expected a Livox point data type, got '" + v + "'");
+      o.emulator.data_type = static_cast<std::uint8_t>(n);
+    } else if (a == "--speed") {
+      o.emulator.speed = parse_number(a, c.value());
+      if (!(o.emulator.speed >= 0.0 && o.emulator.speed <= 1000.0))
+        throw UsageError("--speed: expected a factor in [0, 1000] (0: as fast as possible)");
+    } else if (a == "--wait-configure") {
+      o.emulator.wait_for_configure = true;
+    } else if (a == "--drop") {
+      o.emulator.drop = parse_probability(a, c.value());
+    } else if (a == "--duplicate") {
+      o.emulator.duplicate = parse_probability(a, c.value());
+    } else if (a == "--swap") {
+      o.emulator.swap = parse_probability(a, c.value());
+    } else if (a == "--fault-seed") {
+      o.emulator.seed = parse_count(a, c.value());
+    } else if (a == "--reboot-at") {
+      o.emulator.reboot_at = parse_number(a, c.value());
+      if (!(*o.emulator.reboot_at > 0.0)) throw UsageError("--reboot-at: expected seconds > 0 of the stream");
+    } else if (a == "--clock-jump") {
+      const std::string v = c.value();
+      const auto colon = v.find(':');
+      if (colon == std::string::npos) throw UsageError("--clock-jump: expected AT:SECONDS (e.g. 1.5:3600), got '" + v + "'");
+      o.emulator.clock_jump = std::make_pair(parse_number(a, v.substr(0, colon)), parse_number(a, v.substr(colon + 1)));
+      if (!(o.emulator.clock_jump->first > 0.0) || !(std::abs(o.emulator.clock_jump->second) < 1e9))
+        throw UsageError("--clock-jump: expected AT > 0 and |SECONDS| < 1e9");
+    } else if (a == "--time-sync") {
+      const std::string v = c.choice({"none", "ptp"});
+      o.emulator.sync = v == "ptp" ? live::LivoxTimeSync::ptp : live::LivoxTimeSync::none;
+    } else if (a == "--imu") {
+      const std::array<double, 3> m = parse_mount(c.value() + ",0");
+      o.emulator.imu_mount = std::array<double, 2>{m[0], m[1]};
+    } else if (a == "--wait") {
+      o.emulator.connect_timeout =
+          std::chrono::milliseconds(static_cast<std::int64_t>(parse_positive(a, c.value()) * 1000.0));
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "' (see streamclust replay --help)");
+    } else if (o.input.empty()) {
+      o.input = a;
+    } else {
+      throw UsageError("more than one INPUT: '" + o.input + "' and '" + a + "'");
+    }
+  }
+  if (!to_given) throw UsageError("missing --to livox-sdk2://HOST[:PORT] or livox-sdk1://HOST[:PORT]");
+  if (o.simulate == !o.input.empty()) throw UsageError("expected either INPUT or --simulate (see streamclust replay --help)");
+  if (o.simulate) validate_simulation_options(o.simulation);
+  const bool sdk2 = o.emulator.target.protocol == LivoxProtocol::sdk2;
+  const std::uint8_t t = o.emulator.data_type;
+  if (t != 0 && (sdk2 ? !(t >= 1 && t <= 3) : !(t <= 5 || t == 7 || t == 8)))
+    throw UsageError(sdk2 ? "--data-type: SDK2 point data types are 1, 2 and 3"
+                          : "--data-type: SDK1 point data types are 0-5, 7 and 8");
+  if (o.emulator.wait_for_configure && !sdk2) throw UsageError("--wait-configure: an SDK2 device's mode (SDK1 always handshakes)");
+  return o;
+}
+
+std::string replay_help() {
+  return R"(usage: streamclust replay INPUT --to URL [options]
+       streamclust replay --simulate [scenario options] --to URL [options]
+
+Emulates a Livox LiDAR on the network: sends INPUT (a point file or recording
+that cluster reads) or a simulated scene as the device's UDP packets at the
+device's rate, for `streamclust live` and for anyone without the hardware.
+
+  --to livox-sdk2://HOST[:PORT]   a Mid-360: point packets to HOST:PORT (default 56301) from
+                                  port 56300, IMU to PORT+100 from 56400
+  --to livox-sdk1://HOST[:PORT]   an Avia: broadcasts to HOST:PORT (default 55000) from its
+                                  command port 65000, answers the handshake, streams to the
+                                  host's data port, stops when the heartbeats stop
+  --device-address IP             the LiDAR's address (on loopback e.g. 127.0.0.2; default: any)
+  --serial SN                     its serial number / broadcast code
+  --data-type N                   SDK2: 1 (int32 mm, default), 2 (int16 cm), 3 (spherical);
+                                  SDK1: 0-5, 7, 8 (default 2, extended Cartesian)
+  --wait-configure                SDK2: answer discovery and wait for a host's parameter write
+  --speed X                       x the recorded rate (default 1; 0: as fast as possible)
+  --imu ROLL,PITCH                send a resting IMU's samples (200 Hz) for this mount [deg]
+  --time-sync none|ptp            the clock's sync type (ptp: Unix time)
+  --wait S                        seconds to wait for a host (default 10)
+faults:
+  --drop P  --duplicate P  --swap P   per point packet (swap: sent after the next one)
+  --fault-seed N                  their random seed (default 1)
+  --clock-jump AT:S               at AT seconds of stream, the clock jumps by S seconds
+  --reboot-at AT                  at AT seconds, a reboot: clock from 0, packet counter from 0
+input: --format, --topic, --time-unit, --point-rate, --time-origin as for cluster;
+--simulate takes simulate's scenario options (--sensor, --scene, --seconds, --seed, ...).
+
+examples:
+  streamclust replay --simulate --sensor mid360 --scene office --seconds 10 --to livox-sdk2://127.0.0.1
+  streamclust replay run.mcap --to livox-sdk2://192.168.1.50 --device-address 192.168.1.150
+Exit codes: 0 ok, 2 usage error, 4 input error, 6 network error.
+)";
+}
+
+int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
+  LivoxEmulator emulator(o.emulator);
+  emulator.connect();
+  bool host_present = true;
+  if (o.simulate) {
+    const std::vector<io::Record> records = simulate_records(o.simulation);
+    host_present = emulator.send(records);
+  } else {
+    auto reader = io::open_reader(o.input, o.read);
+    std::vector<io::Record> chunk;
+    while (host_present && (chunk.clear(), reader->read(chunk, 4096) > 0)) host_present = emulator.send(chunk);
+  }
+  if (host_present) host_present = emulator.finish();
+  const EmulatorCounters& c = emulator.counters();
+  if (!o.quiet) {
+    out << "streamclust: replay: " << c.packets << " point packets (" << c.returns << " returns), " << c.imu_packets
+        << " IMU packets; dropped " << c.dropped << ", duplicated " << c.duplicated << ", swapped " << c.swapped
+        << (host_present ? "" : "; the host went away") << "\n";
+  }
+  (void)err;
+  return kOk;
+}
+
+}  // namespace streamclust::cli
