@@ -23,7 +23,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 
 ALL_TARGETS=(fuzz_csv fuzz_pcd fuzz_ply fuzz_kitti fuzz_lvx fuzz_bag fuzz_mcap fuzz_db3 fuzz_ros_message fuzz_lzf fuzz_tum
-             fuzz_cli_options fuzz_engine)
+             fuzz_cli_options fuzz_engine fuzz_livox_sdk1_packet fuzz_livox_sdk1_control)
 PHASE=all
 if [[ $# -gt 1 && "$1" == "--phase" ]]; then
   PHASE=$2
@@ -63,6 +63,8 @@ dict_of() {
     fuzz_mcap) echo fuzz/dict/mcap.dict ;;
     fuzz_tum) echo fuzz/dict/tum.dict ;;
     fuzz_cli_options) echo fuzz/dict/cli.dict ;;
+    fuzz_livox_sdk1_packet) echo fuzz/dict/livox_sdk1_packet.dict ;;
+    fuzz_livox_sdk1_control) echo fuzz/dict/livox_sdk1_control.dict ;;
     *) echo "" ;;
   esac
 }
@@ -74,6 +76,8 @@ max_len_of() {
     fuzz_ros_message) echo 8192 ;;  # one message (2.3-6 KB)
     fuzz_tum) echo 8192 ;;
     fuzz_cli_options) echo 2048 ;;
+    fuzz_livox_sdk1_packet) echo 2048 ;;  # one datagram (42-1362 bytes)
+    fuzz_livox_sdk1_control) echo 512 ;;  # one frame (15-34 bytes in a session)
     fuzz_engine) echo 12288 ;;  # ~2048 points, the scenario's own cap
     *) echo 16384 ;;
   esac
