@@ -43,7 +43,8 @@ void check_messages(const live::Sdk1Frame& f) {
   if (live::parse_sdk1_broadcast(f, broadcast)) {
     live::encode_sdk1_broadcast(f.seq, broadcast, bytes);
     require(live::parse_sdk1_broadcast(decode_again(bytes), broadcast2) &&
-                broadcast.broadcast_code == broadcast2.broadcast_code && broadcast.device_type == broadcast2.device_type,
+                broadcast.broadcast_code == broadcast2.broadcast_code &&
+                broadcast.device_type == broadcast2.device_type,
             "a broadcast round trips");
   }
   live::Sdk1Handshake handshake, handshake2;
