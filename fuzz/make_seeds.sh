@@ -319,6 +319,60 @@ put("fuzz_livox_sdk2_control", "set_parameters",
                  kv(0x001C, b"\x01")))
 put("fuzz_livox_sdk2_control", "set_parameters_ack", sdk2_control(2, 0x0100, 1, 1, struct.pack("<BH", 0x20, 0x001C)))
 put("fuzz_livox_sdk2_control", "status_push", sdk2_control(3, 0x0102, 0, 1, b'{"cur_work_state":1,"core_temp":4500}'))
+# ---------------------------------------------------------------- Livox SDK1 packets and control frames
+def sdk1_packet(data_type, time_type, stamp, structs):
+    head = struct.pack("<BBBBIBB", 5, 0, 1, 0, 0, time_type, data_type)
+    return head + (stamp if isinstance(stamp, bytes) else struct.pack("<Q", stamp)) + b"".join(structs)
+
+def sdk1_cart(k, tag=None):
+    p = struct.pack("<iiiB", 1000 + 7 * k, -2000 + 3 * k, 150 - k, k % 256)
+    return p if tag is None else p + bytes([tag])
+
+def sdk1_sph(k, tag=None):
+    p = struct.pack("<IHHB", 5000 + 11 * k, 4500 + 13 * k, (7 * k * 100) % 36000, k % 256)
+    return p if tag is None else p + bytes([tag])
+
+empty = lambda n: bytes(n)
+gps = struct.pack("<BBBBI", 26, 11, 29, 13, 1234567890)
+t = 1700000000123456789
+put("fuzz_livox_sdk1_packet", "type0_cartesian", sdk1_packet(0, 0, t, [sdk1_cart(k) if k % 9 else empty(13) for k in range(100)]))
+put("fuzz_livox_sdk1_packet", "type1_spherical", sdk1_packet(1, 1, t, [sdk1_sph(k) if k % 9 else empty(9) for k in range(100)]))
+put("fuzz_livox_sdk1_packet", "type2_extended_gps", sdk1_packet(2, 3, gps, [sdk1_cart(k, k % 64) for k in range(96)]))
+put("fuzz_livox_sdk1_packet", "type3_extended_spherical", sdk1_packet(3, 4, t, [sdk1_sph(k, 0x10) for k in range(96)]))
+put("fuzz_livox_sdk1_packet", "type4_dual", sdk1_packet(4, 0, t, [sdk1_cart(k, 0x10) + (sdk1_cart(k + 50, 0x20) if k % 2 else empty(14)) for k in range(48)]))
+put("fuzz_livox_sdk1_packet", "type5_dual_spherical", sdk1_packet(5, 1, t, [struct.pack("<HHIBBIBB", 9000, 100 * k, 3000 + k, 9, 0x10, 4000 + k, 8, 0x20) for k in range(48)]))
+put("fuzz_livox_sdk1_packet", "type6_imu", sdk1_packet(6, 3, gps, [struct.pack("<6f", 0.01, -0.02, 0.03, 0.0, 0.05, -1.0)]))
+put("fuzz_livox_sdk1_packet", "type7_triple", sdk1_packet(7, 0, t, [sdk1_cart(k, 0x10) + sdk1_cart(k + 1, 0x20) + sdk1_cart(k + 2, 0x30) for k in range(30)]))
+put("fuzz_livox_sdk1_packet", "type8_triple_spherical", sdk1_packet(8, 0, t, [struct.pack("<HH", 6000, 4500) + b"".join(struct.pack("<IBB", 2000 * (r + 1) + k, r, r) for r in range(3)) for k in range(30)]))
+
+def crc16_livox(data, crc=0x4C49):
+    for b in data:
+        crc ^= b
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0x8408 if crc & 1 else crc >> 1
+    return crc
+
+def crc32_livox(data):
+    crc = 0x564F580A ^ 0xFFFFFFFF
+    for b in data:
+        crc ^= b
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0xEDB88320 if crc & 1 else crc >> 1
+    return crc ^ 0xFFFFFFFF
+
+def sdk1_frame(packet_type, seq, cmd_set, cmd_id, data=b""):
+    pre = struct.pack("<BBHBH", 0xAA, 1, len(data) + 15, packet_type, seq)
+    body = pre + struct.pack("<H", crc16_livox(pre)) + bytes([cmd_set, cmd_id]) + data
+    return body + struct.pack("<I", crc32_livox(body))
+
+put("fuzz_livox_sdk1_control", "broadcast_avia", sdk1_frame(2, 0, 0, 0x00, b"3GGDJ6K00200101\0" + bytes([7, 0, 0])))
+put("fuzz_livox_sdk1_control", "handshake_as_ack", sdk1_frame(1, 1, 0, 0x01, bytes([192, 168, 1, 50]) + struct.pack("<HHH", 56000, 55500, 56000)))
+put("fuzz_livox_sdk1_control", "handshake_ack", sdk1_frame(1, 1, 0, 0x01, b"\0"))
+put("fuzz_livox_sdk1_control", "heartbeat", sdk1_frame(0, 0x0203, 0, 0x03))
+put("fuzz_livox_sdk1_control", "heartbeat_ack", sdk1_frame(1, 0x0203, 0, 0x03, struct.pack("<BBBI", 0, 1, 0, 0)))
+put("fuzz_livox_sdk1_control", "start_sampling", sdk1_frame(0, 0x0405, 0, 0x04, b"\x01"))
+put("fuzz_livox_sdk1_control", "return_mode_dual", sdk1_frame(0, 0x0607, 1, 0x06, b"\x02"))
+put("fuzz_livox_sdk1_control", "imu_200hz_ack", sdk1_frame(1, 0x0809, 1, 0x08, b"\0"))
 
 # ---------------------------------------------------------------- engine scenarios (engine/scenario.hpp)
 def engine_seed(config, preset, window, grid, mask, ground, linkage, stress, ops):

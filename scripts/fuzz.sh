@@ -23,7 +23,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 
 ALL_TARGETS=(fuzz_csv fuzz_pcd fuzz_ply fuzz_kitti fuzz_lvx fuzz_bag fuzz_mcap fuzz_db3 fuzz_ros_message fuzz_lzf fuzz_tum
-             fuzz_cli_options fuzz_engine fuzz_livox_sdk2_packet fuzz_livox_sdk2_control)
+             fuzz_cli_options fuzz_engine fuzz_livox_sdk2_packet fuzz_livox_sdk2_control fuzz_livox_sdk1_packet
+             fuzz_livox_sdk1_control)
 PHASE=all
 if [[ $# -gt 1 && "$1" == "--phase" ]]; then
   PHASE=$2
@@ -65,6 +66,8 @@ dict_of() {
     fuzz_cli_options) echo fuzz/dict/cli.dict ;;
     fuzz_livox_sdk2_packet) echo fuzz/dict/livox_sdk2_packet.dict ;;
     fuzz_livox_sdk2_control) echo fuzz/dict/livox_sdk2_control.dict ;;
+    fuzz_livox_sdk1_packet) echo fuzz/dict/livox_sdk1_packet.dict ;;
+    fuzz_livox_sdk1_control) echo fuzz/dict/livox_sdk1_control.dict ;;
     *) echo "" ;;
   esac
 }
@@ -76,6 +79,8 @@ max_len_of() {
     fuzz_ros_message) echo 8192 ;;  # one message (2.3-6 KB)
     fuzz_tum) echo 8192 ;;
     fuzz_cli_options) echo 2048 ;;
+    fuzz_livox_sdk1_packet) echo 2048 ;;  # one datagram (42-1362 bytes)
+    fuzz_livox_sdk1_control) echo 512 ;;  # one frame (15-34 bytes in a session)
     fuzz_engine) echo 12288 ;;  # ~2048 points, the scenario's own cap
     fuzz_livox_sdk2_packet | fuzz_livox_sdk2_control) echo 2048 ;;  # one datagram (1380 B; control <= 1400 B)
     *) echo 16384 ;;

@@ -313,7 +313,8 @@ TEST_CASE("SDK1 malformed packets: every truncation, extra bytes, unknown data t
     pad(whole, live::sdk1_packet_bytes(*streamclust::io::find_sdk1_data_type(type)));
     std::memset(whole.data() + 18, 0x11, whole.size() - 18);  // every slot a return
     for (std::size_t n = 0; n < whole.size(); ++n) {
-      const Bytes cut(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(n));  // exact size: ASan sees overreads
+      // A vector of exactly n bytes: ASan sees a read past them.
+      const Bytes cut(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(n));
       if (decode(cut, out).status != live::LivoxPacketStatus::truncated) FAIL_CHECK("not truncated at " << n);
     }
     Bytes longer = whole;

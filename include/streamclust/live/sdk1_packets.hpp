@@ -280,7 +280,8 @@ inline void write_sdk1_struct(const io::LivoxDataType& type, const LivoxReturn* 
     const double range = std::sqrt(x * x + y * y + z * z);
     const auto depth = static_cast<std::uint32_t>(sdk1_quantise(range, 1000.0, 0.0, 4294967295.0, "range"));
     if (depth != 0 && !have_direction) {
-      theta = static_cast<std::uint16_t>(std::lround(std::acos(std::clamp(z / range, -1.0, 1.0)) * hundredths_per_radian));
+      const double zenith = std::acos(std::clamp(z / range, -1.0, 1.0));
+      theta = static_cast<std::uint16_t>(std::lround(zenith * hundredths_per_radian));
       double azimuth = std::atan2(y, x) * hundredths_per_radian;
       if (azimuth < 0) azimuth += 36000.0;
       const long a = std::lround(azimuth);
