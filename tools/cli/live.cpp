@@ -289,6 +289,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   } catch (const std::system_error& e) {
     throw NetworkError(std::string("live: ") + e.what());
   }
+  if (sdk1) sdk1->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
   receiver->start();
 
   live::LivoxStream stream(packet_format(o.source.protocol),
@@ -366,8 +367,12 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     const auto now = std::chrono::steady_clock::now();
     const double cycle_s = static_cast<double>(c.read.time_origin->seconds) + cycle.time;
     const auto cycle_ns = static_cast<std::int64_t>(std::llround(cycle_s * 1e9));
+    // Latency counts in steady state: not the first cycle (its packets
+    // waited for the first window's calibration) nor the last after the
+    // stream ended (they waited for the end to be noticed).
+    const bool steady = status.cycles() > 0 && feed.end() == LiveEnd::running;
     status.on_cycle(cycle, cycle_ns, feed.arrivals(),
-                    std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count());
+                    std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count(), steady);
     if (o.status && now - last_status >= status_every) {
       last_status = now;
       err << (terminal ? "\r" : "") << "streamclust: live: " << status_line() << (terminal ? "\033[K" : "\n")

@@ -203,8 +203,8 @@ inline std::uint32_t configure_sdk2(const LiveOptions& o, const FoundLidar& lida
 /// the rest on the thread that owns the session.
 class Sdk1Session {
  public:
-  /// Listens for a broadcast, handshakes and starts sampling; NetworkError
-  /// when no chosen LiDAR broadcasts or answers within `timeout`.
+  /// Listens for a broadcast and handshakes; NetworkError when no chosen
+  /// LiDAR broadcasts or answers within `timeout`.
   Sdk1Session(const LiveOptions& o, std::chrono::steady_clock::duration timeout, std::ostream& err) {
     const std::uint16_t listen_port = o.source.port;
     const live::Endpoint listen_at{o.source.host_address, listen_port};
@@ -250,13 +250,20 @@ class Sdk1Session {
     std::vector<std::uint8_t> frame;
     request(live::sdk1_handshake, [&](std::uint16_t seq) { live::encode_sdk1_handshake(seq, handshake, frame); },
             frame, "the handshake");
-    request(live::sdk1_sampling, [&](std::uint16_t seq) { live::encode_sdk1_request(seq, live::sdk1_sampling, 1, frame); },
-            frame, "start sampling");
-    last_ack_ = std::chrono::steady_clock::now();
     if (!o.cluster.quiet) {
       err << "streamclust: live: " << lidar_.model << " " << lidar_.serial << " at " << live::format_address(lidar_.address)
           << " streams to " << live::format_address(host_) << ":" << data_port_ << "\n";
     }
+  }
+
+  /// Starts sampling (call once the data port is bound: the LiDAR streams
+  /// at once). Not thread-safe with `heartbeat`: call before the receiver
+  /// thread runs the heartbeat.
+  void start_sampling() {
+    std::vector<std::uint8_t> frame;
+    request(live::sdk1_sampling, [&](std::uint16_t seq) { live::encode_sdk1_request(seq, live::sdk1_sampling, 1, frame); },
+            frame, "start sampling");
+    last_ack_ = std::chrono::steady_clock::now();
   }
 
   ~Sdk1Session() {

@@ -63,10 +63,11 @@ class LiveStatus {
  public:
   /// After a cycle at stream time `cycle_ns`: every packet handed out whose
   /// last point is at or before it is now in a retrieval.
+  /// `measured`: false leaves those packets out of the latency histogram.
   void on_cycle(const CycleReport& c, std::int64_t cycle_ns, std::deque<live::PacketArrival>& arrivals,
-                std::int64_t now_steady_ns) {
+                std::int64_t now_steady_ns, bool measured) {
     while (!arrivals.empty() && arrivals.front().last_time_ns <= cycle_ns) {
-      latency_.add(static_cast<double>(now_steady_ns - arrivals.front().arrival_steady_ns) * 1e-6);
+      if (measured) latency_.add(static_cast<double>(now_steady_ns - arrivals.front().arrival_steady_ns) * 1e-6);
       arrivals.pop_front();
     }
     recent_us_.push_back(c.total_us);
