@@ -164,6 +164,12 @@ T load_le(const unsigned char* p) noexcept {
   return v;
 }
 
+/// Writes `v` little-endian at p (the supported targets are little-endian).
+template <class T>
+void store_le(unsigned char* p, T v) noexcept {
+  std::memcpy(p, &v, sizeof v);
+}
+
 /// The little-endian value at p as a double.
 inline double scalar_to_double(Scalar s, const unsigned char* p) noexcept {
   switch (s) {

@@ -102,10 +102,7 @@ inline const io::LivoxDataType* sdk2_layout(std::uint8_t data_type) noexcept {
   return nullptr;
 }
 
-template <class T>
-void store_le(std::uint8_t* p, T value) noexcept {
-  std::memcpy(p, &value, sizeof value);  // the supported targets are little-endian, as io's load_le
-}
+using io::detail::store_le;
 
 /// True when echo `k` of the slot at `p` holds no return: its coordinates
 /// are (0, 0, 0), or its depth is 0 (spherical).
