@@ -77,7 +77,8 @@ void check_messages(const live::Sdk2ControlFrame& f) {
   const std::uint8_t* at = f.data + 4;
   live::Sdk2ParameterList list;
   for (const live::Sdk2KeyValue& kv : pairs) {
-    require(kv.value == at + 4 && kv.value + kv.size <= f.data + f.data_size, "pairs follow each other within the payload");
+    require(kv.value == at + 4 && kv.value + kv.size <= f.data + f.data_size,
+            "pairs follow each other within the payload");
     at = kv.value + kv.size;
     live::Sdk2HostIpInfo info;
     std::uint8_t u8 = 0;

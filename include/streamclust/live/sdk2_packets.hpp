@@ -47,6 +47,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -173,9 +174,9 @@ inline void write_sdk2_header(const Sdk2PacketHeader& h, std::uint8_t* p) noexce
 ///
 /// - `truncated`: fewer than 36 bytes, or fewer than its length field says;
 /// - `bad_version`: version not 0; `unknown_data_type`: not 0, 1, 2, 3, 0x11;
-/// - `bad_length`: the length field above the datagram's size, or not
-///   36 + dot_num x slot bytes, or dot_num 0, above `sdk2_max_dot_num`, or
-///   not 1 for IMU;
+/// - `bad_length`: a datagram longer than its length field, a length field
+///   other than 36 + dot_num x slot bytes, or dot_num 0, above
+///   `sdk2_max_dot_num`, or not 1 for IMU;
 /// - `bad_time`: time_type above 2;
 /// - `bad_crc`: a non-zero crc32 field that is not the CRC-32 of bytes
 ///   [28, length). A crc32 of 0 means "not computed" (real Mid-360 point
@@ -183,8 +184,9 @@ inline void write_sdk2_header(const Sdk2PacketHeader& h, std::uint8_t* p) noexce
 ///
 /// On any status but `points` nothing is appended. Every byte pattern is
 /// safe: reads stay within [data, data + size); nothing is allocated but
-/// the returns appended (none once `out.returns` has the capacity).
-/// O(size); thread-safe for distinct `out`.
+/// the returns appended (none once `out.returns` has the capacity), and the
+/// only exception is std::bad_alloc from appending. O(size); thread-safe
+/// for distinct `out`.
 inline LivoxPacketSummary decode_sdk2_packet(const std::uint8_t* data, std::size_t size, LivoxPacketContents& out) {
   LivoxPacketSummary s;
   if (size < sdk2_header_bytes) return s;  // truncated
@@ -308,29 +310,30 @@ inline std::int64_t sdk2_quantise(double metres, double per_metre, double lo, do
   return static_cast<std::int64_t>(v);
 }
 
+/// Writes `r` as x, y, z of type `Int` in 1 / `per_metre` m, reflectivity, tag.
+template <class Int>
+void sdk2_encode_cartesian(const LivoxReturn& r, double per_metre, std::uint8_t* p) {
+  constexpr double lo = std::numeric_limits<Int>::min(), hi = std::numeric_limits<Int>::max();
+  const float xyz[3] = {r.x, r.y, r.z};
+  const char* const names[3] = {"x", "y", "z"};
+  for (std::size_t a = 0; a < 3; ++a)
+    store_le(p + a * sizeof(Int), static_cast<Int>(sdk2_quantise(xyz[a], per_metre, lo, hi, names[a])));
+  p[3 * sizeof(Int)] = r.reflectivity;
+  p[3 * sizeof(Int) + 1] = r.tag;
+}
+
 /// Writes `r` as one echo of `type` at `p` (type 1: 14 bytes, 2: 8, 3: 10).
 inline void sdk2_encode_echo(Sdk2DataType type, const LivoxReturn& r, std::uint8_t* p) {
   switch (type) {
     case Sdk2DataType::cartesian_mm:
-    case Sdk2DataType::dual_cartesian_mm:
-      store_le(p, static_cast<std::int32_t>(sdk2_quantise(r.x, 1000.0, INT32_MIN, INT32_MAX, "x")));
-      store_le(p + 4, static_cast<std::int32_t>(sdk2_quantise(r.y, 1000.0, INT32_MIN, INT32_MAX, "y")));
-      store_le(p + 8, static_cast<std::int32_t>(sdk2_quantise(r.z, 1000.0, INT32_MIN, INT32_MAX, "z")));
-      p[12] = r.reflectivity;
-      p[13] = r.tag;
-      return;
-    case Sdk2DataType::cartesian_cm:
-      store_le(p, static_cast<std::int16_t>(sdk2_quantise(r.x, 100.0, INT16_MIN, INT16_MAX, "x")));
-      store_le(p + 2, static_cast<std::int16_t>(sdk2_quantise(r.y, 100.0, INT16_MIN, INT16_MAX, "y")));
-      store_le(p + 4, static_cast<std::int16_t>(sdk2_quantise(r.z, 100.0, INT16_MIN, INT16_MAX, "z")));
-      p[6] = r.reflectivity;
-      p[7] = r.tag;
-      return;
+    case Sdk2DataType::dual_cartesian_mm: sdk2_encode_cartesian<std::int32_t>(r, 1000.0, p); return;
+    case Sdk2DataType::cartesian_cm: sdk2_encode_cartesian<std::int16_t>(r, 100.0, p); return;
     case Sdk2DataType::spherical: {
       constexpr double hundredths_per_radian = 18000.0 / 3.14159265358979323846;
       const double x = r.x, y = r.y, z = r.z;
       const double range = std::sqrt(x * x + y * y + z * z);
-      const auto depth = static_cast<std::uint32_t>(sdk2_quantise(range, 1000.0, 0, UINT32_MAX, "range"));
+      constexpr double max_depth = std::numeric_limits<std::uint32_t>::max();
+      const auto depth = static_cast<std::uint32_t>(sdk2_quantise(range, 1000.0, 0, max_depth, "range"));
       std::uint16_t theta = 0, phi = 0;
       if (range > 0) {
         const double zenith = std::acos(std::clamp(z / range, -1.0, 1.0));  // [0, pi]
