@@ -5,7 +5,7 @@
 # and its options parsed (docs/cli.md, "Your own policies in the tool"; a
 # whole project with one, examples/extending: docs/extending.md):
 #
-#   find_package(streamclust REQUIRED COMPONENTS io sim eval)
+#   find_package(streamclust REQUIRED COMPONENTS io sim eval live)
 #   streamclust_add_tool(my_streamclust
 #     POLICIES ${CMAKE_CURRENT_SOURCE_DIR}/intensity_gated.hpp   # headers with the policies and their
 #                                                                # registry::PolicyDescriptor specialisations

@@ -9,6 +9,8 @@
 #ifndef CONSUMER_ENGINE_ONLY
 #include <streamclust/eval/rand_index.hpp>
 #include <streamclust/io/writers.hpp>
+#include <streamclust/live/livox_crc.hpp>
+#include <streamclust/live/spsc_ring.hpp>
 #include <streamclust/sim/sensors/mid360_model.hpp>
 #endif
 
@@ -43,6 +45,11 @@ int main() {
   streamclust::sim::Mid360Model mid360;
   const streamclust::sim::Ray r = mid360.next();
   check(std::fabs(r.direction.norm() - 1.0f) < 1e-4f && r.time == 0.0, "sim: a unit ray at t = 0");
+
+  const std::uint8_t digits[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  check(streamclust::live::crc16_ccitt_false(digits, 9) == 0x29B1, "live: the SDK2 header CRC's check value");
+  streamclust::live::SpscRing<int> ring(2);  // the receiver thread's hand-off (Threads linked)
+  check(ring.try_push([](int& slot) { return slot = 3, true; }) && *ring.front() == 3, "live: a ring hands over");
 #endif
 
   return failures == 0 ? 0 : 1;
