@@ -168,6 +168,22 @@ TEST_CASE("ReorderWindow: reordering within the depth is undone; loss, duplicate
   CHECK(shallow.counters().late == 1);
 }
 
+TEST_CASE("ReorderWindow: a flush between filling a slot and committing it keeps that slot's packet") {
+  live::ReorderWindow<TestPacket> w(4);
+  std::vector<int> out;
+  auto keep = [&](const TestPacket& p) { out.push_back(p.id); };
+  for (int i = 0; i < 3; ++i) {
+    w.next_slot().id = i;
+    w.commit(counted(480 * i, static_cast<std::uint16_t>(i)), keep);
+  }
+  w.next_slot().id = 100;  // read before the clock says: a new epoch
+  w.flush(keep);
+  w.restart();
+  w.commit(counted(5, 0), keep);
+  w.flush(keep);
+  CHECK(out == std::vector<int>{0, 1, 2, 100});
+}
+
 TEST_CASE("ReorderWindow: the counter wraps at 65535; a large jump is a discontinuity, not loss") {
   live::ReorderWindow<TestPacket> w(2);
   run_order(w, {counted(0, 65534), counted(1, 65535), counted(2, 0), counted(3, 1)});

@@ -62,7 +62,8 @@ class ReorderWindow {
   std::size_t depth() const noexcept { return depth_; }
   std::size_t held() const noexcept { return held_.size(); }
 
-  /// The slot to fill with the next packet (valid until `commit`).
+  /// The slot to fill with the next packet: the same until `commit`, also
+  /// across a `flush` (a new epoch flushes while the packet is being read).
   Packet& next_slot() noexcept { return pool_[free_.back()].packet; }
 
   /// Adds the filled slot with `key`; then releases packets beyond the
@@ -106,7 +107,7 @@ class ReorderWindow {
   void release_oldest(Release& release) {
     const std::size_t slot = held_.front();
     held_.erase(held_.begin());
-    free_.push_back(slot);
+    free_.insert(free_.begin(), slot);  // behind the slot next_slot() handed out
     const PacketKey& k = pool_[slot].key;
     if (have_last_ && k.first_ns <= last_.first_ns) {
       if (seen(k)) {
