@@ -43,7 +43,11 @@ setTimeout(() => fail("the whole check took more than 120 s"), 120000).unref();
 
 const server = spawn(serve, ["--points", POINTS, "--rate", RATE, "--seconds", 90, "--limit", 1000000].map(String),
                      { stdio: ["pipe", "pipe", "inherit"] });
-server.on("exit", (code) => code === 0 || fail("foxglove_serve exited with " + code));
+let exited = false;
+server.on("exit", (code, signal) => {
+  exited = true;
+  need(code === 0, `foxglove_serve exited with ${code ?? signal}`);
+});
 const lines = [];
 readline.createInterface({ input: server.stdout }).on("line", (l) => lines.push(JSON.parse(l)));
 await until(() => lines.length > 0, 20, "the server's port");
@@ -175,6 +179,7 @@ for (const c of clients) c.close();
 server.stdin.end();
 await until(() => lines.length > 1, 20, "the server's final figures");
 const figures = lines[1];
+await until(() => exited, 20, "the server's exit");
 slowWs.terminate();
 need(figures.messages_dropped > 0, "the server counted dropped messages");
 need(figures.rate >= 0.9 * RATE, `the publisher kept its rate (${figures.rate} Hz of ${RATE})`);
