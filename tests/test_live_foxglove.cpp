@@ -144,6 +144,7 @@ TEST_CASE("foxglove server: an ephemeral port, bind errors naming address:port, 
   CHECK(s.messages_sent == 0);
   CHECK(s.messages_dropped == 0);
   CHECK(s.bytes_sent == 0);
+  CHECK(s.network_error.empty());
 }
 
 TEST_CASE("foxglove frames: the labelled window, its boxes and the raw points as CDR payloads") {

@@ -57,8 +57,7 @@ std::string status_json(StatusLevel level, const std::string& message, const std
 /// Size [bytes] of a Message Data header (opcode, subscription id, log time).
 inline constexpr std::size_t kMessageDataHeader = 13;
 
-/// Writes the Message Data header of `payload_size` bytes to follow into
-/// `out[0, kMessageDataHeader)`.
+/// Writes a Message Data header (the payload follows it) into `out[0, kMessageDataHeader)`.
 void write_message_data_header(std::uint8_t* out, std::uint32_t subscription_id, std::uint64_t log_time_ns);
 
 /// A whole Message Data frame: header then `size` bytes of `payload`. O(size).

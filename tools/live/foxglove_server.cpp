@@ -61,7 +61,8 @@ struct FoxgloveServer::Impl {
   std::atomic<std::uint64_t> published{0}, sent{0}, dropped{0}, publishes_dropped{0}, bytes_sent{0};
   std::mutex run_mutex;
   std::condition_variable run_done;
-  bool finished = false;  // guarded by run_mutex: the network thread has left run()
+  bool finished = false;      // guarded by run_mutex: the network thread has left run()
+  std::string network_error;  // guarded by run_mutex: the exception that ended run() early
 
   explicit Impl(Options o) : options(std::move(o)) {}
 
@@ -96,14 +97,18 @@ struct FoxgloveServer::Impl {
     network = std::thread([this] { run(); });
   }
 
+  /// The network thread. An exception stops it; publish() keeps returning at
+  /// once and stats() reports the error.
   void run() {
+    std::string error;
     try {
       server.run();
-    } catch (const std::exception&) {
-      // The network stops; publish() keeps returning at once and stats() shows no more sends.
+    } catch (const std::exception& e) {
+      error = std::string("foxglove server: the network thread stopped: ") + e.what();
     }
     const std::lock_guard<std::mutex> lock(run_mutex);
     finished = true;
+    network_error = std::move(error);
     run_done.notify_all();
   }
 
@@ -311,6 +316,8 @@ FoxgloveServer::Stats FoxgloveServer::stats() const {
   s.messages_dropped = impl_->dropped.load();
   s.publishes_dropped = impl_->publishes_dropped.load();
   s.bytes_sent = impl_->bytes_sent.load();
+  const std::lock_guard<std::mutex> lock(impl_->run_mutex);
+  s.network_error = impl_->network_error;
   return s;
 }
 

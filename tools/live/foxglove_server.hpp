@@ -49,7 +49,8 @@ class FoxgloveServer {
     std::size_t send_buffer_limit = 10'000'000;  ///< [bytes] queued per client before its messages are dropped
   };
 
-  /// Counters since the start. `messages_*` count one per client and message.
+  /// Counters since the start. `messages_sent` and `messages_dropped` count
+  /// one per subscribed client and message.
   struct Stats {
     std::size_t clients = 0;               ///< connected now
     std::uint64_t messages_published = 0;  ///< publish() calls accepted
@@ -57,6 +58,7 @@ class FoxgloveServer {
     std::uint64_t messages_dropped = 0;    ///< not sent to a subscribed client: its send buffer was full
     std::uint64_t publishes_dropped = 0;   ///< publish() calls dropped before the network thread took them
     std::uint64_t bytes_sent = 0;          ///< [bytes] of Message Data frames queued to clients
+    std::string network_error;             ///< why the network thread stopped early; empty while it runs
   };
 
   /// Listens on `options.address`:`options.port` and starts the network
@@ -82,9 +84,11 @@ class FoxgloveServer {
   /// Sends `size` bytes at `data` (one message) with log time `log_time_ns`
   /// to every client subscribed to channel `channel_id`. Copies the bytes once
   /// and hands them to the network thread: O(size), never waits for a client.
-  /// Throws std::invalid_argument for a channel id advertise() never returned.
+  /// Throws std::invalid_argument for a channel id advertise() never returned;
+  /// a withdrawn channel's messages reach no one.
   void publish(std::uint32_t channel_id, std::uint64_t log_time_ns, const std::uint8_t* data, std::size_t size);
 
+  /// The counters now. O(1); thread-safe.
   Stats stats() const;
 
  private:
