@@ -12,6 +12,8 @@ PACKAGES=(
   # the recording readers (ROS 1 bags, rosbag2, MCAP): chunk codecs and SQLite;
   # zlib for the PNG writer
   liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev zlib1g-dev
+  # the live view's Foxglove WebSocket server (tools/live): websocketpp on standalone asio
+  libwebsocketpp-dev libasio-dev
   # the fuzz targets (-DSTREAMCLUST_FUZZ=ON, scripts/fuzz.sh): clang-14's libFuzzer runtime
   libclang-rt-14-dev
   # the Python module (-DSTREAMCLUST_PYTHON=ON, docs/python.md), its tests and example

@@ -37,11 +37,12 @@ fi
 
 if [[ -z "${SKIP_DEPS:-}" ]]; then
   bash scripts/install-deps.sh
-  # The npm packages of the optional mcap_foxglove test (the reference MCAP
-  # reader): tried once, for at most two minutes, into a scratch folder moved
-  # into place only when complete. Without node, npm or the registry the test
-  # reports itself skipped.
-  if command -v npm >/dev/null && [[ ! -d build/npm/node_modules/@mcap/core ]]; then
+  # The npm packages of the optional mcap_foxglove and foxglove_live tests (the
+  # reference MCAP reader, the reference Foxglove WebSocket client): tried once,
+  # for at most two minutes, into a scratch folder moved into place only when
+  # complete. Without node, npm or the registry the tests report themselves skipped.
+  if command -v npm >/dev/null && { [[ ! -d build/npm/node_modules/@mcap/core ]] ||
+                                    [[ ! -d build/npm/node_modules/@foxglove/ws-protocol ]]; }; then
     rm -rf build/npm.partial
     if timeout 120 bash scripts/install-npm-tools.sh build/npm.partial >/dev/null 2>&1; then
       rm -rf build/npm && mv build/npm.partial build/npm

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// The Foxglove messages of one retrieval cycle, as CDR payloads (ROS 2
+/// `foxglove_msgs`, each with its 4-byte encapsulation header), for every output
+/// that shows cycles in Foxglove: `cluster --mcap` (cli/mcap_output.hpp) and
+/// the live view's WebSocket server. The topics and types:
+///
+/// | topic | type | content |
+/// |---|---|---|
+/// | `/streamclust/points` | `foxglove_msgs/msg/PointCloud` | the window: x y z (float32), label (int32), red green blue alpha (uint8: the label's colour; ground brown, ceiling pale blue, unlabelled grey) |
+/// | `/streamclust/clusters` | `foxglove_msgs/msg/SceneUpdate` | one box per component (its axis-aligned extent, the label's colour) with its id above it; each update replaces the last |
+/// | `/streamclust/raw` | `foxglove_msgs/msg/PointCloud` | points as received: x y z intensity (float32) |
+///
+/// Frame id `streamclust`. Not thread-safe; reuses its buffers (no allocation
+/// in steady state once they have grown).
+
+#include "cli/structure_labels.hpp"
+
+#include <streamclust/io/foxglove_messages.hpp>
+#include <streamclust/io/stream_time.hpp>
+#include <streamclust/io/writers.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace streamclust::cli {
+
+/// Builds the CDR payloads of a cycle (see the file comment).
+class FoxgloveFrames {
+ public:
+  static constexpr const char* kPointsTopic = "/streamclust/points";
+  static constexpr const char* kClustersTopic = "/streamclust/clusters";
+  static constexpr const char* kRawTopic = "/streamclust/raw";
+  static constexpr const char* kPointCloudType = "foxglove_msgs/PointCloud";  // io::foxglove::ros2_definition key
+  static constexpr const char* kSceneUpdateType = "foxglove_msgs/SceneUpdate";
+  static constexpr const char* kPointCloudSchema = "foxglove_msgs/msg/PointCloud";  // schema name
+  static constexpr const char* kSceneUpdateSchema = "foxglove_msgs/msg/SceneUpdate";
+
+  /// Builds point_cloud() and scene_update() of the labelled window `points`
+  /// (`labels` one per point, -1 unlabelled, -2 ground, -3 ceiling), stamped
+  /// `log_ns` [ns since 1970]. O(n log clusters).
+  void build(const std::vector<io::Record>& points, const std::vector<std::int64_t>& labels, std::uint64_t log_ns) {
+    const io::foxglove::Stamp stamp = stamp_of(log_ns);
+    data_.assign(points.size() * kStride, 0);
+    std::map<std::int64_t, Extent> extents;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const io::Record& p = points[i];
+      const std::int64_t label = i < labels.size() ? labels[i] : -1;
+      const auto c = color_of(label);
+      const std::int32_t label32 =
+          static_cast<std::int32_t>(std::clamp<std::int64_t>(label, std::numeric_limits<std::int32_t>::min(),
+                                                             std::numeric_limits<std::int32_t>::max()));
+      std::uint8_t* d = data_.data() + i * kStride;
+      std::memcpy(d, &p.x, 4);
+      std::memcpy(d + 4, &p.y, 4);
+      std::memcpy(d + 8, &p.z, 4);
+      std::memcpy(d + 12, &label32, 4);
+      d[16] = c[0];
+      d[17] = c[1];
+      d[18] = c[2];
+      d[19] = 255;
+      if (label >= 0 && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) extents[label].add(p);
+    }
+    static const std::vector<io::foxglove::PackedField> fields = {
+        {"x", 0, io::foxglove::FieldType::float32},    {"y", 4, io::foxglove::FieldType::float32},
+        {"z", 8, io::foxglove::FieldType::float32},    {"label", 12, io::foxglove::FieldType::int32},
+        {"red", 16, io::foxglove::FieldType::uint8},   {"green", 17, io::foxglove::FieldType::uint8},
+        {"blue", 18, io::foxglove::FieldType::uint8},  {"alpha", 19, io::foxglove::FieldType::uint8}};
+    io::foxglove::write_point_cloud(cloud_, stamp, kFrame, kStride, fields, data_);
+
+    boxes_.clear();
+    for (const auto& [label, e] : extents) {
+      io::foxglove::Box b;
+      b.id = std::to_string(label);
+      for (int k = 0; k < 3; ++k) {
+        b.center[k] = 0.5 * (static_cast<double>(e.lo[k]) + static_cast<double>(e.hi[k]));
+        b.size[k] = std::max(0.05, static_cast<double>(e.hi[k]) - static_cast<double>(e.lo[k]));  // [m]
+      }
+      const auto c = color_of(label);
+      b.color = io::foxglove::Color{c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, 0.35};
+      b.metadata = {{"points", std::to_string(e.n)}};
+      boxes_.push_back(std::move(b));
+    }
+    io::foxglove::write_scene_update(scene_, stamp, kFrame, boxes_);
+  }
+
+  /// Builds raw_cloud(): `points` as received (x y z intensity), stamped `log_ns`. O(n).
+  void build_raw(const std::vector<io::Record>& points, std::uint64_t log_ns) {
+    data_.assign(points.size() * kRawStride, 0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const float v[4] = {points[i].x, points[i].y, points[i].z, points[i].intensity};
+      std::memcpy(data_.data() + i * kRawStride, v, kRawStride);
+    }
+    static const std::vector<io::foxglove::PackedField> fields = {
+        {"x", 0, io::foxglove::FieldType::float32},
+        {"y", 4, io::foxglove::FieldType::float32},
+        {"z", 8, io::foxglove::FieldType::float32},
+        {"intensity", 12, io::foxglove::FieldType::float32}};
+    io::foxglove::write_point_cloud(raw_, stamp_of(log_ns), kFrame, kRawStride, fields, data_);
+  }
+
+  /// The last build()'s `foxglove_msgs/msg/PointCloud` of the labelled window.
+  const std::vector<std::uint8_t>& point_cloud() const { return cloud_.bytes(); }
+  /// The last build()'s `foxglove_msgs/msg/SceneUpdate` of the cluster boxes.
+  const std::vector<std::uint8_t>& scene_update() const { return scene_.bytes(); }
+  /// The last build_raw()'s `foxglove_msgs/msg/PointCloud` of the raw points.
+  const std::vector<std::uint8_t>& raw_cloud() const { return raw_.bytes(); }
+
+  /// Absolute nanoseconds of stream time `t` [s] since `origin` (0 before 1970).
+  static std::uint64_t nanoseconds(io::TimeOrigin origin, double t) {
+    const double ns = static_cast<double>(origin.seconds) * 1e9 + std::nearbyint(t * 1e9);
+    if (!(ns > 0)) return 0;
+    if (!(ns < 9.2e18)) return std::numeric_limits<std::int64_t>::max();
+    const std::int64_t relative = std::llround(t * 1e9);  // exact below 2^53 ns (104 days)
+    return static_cast<std::uint64_t>(origin.seconds * 1000000000 + relative);
+  }
+
+ private:
+  static constexpr std::uint32_t kStride = 20;     // [bytes] x y z label r g b a
+  static constexpr std::uint32_t kRawStride = 16;  // [bytes] x y z intensity
+  static constexpr const char* kFrame = "streamclust";
+
+  struct Extent {
+    std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::max()};
+    std::array<float, 3> hi{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                            -std::numeric_limits<float>::max()};
+    std::size_t n = 0;
+    void add(const io::Record& p) {
+      const float v[3] = {p.x, p.y, p.z};
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], v[k]);
+        hi[k] = std::max(hi[k], v[k]);
+      }
+      ++n;
+    }
+  };
+
+  static io::foxglove::Stamp stamp_of(std::uint64_t log_ns) {
+    return {static_cast<std::int32_t>(log_ns / 1000000000u), static_cast<std::uint32_t>(log_ns % 1000000000u)};
+  }
+
+  /// Colour of a label: the writers' label colour; ground and ceiling apart.
+  static std::array<std::uint8_t, 3> color_of(std::int64_t label) {
+    if (label == kGroundLabel) return {140, 105, 70};
+    if (label == kCeilingLabel) return {170, 190, 215};
+    return io::label_color(label);
+  }
+
+  io::CdrWriter cloud_, scene_, raw_;
+  std::vector<std::uint8_t> data_;
+  std::vector<io::foxglove::Box> boxes_;
+};
+
+}  // namespace streamclust::cli
