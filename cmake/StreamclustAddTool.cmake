@@ -123,6 +123,27 @@ function(streamclust_add_tool target)
   _streamclust_units("streamclust_add_tool(${target})" "${_dir}" cluster _units
     PROJECTIONS ${ARG_PROJECTIONS} LINKAGES ${ARG_LINKAGES} BODY _cluster SPHERICAL_BODY _objects)
 
+  # The live view's Foxglove WebSocket server (live/foxglove_server.hpp), one
+  # per project: websocketpp 0.8.2 with standalone asio, both Debian packages.
+  # websocketpp does not compile with g++ 12 at C++20, so the library is
+  # always C++17 and its header names no websocketpp type.
+  if(NOT TARGET streamclust_foxglove)
+    find_package(websocketpp CONFIG QUIET)
+    find_path(STREAMCLUST_ASIO_INCLUDE_DIR asio.hpp)
+    if(NOT websocketpp_FOUND OR NOT STREAMCLUST_ASIO_INCLUDE_DIR)
+      message(FATAL_ERROR "streamclust_add_tool(${target}): the live view needs websocketpp and standalone asio "
+                          "(Debian packages libwebsocketpp-dev libasio-dev)")
+    endif()
+    find_package(Threads REQUIRED)
+    add_library(streamclust_foxglove STATIC "${_src}/live/foxglove_protocol.cpp" "${_src}/live/foxglove_server.cpp")
+    target_include_directories(streamclust_foxglove PUBLIC "${_src}")
+    target_include_directories(streamclust_foxglove SYSTEM PRIVATE "${WEBSOCKETPP_INCLUDE_DIR}"
+                               "${STREAMCLUST_ASIO_INCLUDE_DIR}")
+    target_compile_definitions(streamclust_foxglove PRIVATE ASIO_STANDALONE)
+    target_link_libraries(streamclust_foxglove PRIVATE nlohmann_json::nlohmann_json PUBLIC Threads::Threads)
+    set_target_properties(streamclust_foxglove PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON)
+  endif()
+
   add_library(${ARG_LIBRARY} STATIC
     "${_src}/cli/cluster.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
     "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/replay.cpp" ${_units})
@@ -131,7 +152,7 @@ function(streamclust_add_tool target)
     target_compile_definitions(${ARG_LIBRARY} PUBLIC "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")
   endif()
   target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::streamclust streamclust::io streamclust::live
-                        nlohmann_json::nlohmann_json)
+                        streamclust_foxglove nlohmann_json::nlohmann_json)
   target_compile_features(${ARG_LIBRARY} PUBLIC cxx_std_17)
 
   add_executable(${target} "${_src}/streamclust.cpp")

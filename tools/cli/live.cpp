@@ -5,11 +5,13 @@
 #include "cli/live.hpp"
 
 #include "cli/cluster.hpp"
+#include "cli/foxglove_frames.hpp"
 #include "cli/json.hpp"
 #include "cli/live_feed.hpp"
 #include "cli/live_sessions.hpp"
 #include "cli/live_status.hpp"
 #include "cli/run_setup.hpp"
+#include "live/foxglove_server.hpp"
 
 #include <streamclust/live/sdk1_packets.hpp>
 #include <streamclust/live/sdk2_packets.hpp>
@@ -90,6 +92,16 @@ std::uint32_t parse_address_option(const std::string& option, const std::string&
 
 }  // namespace
 
+std::pair<std::string, std::uint16_t> parse_foxglove_endpoint(const std::string& text) {
+  const auto colon = text.rfind(':');
+  const std::string address = colon == std::string::npos ? "0.0.0.0" : text.substr(0, colon);
+  const std::string port = colon == std::string::npos ? text : text.substr(colon + 1);
+  std::int64_t p = 0;
+  if (!io::detail::parse_int64(port, p) || p < 0 || p > 65535 || address.empty())
+    throw UsageError("--foxglove: expected [ADDRESS:]PORT (e.g. 8765 or 127.0.0.1:8765), got '" + text + "'");
+  return {address, static_cast<std::uint16_t>(p)};
+}
+
 LivoxSourceUrl parse_livox_url(const std::string& text) {
   const std::string expected = "expected livox-sdk2://[HOST_IP][:PORT] or livox-sdk1://[HOST_IP][:PORT], got '" +
                                text + "'";
@@ -157,6 +169,7 @@ LiveOptions parse_live_options(const std::vector<std::string>& args) {
       o.record_path = c.value();
     } else if (a == "--foxglove") {
       o.foxglove = c.value();
+      parse_foxglove_endpoint(o.foxglove);  // a usage error now, not after the LiDAR answered
     } else if (a == "--queue") {
       o.queue_packets = parse_count(a, c.value());
       if (o.queue_packets < 2 || o.queue_packets > (1u << 20)) throw UsageError("--queue: expected 2 to 1048576 packets");
@@ -230,6 +243,11 @@ run:
   --reorder N                     packets held to undo network reordering (default 8, 4 ms)
   --no-status                     no status line on stderr
 outputs (besides those of cluster: --labels, --report, --mcap, --png, --png-every, ...):
+  --foxglove [ADDR:]PORT          a Foxglove live view (WebSocket, protocol foxglove.websocket.v1):
+                                  /streamclust/points (the window coloured by label),
+                                  /streamclust/clusters (boxes with ids), /streamclust/raw (the
+                                  points received since the last cycle); ADDR default 0.0.0.0.
+                                  A slow viewer loses frames and never slows clustering
   --record FILE.mcap              the raw input as livox_ros_driver2/msg/CustomMsg on /livox/lidar
                                   and sensor_msgs/msg/Imu on /livox/imu; `streamclust cluster
                                   FILE.mcap` with the same options gives the same cycles and labels
@@ -322,8 +340,13 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   // gravity for the mount when the LiDAR has one and no mount is given).
   ClusterOptions& c = o.cluster;
   c.read.time_origin = io::TimeOrigin{static_cast<std::int64_t>(feed.first_time_ns() / 1'000'000'000u)};
-  c.open_input = [&feed, &c, name = o.source_text] {
-    return std::unique_ptr<io::PointReader>(std::make_unique<LiveReader>(feed, name, *c.read.time_origin));
+  // The live view's raw points: what the driver's reader hands out between cycles.
+  std::vector<io::Record> raw_since_cycle;
+  bool tap_raw = false;  // set once the driver reads, with a live view
+  c.open_input = [&feed, &c, &raw_since_cycle, &tap_raw, name = o.source_text] {
+    auto reader = std::make_unique<LiveReader>(feed, name, *c.read.time_origin);
+    if (tap_raw) reader->tap(&raw_since_cycle);
+    return std::unique_ptr<io::PointReader>(std::move(reader));
   };
   std::optional<ImuGravity> gravity;
   if (c.mode == Mode::continuous) {
@@ -353,6 +376,29 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   }
   feed.keep_history(false);
 
+  // The live view.
+  std::unique_ptr<live::FoxgloveServer> view;
+  std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;
+  FoxgloveFrames frames;
+  if (!o.foxglove.empty()) {
+    const auto [address, port] = parse_foxglove_endpoint(o.foxglove);
+    try {
+      view = std::make_unique<live::FoxgloveServer>(live::FoxgloveServer::Options{address, port, "streamclust live"});
+    } catch (const std::exception& e) {
+      throw NetworkError(std::string("--foxglove: ") + e.what());
+    }
+    auto channel = [&](const char* topic, const char* type, const char* schema) {
+      return view->advertise({0, topic, "cdr", schema, io::foxglove::ros2_definition(type), "ros2msg"});
+    };
+    view_points = channel(FoxgloveFrames::kPointsTopic, FoxgloveFrames::kPointCloudType, FoxgloveFrames::kPointCloudSchema);
+    view_clusters =
+        channel(FoxgloveFrames::kClustersTopic, FoxgloveFrames::kSceneUpdateType, FoxgloveFrames::kSceneUpdateSchema);
+    view_raw = channel(FoxgloveFrames::kRawTopic, FoxgloveFrames::kPointCloudType, FoxgloveFrames::kPointCloudSchema);
+    c.cycle_windows = true;
+    if (!c.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
+  }
+  tap_raw = view != nullptr;
+
   // The cycles: status line and latency.
   LiveStatus status;
   const bool terminal = ::isatty(2) == 1;
@@ -363,7 +409,17 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     return status.line(std::chrono::duration<double>(feed.elapsed()).count(), stream.counters().returns,
                        stream.order().lost, rs.queue_drops + rs.kernel_drops, feed.queue_depth(), o.queue_packets);
   };
-  c.on_cycle = [&](const CycleReport& cycle, const std::vector<io::Record>&, const std::vector<std::int64_t>&) {
+  c.on_cycle = [&](const CycleReport& cycle, const std::vector<io::Record>& points,
+                   const std::vector<std::int64_t>& labels) {
+    if (view) {  // never waits for a client: a slow one loses frames (live/foxglove_server.hpp)
+      const std::uint64_t log_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
+      frames.build(points, labels, log_ns);
+      frames.build_raw(raw_since_cycle, log_ns);
+      view->publish(view_points, log_ns, frames.point_cloud().data(), frames.point_cloud().size());
+      view->publish(view_clusters, log_ns, frames.scene_update().data(), frames.scene_update().size());
+      view->publish(view_raw, log_ns, frames.raw_cloud().data(), frames.raw_cloud().size());
+    }
+    raw_since_cycle.clear();
     const auto now = std::chrono::steady_clock::now();
     const double cycle_s = static_cast<double>(c.read.time_origin->seconds) + cycle.time;
     const auto cycle_ns = static_cast<std::int64_t>(std::llround(cycle_s * 1e9));
@@ -416,6 +472,11 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     latency["p99_ms"] = status.latency().percentile(99.0);
     latency["max_ms"] = status.latency().max();
     l["latency"] = latency;
+    if (view) {
+      const live::FoxgloveServer::Stats v = view->stats();
+      l["foxglove"] = {{"port", view->port()}, {"messages_sent", v.messages_sent},
+                       {"messages_dropped", v.messages_dropped}, {"publishes_dropped", v.publishes_dropped}};
+    }
     if (gravity) {
       l["imu_gravity"] = {{"roll_deg", gravity->roll_deg}, {"pitch_deg", gravity->pitch_deg},
                           {"samples", gravity->samples}};

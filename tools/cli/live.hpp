@@ -17,6 +17,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace streamclust::cli {
@@ -49,6 +50,10 @@ inline constexpr std::uint16_t kSdk1BroadcastPort = 55000;
 
 /// Parses a source URL; UsageError naming what was expected.
 LivoxSourceUrl parse_livox_url(const std::string& text);
+
+/// Parses `--foxglove [ADDRESS:]PORT` (address default 0.0.0.0, every
+/// interface; port 0: any free one); UsageError naming what was expected.
+std::pair<std::string, std::uint16_t> parse_foxglove_endpoint(const std::string& text);
 
 struct LiveOptions {
   LivoxSourceUrl source;

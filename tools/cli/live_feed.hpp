@@ -228,9 +228,14 @@ class LiveReader : public io::PointReader {
     setup_time(options, io::TimeUnit::ns);
   }
 
+  /// Also appends every record read to `*tap` (null: none); the owner
+  /// empties it.
+  void tap(std::vector<io::Record>* tap) { tap_ = tap; }
+
   std::size_t read(std::vector<io::Record>& out, std::size_t max_records) override {
     if (max_records == 0) return 0;
     returns_.clear();
+    const std::size_t first = out.size();
     const std::size_t n = feed_.read(position_, returns_, max_records);
     for (const live::LivoxReturn& r : returns_) {
       io::Record rec;
@@ -241,11 +246,13 @@ class LiveReader : public io::PointReader {
       rec.t = next_time_unsigned(r.time_ns);
       out.push_back(rec);
     }
+    if (tap_) tap_->insert(tap_->end(), out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
     return n;
   }
 
  private:
   LiveFeed& feed_;
+  std::vector<io::Record>* tap_ = nullptr;
   std::uint64_t position_ = 0;
   std::vector<live::LivoxReturn> returns_;
 };
