@@ -127,7 +127,8 @@ TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --re
   } types[] = {{"1", 0.0009}, {"2", 0.0087}, {"3", 0.004}};  // 0.5 mm (5 mm) per axis; spherical: angle x range
   unsigned port = 47301;
   for (const auto& t : types) {
-    CAPTURE(t.type);
+    const std::string type = t.type;
+    CAPTURE(type);
     const std::string url = "livox-sdk2://127.0.0.1:" + std::to_string(port);
     std::vector<std::string> args{url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all",
                                   "--record", dir.path("live.mcap"), "--report", dir.path("live.json"), "-q"};
@@ -155,7 +156,7 @@ TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and
   TempDir dir("cli_live", "configure");
   const std::string url = "livox-sdk2://127.0.0.9:47401";
   LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--idle-exit",
-                   "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                   "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "--foxglove", "127.0.0.1:0", "-q"},
                   56000);
   const RunResult sent = run_cli({"replay", "--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
                                   "livox-sdk2://127.0.0.9:1000", "--device-address", "127.0.0.8", "--serial",
@@ -165,6 +166,9 @@ TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and
   REQUIRE_MESSAGE(got.code == 0, got.err);
   const auto report = read_json(dir.path("live.json"));
   CHECK(report["live"]["address"] == "127.0.0.8");
+  // The live view served every cycle (no viewer connected: nothing sent, nothing dropped).
+  CHECK(report["live"]["foxglove"]["port"].get<int>() > 0);
+  CHECK(report["live"]["foxglove"]["publishes_dropped"] == 0);
   CHECK(report["live"]["packets"]["point_packets"].get<int>() > 1000);
   CHECK(report["live"]["packets"]["lost"] == 0);
 }
@@ -176,7 +180,7 @@ TEST_CASE("live SDK1: broadcast, handshake, heartbeats; every data type equals c
   REQUIRE(run_cli({"simulate", "--sensor", "mid40", "--scene", "office", "--seconds", "1.2", "--out", mid40, "-q"}).code == 0);
   const std::vector<std::string> preset{"--preset", "carc-avia", "--window-time", "0.2"};
   unsigned port = 45000, device = 20;
-  for (const char* type : {"0", "1", "2", "3", "4", "5", "7", "8"}) {
+  for (const std::string type : {"0", "1", "2", "3", "4", "5", "7", "8"}) {
     CAPTURE(type);
     const std::string input = (type[0] == '0' || type[0] == '1') ? mid40 : avia;
     const std::string url = "livox-sdk1://127.0.0.1:" + std::to_string(port);

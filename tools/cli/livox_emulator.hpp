@@ -51,7 +51,7 @@ struct EmulatorOptions {
   LivoxSourceUrl target;                 ///< the host side: where to stream (SDK2) or broadcast (SDK1)
   std::uint32_t device_address = 0;      ///< the emulated LiDAR's address (0: chosen by the OS)
   std::string serial = "EMULATED0000001";
-  std::uint8_t data_type = 0;            ///< 0: the protocol's default (SDK2 1, SDK1 2)
+  std::optional<std::uint8_t> data_type; ///< empty: the protocol's default (SDK2 1, SDK1 2)
   double speed = 1.0;                    ///< x the recorded rate; 0: as fast as possible
   bool wait_for_configure = false;       ///< SDK2: stream only after a host's parameter write
   double drop = 0.0, duplicate = 0.0, swap = 0.0;  ///< per point packet probabilities
@@ -71,7 +71,7 @@ class LivoxEmulator {
  public:
   explicit LivoxEmulator(const EmulatorOptions& o) : o_(o), random_(o.seed) {
     sdk2_ = o.target.protocol == LivoxProtocol::sdk2;
-    if (o_.data_type == 0) o_.data_type = sdk2_ ? 1 : 2;
+    data_type_ = o.data_type.value_or(sdk2_ ? 1 : 2);
     if (sdk2_) {
       const auto& p = live::sdk2_mid360_ports;
       points_ = bind_or_fail({o.device_address, p.lidar_points}, "emulator: cannot bind the point port");
@@ -182,8 +182,8 @@ class LivoxEmulator {
 
   bool packet_full(const live::LivoxReturn& next) const {
     if (sdk2_) return pending_.size() >= 96 || next.time_ns < pending_.front().time_ns;
-    const io::LivoxDataType* type = io::find_sdk1_data_type(o_.data_type);
-    const std::uint64_t interval = live::sdk1_nominal_firing_interval_ns(o_.data_type);
+    const io::LivoxDataType* type = io::find_sdk1_data_type(data_type_);
+    const std::uint64_t interval = live::sdk1_nominal_firing_interval_ns(data_type_);
     const std::uint64_t span = interval * type->structs_per_package;
     return next.time_ns + interval / 2 >= pending_.front().time_ns + span || next.time_ns < pending_.front().time_ns ||
            pending_.size() >= static_cast<std::size_t>(type->structs_per_package) * type->returns;
@@ -200,14 +200,14 @@ class LivoxEmulator {
       const std::uint64_t span = pending_.back().time_ns - first;
       f.time_interval = static_cast<std::uint16_t>(std::min<std::uint64_t>((span + 50) / 100, 65535));
       f.time_sync = o_.sync;
-      live::encode_sdk2_point_packet(f, static_cast<live::Sdk2DataType>(o_.data_type), pending_.data(),
+      live::encode_sdk2_point_packet(f, static_cast<live::Sdk2DataType>(data_type_), pending_.data(),
                                      pending_.size(), bytes);
     } else {
       live::Sdk1PacketHeader h;
-      h.data_type = o_.data_type;
+      h.data_type = data_type_;
       h.timestamp_type = o_.sync == live::LivoxTimeSync::ptp ? 1 : 0;
       h.timestamp = first;
-      live::encode_sdk1_data_packet(h, live::sdk1_nominal_firing_interval_ns(o_.data_type), pending_.data(),
+      live::encode_sdk1_data_packet(h, live::sdk1_nominal_firing_interval_ns(data_type_), pending_.data(),
                                     pending_.size(), bytes);
     }
     counters_.returns += pending_.size();
@@ -360,7 +360,7 @@ class LivoxEmulator {
                                   info.host_port};
           (kv.key == live::sdk2_key_point_destination ? points_to_ : imu_to_) = to;
         } else if (kv.key == live::sdk2_key_point_data_type && live::parse_sdk2_u8(kv, value)) {
-          if (value >= 1 && value <= 3) o_.data_type = value;
+          if (value >= 1 && value <= 3) data_type_ = value;
         }
       }
       live::encode_sdk2_set_parameters_ack(frame.seq, ack, reply);
@@ -373,6 +373,7 @@ class LivoxEmulator {
 
   EmulatorOptions o_;
   bool sdk2_ = true;
+  std::uint8_t data_type_ = 1;  // may change by a host's parameter write (SDK2)
   std::mt19937_64 random_;
   std::unique_ptr<live::UdpSocket> points_, imu_, command_;
   live::Endpoint points_to_, imu_to_;

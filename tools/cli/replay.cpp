@@ -94,8 +94,8 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
   if (o.simulate == !o.input.empty()) throw UsageError("expected either INPUT or --simulate (see streamclust replay --help)");
   if (o.simulate) validate_simulation_options(o.simulation);
   const bool sdk2 = o.emulator.target.protocol == LivoxProtocol::sdk2;
-  const std::uint8_t t = o.emulator.data_type;
-  if (t != 0 && (sdk2 ? !(t >= 1 && t <= 3) : !(t <= 5 || t == 7 || t == 8)))
+  const int t = o.emulator.data_type.value_or(sdk2 ? 1 : 2);
+  if (sdk2 ? !(t >= 1 && t <= 3) : !(t <= 5 || t == 7 || t == 8))
     throw UsageError(sdk2 ? "--data-type: SDK2 point data types are 1, 2 and 3"
                           : "--data-type: SDK1 point data types are 0-5, 7 and 8");
   if (o.emulator.wait_for_configure && !sdk2) throw UsageError("--wait-configure: an SDK2 device's mode (SDK1 always handshakes)");
