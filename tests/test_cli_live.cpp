@@ -15,6 +15,7 @@
 #include "support/temp_dir.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -227,6 +228,61 @@ TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboo
   // No flood of rejections: the stream stays in order across the reboot.
   CHECK(report["totals"]["rejected"]["time_backwards"].get<int>() == 0);
   CHECK(report["totals"]["rejected"]["time_jump"].get<int>() == 0);
+  check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
+}
+
+TEST_CASE("live: a second LiDAR on the same port is counted as foreign and never mixed in") {
+  TempDir dir("cli_live", "two");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.0", "--out", input, "-q"}).code == 0);
+  const std::string url = "livox-sdk2://127.0.0.1:47701";
+  LiveThread live({url, "--lidar", "127.0.0.4", "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles",
+                   "all", "--record", dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset",
+                   "carc-mid360", "-q"},
+                  47701);
+  RunResult other;
+  std::thread second([&] {  // another Mid-360 streaming to the same port (its own point and IMU ports)
+    other = run_cli({"replay", "--simulate", "--sensor", "mid360", "--scene", "forest", "--seconds", "1.0", "--to", url,
+                     "--device-address", "127.0.0.5", "-q"});
+  });
+  const RunResult sent = run_cli({"replay", input, "--to", url, "--device-address", "127.0.0.4", "-q"});
+  second.join();
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(other.code == 0, other.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  const auto report = read_json(dir.path("live.json"));
+  CHECK(report["live"]["address"] == "127.0.0.4");
+  CHECK(report["live"]["packets"]["foreign"].get<int>() > 100);  // the forest's packets while the run listened
+  CHECK(report["live"]["packets"]["lost"] == 0);
+  check_same_points(input, dir.path("live.mcap"), 0.0009);  // only the chosen LiDAR's points
+  check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
+}
+
+TEST_CASE("live: SIGINT under load ends the run cleanly; every output is complete and replays to the same labels") {
+  TempDir dir("cli_live", "sigint");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "4", "--out", input, "-q"}).code == 0);
+  const std::string url = "livox-sdk2://127.0.0.1:47801";
+  LiveThread live({url, "--labels", dir.path("live.csv"), "--cycles", "all", "--record", dir.path("live.mcap"),
+                   "--report", dir.path("live.json"), "--mcap", dir.path("view.mcap"), "--preset", "carc-mid360",
+                   "-q"},
+                  47801);
+  std::thread interrupt([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2000));  // half of the stream sent
+    std::raise(SIGINT);  // live's handler is installed while it runs
+  });
+  const RunResult sent = run_cli({"replay", input, "--to", url, "--device-address", "127.0.0.6", "-q"});
+  interrupt.join();
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  CHECK(sent.code == 0);
+  const auto report = read_json(dir.path("live.json"));
+  CHECK(report["live"]["end"] == "stopped by a signal");
+  CHECK(report["live"]["packets"]["point_packets"].get<int>() < 7000);  // stopped before the 8,334 packets were sent
+  CHECK(report["totals"]["cycles"].get<int>() > 3);
+  // The recording and the view are complete MCAP files; the recording replays to the live labels.
+  CHECK(run_cli({"info", dir.path("view.mcap")}).code == 0);
   check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
 }
 

@@ -131,6 +131,15 @@ class LiveFeed {
     const std::size_t before = history_.size();
     for (;;) {
       if (end_ != LiveEnd::running) return false;
+      auto now = std::chrono::steady_clock::now();
+      // A stop request or the duration ends the stream even under load (the
+      // queue never empties when the engine is behind).
+      if (stop_.load(std::memory_order_relaxed)) {
+        finish(LiveEnd::stop_requested);
+      } else if (limits_.duration.count() > 0 && now - start_ >= limits_.duration) {
+        finish(LiveEnd::duration);
+      }
+      if (end_ != LiveEnd::running) return history_.size() > before;
       bool any = false;
       for (int burst = 0; burst < 256; ++burst) {
         live::Datagram* d = receiver_.queue(device_).front();
@@ -141,29 +150,24 @@ class LiveFeed {
         take_scratch();
         any = true;
       }
-      const auto now = std::chrono::steady_clock::now();
+      now = std::chrono::steady_clock::now();
       if (any) last_datagram_ = now;
       if (history_.size() > before) return true;
-      if (!any) {
-        if (now - last_datagram_ > limits_.idle_flush && stream_.held() > 0) {
-          scratch_.clear();
-          stream_.flush(scratch_, arrival_scratch_);
-          take_scratch();
-          if (history_.size() > before) return true;
-        }
-        if (stop_.load(std::memory_order_relaxed)) {
-          finish(LiveEnd::stop_requested);
-        } else if (limits_.duration.count() > 0 && now - start_ >= limits_.duration) {
-          finish(LiveEnd::duration);
-        } else if (limits_.idle_exit.count() > 0 && now - last_datagram_ >= limits_.idle_exit) {
-          finish(LiveEnd::idle);
-        } else if (!receiver_.error().empty()) {
-          finish(LiveEnd::receiver_failed);
-        }
-        if (end_ != LiveEnd::running) return history_.size() > before;
-        if (now >= deadline) return false;
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      if (any) continue;
+      if (now - last_datagram_ > limits_.idle_flush && stream_.held() > 0) {
+        scratch_.clear();
+        stream_.flush(scratch_, arrival_scratch_);
+        take_scratch();
+        if (history_.size() > before) return true;
       }
+      if (limits_.idle_exit.count() > 0 && now - last_datagram_ >= limits_.idle_exit) {
+        finish(LiveEnd::idle);
+      } else if (!receiver_.error().empty()) {
+        finish(LiveEnd::receiver_failed);
+      }
+      if (end_ != LiveEnd::running) return history_.size() > before;
+      if (now >= deadline) return false;
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
 
