@@ -255,7 +255,7 @@ TEST_CASE("live: a second LiDAR on the same port is counted as foreign and never
   REQUIRE_MESSAGE(got.code == 0, got.err);
   const auto report = read_json(dir.path("live.json"));
   CHECK(report["live"]["address"] == "127.0.0.4");
-  CHECK(report["live"]["packets"]["foreign"].get<int>() > 1000);  // the forest's 2,083 packets
+  CHECK(report["live"]["packets"]["foreign"].get<int>() > 500);  // the forest's 680 packets (most rays hit nothing)
   CHECK(report["live"]["packets"]["lost"] == 0);
   check_same_points(input, dir.path("live.mcap"), 0.0009);  // only the chosen LiDAR's points
   check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
