@@ -12,7 +12,10 @@
 /// Plain data, no I/O.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace streamclust::live {
@@ -101,5 +104,23 @@ struct LivoxPacketContents {
   std::vector<LivoxReturn> returns;
   LivoxImuSample imu;
 };
+
+namespace detail {
+
+/// `metres` as the integer count of 1 / `per_metre` m an encoder writes,
+/// rounded to nearest; throws std::invalid_argument naming `encoder` and
+/// the coordinate `what` when it is not finite or outside [lo, hi] counts.
+inline std::int64_t quantise_metres(const char* encoder, double metres, double per_metre, double lo, double hi,
+                                    const char* what) {
+  const double q = std::round(metres * per_metre);
+  if (!(q >= lo && q <= hi)) {
+    throw std::invalid_argument(std::string(encoder) + ": " + what + " " + std::to_string(metres) +
+                                " m cannot be encoded (expected a finite value within " + std::to_string(lo / per_metre) +
+                                " to " + std::to_string(hi / per_metre) + " m)");
+  }
+  return static_cast<std::int64_t>(q);
+}
+
+}  // namespace detail
 
 }  // namespace streamclust::live

@@ -243,11 +243,7 @@ namespace detail {
 /// `value` [m] in units of 1/`per_metre` m, rounded; throws
 /// std::invalid_argument naming `what` when not finite or beyond [lo, hi].
 inline std::int64_t sdk1_quantise(double value, double per_metre, double lo, double hi, const char* what) {
-  const double q = std::round(value * per_metre);
-  if (!(q >= lo && q <= hi))
-    throw std::invalid_argument(std::string("SDK1 packet encoder: ") + what + " " + std::to_string(value) +
-                                " m is not finite or beyond the data type's range");
-  return static_cast<std::int64_t>(q);
+  return quantise_metres("SDK1 packet encoder", value, per_metre, lo, hi, what);
 }
 
 /// Writes one struct of `type` at `p` from the returns `r[0, n)` of one

@@ -301,13 +301,7 @@ inline void sdk2_finish_packet(const Sdk2PacketFields& f, std::vector<std::uint8
 /// `metres` in `per_metre` units, rounded to nearest (half away from zero),
 /// as an integer in [lo, hi]; throws naming `what` when out of range or not finite.
 inline std::int64_t sdk2_quantise(double metres, double per_metre, double lo, double hi, const char* what) {
-  const double v = std::round(metres * per_metre);
-  if (!(v >= lo && v <= hi)) {
-    throw std::invalid_argument(std::string("SDK2 point packet: ") + what + " " + std::to_string(metres) +
-                                " m cannot be encoded (expected a finite value within " +
-                                std::to_string(lo / per_metre) + " to " + std::to_string(hi / per_metre) + " m)");
-  }
-  return static_cast<std::int64_t>(v);
+  return quantise_metres("SDK2 point packet", metres, per_metre, lo, hi, what);
 }
 
 /// Writes `r` as x, y, z of type `Int` in 1 / `per_metre` m, reflectivity, tag.
