@@ -226,9 +226,11 @@ SOURCE:
 the LiDAR:
   --configure                     SDK2: discovery, then point the LiDAR's point and IMU streams at
                                   this host (without it the LiDAR's stored destination is used)
-  --lidar SERIAL|IP               the LiDAR to use (repeatable for the serials discovery may show;
-                                  default: the first one heard); others on the port are counted
-                                  as foreign and never mixed in
+  --lidar SERIAL|IP               the LiDAR to use (default: the first one heard; a serial number
+                                  is found by discovery); others on the port are counted as
+                                  foreign and never mixed in. One LiDAR per run
+  With --ground (the objects presets) and no --mount or --poses, a LiDAR with an IMU gives the
+  mount's roll and pitch from the first window's accelerometer (at rest) instead of the plane search.
   --discovery-address IP          where discovery requests go (default 255.255.255.255)
   --data-type 1|2|3               SDK2 --configure: int32 mm, int16 cm or spherical points
   --work-mode sampling            SDK2 --configure: also start sampling
