@@ -360,7 +360,9 @@ TEST_CASE("estimate_ground: pitched and upside-down mounts in the office, forest
 TEST_CASE("gravity_from_accelerometer: the mount of a resting IMU levels gravity; a moving one is refused") {
   std::mt19937 rng(7);
   std::normal_distribution<float> noise(0.0f, 0.01f);  // [g], a MEMS accelerometer at rest
-  for (const auto& [roll, pitch] : std::vector<std::pair<double, double>>{{0, 0}, {10, 5}, {-20, 30}, {180, 0}, {3, -60}}) {
+  // Not a structured binding: clang 14 refuses CAPTURE of one in C++20.
+  for (const auto& angles : std::vector<std::pair<double, double>>{{0, 0}, {10, 5}, {-20, 30}, {180, 0}, {3, -60}}) {
+    const double roll = angles.first, pitch = angles.second;
     CAPTURE(roll);
     CAPTURE(pitch);
     const streamclust::Pose mount = streamclust::mount_from_roll_pitch_yaw_deg(roll, pitch, 0.0);
