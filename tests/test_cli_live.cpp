@@ -156,8 +156,8 @@ TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --re
 TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and points its streams at the host") {
   TempDir dir("cli_live", "configure");
   const std::string url = "livox-sdk2://127.0.0.9:47401";
-  LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--idle-exit",
-                   "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "--foxglove", "127.0.0.1:0", "-q"},
+  LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--wait", "60",
+                   "--idle-exit", "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "--foxglove", "127.0.0.1:0", "-q"},
                   56000);
   const RunResult sent = run_cli({"replay", "--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
                                   "livox-sdk2://127.0.0.9:1000", "--device-address", "127.0.0.8", "--serial",

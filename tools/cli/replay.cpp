@@ -141,11 +141,14 @@ Exit codes: 0 ok, 2 usage error, 4 input error, 6 network error.
 
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
   LivoxEmulator emulator(o.emulator);
+  // A simulated stream is made before the host connects: a configured or
+  // handshaken device streams at once.
+  std::vector<io::Record> simulated;
+  if (o.simulate) simulated = simulate_records(o.simulation);
   emulator.connect();
   bool host_present = true;
   if (o.simulate) {
-    const std::vector<io::Record> records = simulate_records(o.simulation);
-    host_present = emulator.send(records);
+    host_present = emulator.send(simulated);
   } else {
     auto reader = io::open_reader(o.input, o.read);
     std::vector<io::Record> chunk;
