@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `streamclust live`: options, the session with the LiDAR, the receiver and
+// `streamclust live`: options, the connection with the LiDAR, the receiver and
 // engine threads, and the driver of `cluster` fed by the live stream.
 
 #include "cli/live.hpp"
@@ -269,7 +269,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   StopSignals signals;
   const auto wait = seconds(o.first_packet_timeout);
 
-  // The session: which LiDAR, and where its packets arrive.
+  // The connection: which LiDAR, and where its packets arrive.
   std::unique_ptr<Sdk1Session> sdk1;
   std::vector<live::Endpoint> ports;
   std::vector<std::uint32_t> devices;

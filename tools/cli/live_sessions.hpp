@@ -198,9 +198,9 @@ inline std::uint32_t configure_sdk2(const LiveOptions& o, const FoundLidar& lida
 
 // ------------------------------------------------------------------- SDK1
 
-/// An SDK1 session: the LiDAR found by its broadcast, the handshake, the
+/// An SDK1 connection: the LiDAR found by its broadcast, the handshake, the
 /// sampling and the heartbeat. `heartbeat` runs on the receiver thread;
-/// the rest on the thread that owns the session.
+/// the rest on the thread that owns the connection.
 class Sdk1Session {
  public:
   /// Listens for a broadcast and handshakes; NetworkError when no chosen

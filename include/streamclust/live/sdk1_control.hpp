@@ -60,7 +60,7 @@ struct Sdk1Command {
 constexpr bool operator==(Sdk1Command a, Sdk1Command b) noexcept { return a.set == b.set && a.id == b.id; }
 constexpr bool operator!=(Sdk1Command a, Sdk1Command b) noexcept { return !(a == b); }
 
-/// The commands a host session uses (payloads in the comments: CMD / ACK).
+/// The commands a host uses while connected (payloads in the comments: CMD / ACK).
 inline constexpr Sdk1Command sdk1_broadcast{0, 0x00};          ///< MSG from the device: Sdk1Broadcast
 inline constexpr Sdk1Command sdk1_handshake{0, 0x01};          ///< Sdk1Handshake / u8 ret_code
 inline constexpr Sdk1Command sdk1_heartbeat{0, 0x03};          ///< none / Sdk1HeartbeatAck

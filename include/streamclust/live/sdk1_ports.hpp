@@ -2,7 +2,7 @@
 #pragma once
 
 /// \file
-/// The UDP ports and the session timing of the Livox SDK1 protocol (Avia,
+/// The UDP ports and the connection timing of the Livox SDK1 protocol (Avia,
 /// Mid-40/100, Mid-70, Horizon, Tele-15). Sources:
 /// `Livox-SDK/Livox-SDK:sdk_core/src/device_discovery.h` (`kListenPort`,
 /// `kCmdPortOffset`, `kDataPortOffset`, `kSensorPortOffset`),
