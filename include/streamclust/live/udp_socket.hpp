@@ -128,10 +128,12 @@ class UdpSocket {
 
   /// Asks for a receive buffer of `bytes`; returns what the kernel granted
   /// (Linux doubles the request for bookkeeping and caps it at
-  /// net.core.rmem_max).
+  /// net.core.rmem_max, unless the process may exceed that cap: root or
+  /// CAP_NET_ADMIN, where SO_RCVBUFFORCE is tried first).
   std::size_t set_receive_buffer(std::size_t bytes) {
     const int want = bytes > 0x3FFFFFFFu ? 0x3FFFFFFF : static_cast<int>(bytes);
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &want, sizeof want);
+    if (::setsockopt(fd_, SOL_SOCKET, SO_RCVBUFFORCE, &want, sizeof want) != 0)
+      ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &want, sizeof want);
     int got = 0;
     socklen_t n = sizeof got;
     ::getsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &got, &n);
