@@ -6,6 +6,7 @@
 
 #include "cli/engine_config.hpp"
 #include "cli/main.hpp"
+#include "cli/replay.hpp"
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/io/reader.hpp>
@@ -453,4 +454,15 @@ TEST_CASE("the retrieval schedule never runs the same retrieval twice when floor
   CHECK(times[2] == doctest::Approx(0.7));
   CHECK(times[3] == doctest::Approx(0.75));
   for (std::size_t i = 1; i < times.size(); ++i) CHECK(times[i] > times[i - 1]);
+}
+
+TEST_CASE("replay --simulate: --speed is the replay's rate wherever it stands; --ego-speed moves the sensor") {
+  using streamclust::cli::parse_replay_options;
+  for (const auto& args : {std::vector<std::string>{"--simulate", "--speed", "4", "--ego-speed", "1.5", "--to", "livox-sdk2://"},
+                           std::vector<std::string>{"--speed", "4", "--simulate", "--to", "livox-sdk2://", "--ego-speed", "1.5"}}) {
+    const auto o = parse_replay_options(args);
+    CHECK(o.emulator.speed == 4.0);
+    CHECK(o.simulation.speed == doctest::Approx(1.5));
+  }
+  CHECK(run_cli({"replay", "in.csv", "--ego-speed", "1", "--to", "livox-sdk2://"}).code == 2);  // needs --simulate
 }

@@ -237,7 +237,7 @@ the LiDAR:
   --wait S                        seconds to wait for discovery, handshake and first packet (default 10)
 run:
   --duration S                    stop after S seconds
-  --idle-exit S                   stop after S seconds without packets
+  --idle-exit S                   stop after S seconds without packets (once packets came)
   (SIGINT or SIGTERM stops cleanly: every output is flushed and valid)
   --queue N                       receiver-to-engine queue per LiDAR in packets (default 4096:
                                   about 2 s of a Mid-360); when full, whole packets are dropped

@@ -151,7 +151,10 @@ class LiveFeed {
         any = true;
       }
       now = std::chrono::steady_clock::now();
-      if (any) last_datagram_ = now;
+      if (any) {
+        last_datagram_ = now;
+        received_ = true;
+      }
       if (history_.size() > before) return true;
       if (any) continue;
       if (now - last_datagram_ > limits_.idle_flush && stream_.held() > 0) {
@@ -160,7 +163,8 @@ class LiveFeed {
         take_scratch();
         if (history_.size() > before) return true;
       }
-      if (limits_.idle_exit.count() > 0 && now - last_datagram_ >= limits_.idle_exit) {
+      // Idle only counts once the stream has started (before that, --wait).
+      if (received_ && limits_.idle_exit.count() > 0 && now - last_datagram_ >= limits_.idle_exit) {
         finish(LiveEnd::idle);
       } else if (!receiver_.error().empty()) {
         finish(LiveEnd::receiver_failed);
@@ -207,6 +211,7 @@ class LiveFeed {
   const std::atomic<bool>& stop_;
   LiveRecorder* recorder_;
   std::chrono::steady_clock::time_point start_, last_datagram_;
+  bool received_ = false;  // a first datagram came (idle time counts from then on)
   LiveEnd end_ = LiveEnd::running;
   bool keep_history_ = true;
   std::deque<live::LivoxReturn> history_;

@@ -126,16 +126,19 @@ class LivoxEmulator {
   /// stopped its heartbeats).
   bool send(const std::vector<io::Record>& records) {
     for (const io::Record& r : records) {
-      if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || !std::isfinite(r.t)) continue;
+      if (!std::isfinite(r.t)) continue;
+      // A ray without a return is an empty slot (0,0,0), as a device sends
+      // it: the packets keep their pace and the host sees no gap.
+      const bool returned = std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z);
       if (!started_) {
         started_ = true;
         t0_ = r.t;
         wall0_ = std::chrono::steady_clock::now();
       }
       live::LivoxReturn ret;
-      ret.x = r.x;
-      ret.y = r.y;
-      ret.z = r.z;
+      ret.x = returned ? r.x : 0.0f;
+      ret.y = returned ? r.y : 0.0f;
+      ret.z = returned ? r.z : 0.0f;
       ret.reflectivity = static_cast<std::uint8_t>(std::clamp(r.intensity, 0.0f, 255.0f));
       ret.time_ns = device_time(r.t);
       if (!pending_.empty() && packet_full(ret)) {

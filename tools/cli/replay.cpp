@@ -23,13 +23,18 @@ double parse_probability(const std::string& option, const std::string& value) {
 
 ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
   ReplayOptions o;
-  bool to_given = false;
+  bool to_given = false, ego_speed_given = false;
   for (ArgCursor c(args); !c.done(); c.next()) {
     const std::string& a = c.option();
     if (parse_input_option(c, o.read)) continue;
-    if (o.simulate && parse_simulation_option(c, o.simulation)) continue;
+    // --speed is the replay's rate; the simulated sensor's own motion is
+    // --ego-speed here (simulate's --speed).
+    if (o.simulate && a != "--speed" && parse_simulation_option(c, o.simulation)) continue;
     if (a == "--simulate") {
       o.simulate = true;
+    } else if (a == "--ego-speed") {
+      o.simulation.speed = static_cast<float>(parse_number(a, c.value()));
+      ego_speed_given = true;
     } else if (a == "--to") {
       o.emulator.target = parse_livox_url(c.value());
       to_given = true;
@@ -92,6 +97,7 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
   }
   if (!to_given) throw UsageError("missing --to livox-sdk2://HOST[:PORT] or livox-sdk1://HOST[:PORT]");
   if (o.simulate == !o.input.empty()) throw UsageError("expected either INPUT or --simulate (see streamclust replay --help)");
+  if (ego_speed_given && !o.simulate) throw UsageError("--ego-speed: only with --simulate (the simulated sensor's motion)");
   if (o.simulate) validate_simulation_options(o.simulation);
   const bool sdk2 = o.emulator.target.protocol == LivoxProtocol::sdk2;
   const int t = o.emulator.data_type.value_or(sdk2 ? 1 : 2);
@@ -130,7 +136,8 @@ faults:
   --clock-jump AT:S               at AT seconds of stream, the clock jumps by S seconds
   --reboot-at AT                  at AT seconds, a reboot: clock from 0, packet counter from 0
 input: --format, --topic, --time-unit, --point-rate, --time-origin as for cluster;
---simulate takes simulate's scenario options (--sensor, --scene, --seconds, --seed, ...).
+--simulate takes simulate's scenario options (--sensor, --scene, --seconds, --seed, ...),
+with the sensor's ego-motion as --ego-speed M/S (here --speed is the replay's rate).
 
 examples:
   streamclust replay --simulate --sensor mid360 --scene office --seconds 10 --to livox-sdk2://127.0.0.1
