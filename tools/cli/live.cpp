@@ -7,6 +7,7 @@
 #include "cli/cluster.hpp"
 #include "cli/foxglove_frames.hpp"
 #include "cli/json.hpp"
+#include "cli/line_stream.hpp"
 #include "cli/live_feed.hpp"
 #include "cli/live_sessions.hpp"
 #include "cli/live_status.hpp"
@@ -17,14 +18,22 @@
 #include <streamclust/live/sdk2_packets.hpp>
 #include <streamclust/motion/imu_gravity.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -82,6 +91,13 @@ live::LivoxPacketFormat packet_format(LivoxProtocol protocol) {
 
 std::chrono::steady_clock::duration seconds(double s) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+/// Seconds as a person writes them: "10", "0.5".
+std::string format_seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", s);
+  return text;
 }
 
 std::uint32_t parse_address_option(const std::string& option, const std::string& value) {
@@ -228,7 +244,9 @@ the LiDAR:
                                   this host (without it the LiDAR's stored destination is used)
   --lidar SERIAL|IP               the LiDAR to use (default: the first one heard; a serial number
                                   is found by discovery); others on the port are counted as
-                                  foreign and never mixed in. One LiDAR per run
+                                  foreign and never mixed in. SDK2: repeat it for several LiDARs,
+                                  one engine thread each; every output FILE.ext becomes
+                                  FILE-ID.ext and live view topics /lidar_ID/..., ID the value
   With --ground (the objects presets) and no --mount or --poses, a LiDAR with an IMU gives the
   mount's roll and pitch from the first window's accelerometer (at rest) instead of the plane search.
   --discovery-address IP          where discovery requests go (default 255.255.255.255)
@@ -264,83 +282,85 @@ Exit codes: 0 ok, 2 usage error, 4 input error, 5 out of memory, 6 network error
 )";
 }
 
-int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
-  LiveOptions o = options;
-  StopSignals signals;
-  const auto wait = seconds(o.first_packet_timeout);
+namespace {
 
-  // The connection: which LiDAR, and where its packets arrive.
-  std::unique_ptr<Sdk1Session> sdk1;
-  std::vector<live::Endpoint> ports;
-  std::vector<std::uint32_t> devices;
-  std::string lidar_name;
-  if (o.source.protocol == LivoxProtocol::sdk2) {
-    std::uint32_t host = o.source.host_address;
-    const bool by_serial = std::any_of(o.lidars.begin(), o.lidars.end(),
-                                       [](const std::string& l) { return !live::parse_address(l); });
-    if (o.configure || by_serial) {
-      const FoundLidar lidar = discover_sdk2(o, wait, err);
-      lidar_name = lidar.model + " " + lidar.serial;
-      devices.push_back(lidar.address);
-      if (o.configure) host = configure_sdk2(o, lidar, err);
-    } else {
-      for (const std::string& l : o.lidars) devices.push_back(*live::parse_address(l));
-    }
-    ports.push_back(live::Endpoint{host, o.source.port});
-    ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
-  } else {
-    sdk1 = std::make_unique<Sdk1Session>(o, wait, err);
-    lidar_name = sdk1->lidar().model + " " + sdk1->lidar().serial;
-    devices.push_back(sdk1->lidar().address);
-    ports.push_back(sdk1->data_endpoint());
-  }
-  if (devices.size() > 1)
-    throw UsageError("--lidar: one LiDAR per live run (start one run per LiDAR, each with its own outputs)");
+/// One LiDAR of a run: its stream, feed, outputs, status and engine
+/// thread. Thread-safety: the engine thread owns everything but `status`
+/// (read by the main thread for the status line, under `status_mutex`) and
+/// `done`.
+struct LidarPipeline {
+  LidarPipeline(std::size_t device_index, const live::LivoxPacketFormat& format, const LiveOptions& o)
+      : device(device_index), stream(format, live::LivoxStream::Options{o.reorder_packets, 1'000'000'000}) {}
 
-  live::ReceiverOptions ro;
-  ro.ports = ports;
-  ro.devices = devices;
-  ro.queue_packets = o.queue_packets;
-  ro.socket_buffer_bytes = o.socket_buffer_bytes;
-  if (sdk1) ro.on_tick = [s = sdk1.get()](std::chrono::steady_clock::time_point now) { s->heartbeat(now); };
-  std::unique_ptr<live::LivoxReceiver> receiver;
-  try {
-    receiver = std::make_unique<live::LivoxReceiver>(ro);
-  } catch (const std::system_error& e) {
-    throw NetworkError(std::string("live: ") + e.what());
-  }
-  if (sdk1) sdk1->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
-  receiver->start();
-
-  live::LivoxStream stream(packet_format(o.source.protocol),
-                           live::LivoxStream::Options{o.reorder_packets, 1'000'000'000});
+  std::size_t device = 0;         ///< the receiver's device index
+  std::string id;                 ///< in output names and topics; empty with one LiDAR
+  std::string name;               ///< "MID-360 47MDL9T0020193", or "LiDAR at ADDRESS" once heard
+  ClusterOptions cluster;         ///< the run's options with this LiDAR's output names
+  std::string record_path;
+  live::LivoxStream stream;
   std::unique_ptr<LiveRecorder> recorder;
-  if (!o.record_path.empty()) {
-    try {
-      recorder = std::make_unique<LiveRecorder>(o.record_path);
-    } catch (const std::runtime_error&) {
-      throw UsageError("--record: cannot write '" + o.record_path + "'");
-    }
-  }
+  std::unique_ptr<LiveFeed> feed;
+  std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;  ///< live view channels
+  std::mutex status_mutex;
+  LiveStatus status;
+  int code = kOk;
+  std::exception_ptr failure;
+  std::atomic<bool> done{false};
+};
+
+/// `path` with `-ID` before its extension (`live.csv` -> `live-ID.csv`);
+/// unchanged without an id. Standard output ("-") cannot be shared.
+std::string output_for(const std::string& option, const std::string& path, const std::string& id) {
+  if (path.empty() || id.empty()) return path;
+  if (path == "-") throw UsageError(option + " -: with several LiDARs every output is a file (one per LiDAR)");
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "-" + id + p.extension().string())).string();
+}
+
+/// A --lidar value as a file-name and topic part: letters, digits, '.',
+/// '-' kept, anything else '_'.
+std::string lidar_id(const std::string& lidar) {
+  std::string id = lidar;
+  for (char& ch : id)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-') ch = '_';
+  return id;
+}
+
+/// The run's shared parts, read by every engine thread.
+struct SharedRun {
+  const LiveOptions& options;
+  live::LivoxReceiver& receiver;
+  live::FoxgloveServer* view;
+  const std::atomic<bool>& stop_all;
+};
+
+/// One LiDAR's engine thread: waits for its first packet, sets the run up
+/// from its first window (the IMU's gravity when it has one), then runs the
+/// driver of `cluster` on its stream until the stream ends.
+int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std::ostream& err) {
+  const LiveOptions& o = run.options;
   LiveFeed::Limits limits;
   limits.duration = seconds(o.duration);
   limits.idle_exit = seconds(o.idle_exit);
-  LiveFeed feed(*receiver, 0, stream, limits, g_stop_requested, recorder.get());
-  const std::string where = live::format_endpoint(ports.front());
-  if (!feed.wait_for_first(wait)) {
-    if (g_stop_requested.load()) return kOk;
+  p.feed = std::make_unique<LiveFeed>(run.receiver, p.device, p.stream, limits, run.stop_all, p.recorder.get());
+  LiveFeed& feed = *p.feed;
+  if (!feed.wait_for_first(seconds(o.first_packet_timeout))) {
+    if (run.stop_all.load()) return kOk;
+    const double waited = o.duration > 0.0 ? std::min(o.duration, o.first_packet_timeout) : o.first_packet_timeout;
+    const std::string where = live::format_endpoint(run.receiver.local(0));
     throw NetworkError("live: no " + std::string(o.source.protocol == LivoxProtocol::sdk2 ? "SDK2" : "SDK1") +
-                       " point packet on UDP " + where + " within " + std::to_string(o.first_packet_timeout) +
-                       " s (" + std::to_string(receiver->stats().foreign) + " datagrams from other addresses" +
+                       " point packet" + (p.id.empty() ? "" : " from " + p.name) + " on UDP " + where + " within " +
+                       format_seconds(waited) + " s (" +
+                       std::to_string(run.receiver.stats().foreign) + " datagrams from other addresses" +
                        (o.source.protocol == LivoxProtocol::sdk2 && !o.configure
                             ? "; is the LiDAR's destination this host? try --configure"
                             : "") + ")");
   }
-  if (lidar_name.empty()) lidar_name = "LiDAR at " + live::format_address(receiver->device_address(0));
+  if (p.name.empty()) p.name = "LiDAR at " + live::format_address(run.receiver.device_address(p.device));
 
   // The run's time base, and its setup from the first window (the IMU's
   // gravity for the mount when the LiDAR has one and no mount is given).
-  ClusterOptions& c = o.cluster;
+  ClusterOptions& c = p.cluster;
   c.read.time_origin = io::TimeOrigin{static_cast<std::int64_t>(feed.first_time_ns() / 1'000'000'000u)};
   // The live view's raw points: what the driver's reader hands out between cycles.
   std::vector<io::Record> raw_since_cycle;
@@ -377,82 +397,50 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
   feed.keep_history(false);
+  tap_raw = run.view != nullptr;
+  if (run.view) c.cycle_windows = true;
 
-  // The live view.
-  std::unique_ptr<live::FoxgloveServer> view;
-  std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;
+  // The cycles: the live view and the latency.
   FoxgloveFrames frames;
-  if (!o.foxglove.empty()) {
-    const auto [address, port] = parse_foxglove_endpoint(o.foxglove);
-    try {
-      view = std::make_unique<live::FoxgloveServer>(live::FoxgloveServer::Options{address, port, "streamclust live"});
-    } catch (const std::exception& e) {
-      throw NetworkError(std::string("--foxglove: ") + e.what());
-    }
-    auto channel = [&](const char* topic, const char* type, const char* schema) {
-      return view->advertise({0, topic, "cdr", schema, io::foxglove::ros2_definition(type), "ros2msg"});
-    };
-    view_points = channel(FoxgloveFrames::kPointsTopic, FoxgloveFrames::kPointCloudType, FoxgloveFrames::kPointCloudSchema);
-    view_clusters =
-        channel(FoxgloveFrames::kClustersTopic, FoxgloveFrames::kSceneUpdateType, FoxgloveFrames::kSceneUpdateSchema);
-    view_raw = channel(FoxgloveFrames::kRawTopic, FoxgloveFrames::kPointCloudType, FoxgloveFrames::kPointCloudSchema);
-    c.cycle_windows = true;
-    if (!c.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
-  }
-  tap_raw = view != nullptr;
-
-  // The cycles: status line and latency.
-  LiveStatus status;
-  const bool terminal = ::isatty(2) == 1;
-  auto last_status = std::chrono::steady_clock::now();
-  const auto status_every = terminal ? std::chrono::milliseconds(500) : std::chrono::milliseconds(10000);
-  auto status_line = [&] {
-    const live::ReceiverStats rs = receiver->stats();
-    return status.line(std::chrono::duration<double>(feed.elapsed()).count(), stream.counters().returns,
-                       stream.order().lost, rs.queue_drops + rs.kernel_drops, feed.queue_depth(), o.queue_packets);
-  };
   c.on_cycle = [&](const CycleReport& cycle, const std::vector<io::Record>& points,
                    const std::vector<std::int64_t>& labels) {
-    if (view) {  // never waits for a client: a slow one loses frames (live/foxglove_server.hpp)
+    if (run.view) {  // never waits for a client: a slow one loses frames (live/foxglove_server.hpp)
       const std::uint64_t log_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
       frames.build(points, labels, log_ns);
       frames.build_raw(raw_since_cycle, log_ns);
-      view->publish(view_points, log_ns, frames.point_cloud().data(), frames.point_cloud().size());
-      view->publish(view_clusters, log_ns, frames.scene_update().data(), frames.scene_update().size());
-      view->publish(view_raw, log_ns, frames.raw_cloud().data(), frames.raw_cloud().size());
+      run.view->publish(p.view_points, log_ns, frames.point_cloud().data(), frames.point_cloud().size());
+      run.view->publish(p.view_clusters, log_ns, frames.scene_update().data(), frames.scene_update().size());
+      run.view->publish(p.view_raw, log_ns, frames.raw_cloud().data(), frames.raw_cloud().size());
     }
     raw_since_cycle.clear();
     const auto now = std::chrono::steady_clock::now();
     const double cycle_s = static_cast<double>(c.read.time_origin->seconds) + cycle.time;
     const auto cycle_ns = static_cast<std::int64_t>(std::llround(cycle_s * 1e9));
+    const std::lock_guard<std::mutex> lock(p.status_mutex);
     // Latency counts in steady state: not the first cycle (its packets
     // waited for the first window's calibration) nor the last after the
     // stream ended (they waited for the end to be noticed).
-    const bool steady = status.cycles() > 0 && feed.end() == LiveEnd::running;
-    status.on_cycle(cycle, cycle_ns, feed.arrivals(),
-                    std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count(), steady);
-    if (o.status && now - last_status >= status_every) {
-      last_status = now;
-      err << (terminal ? "\r" : "") << "streamclust: live: " << status_line() << (terminal ? "\033[K" : "\n")
-          << std::flush;
-    }
+    const bool steady = p.status.cycles() > 0 && feed.end() == LiveEnd::running;
+    p.status.on_cycle(cycle, cycle_ns, feed.arrivals(),
+                      std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count(), steady);
   };
   c.report_extra = [&](Json& doc) {
-    const live::ReceiverStats rs = receiver->stats();
-    const live::LivoxStreamCounters& sc = stream.counters();
-    const live::OrderCounters& oc = stream.order();
+    const live::ReceiverStats rs = run.receiver.stats();
+    const live::LivoxStreamCounters& sc = p.stream.counters();
+    const live::OrderCounters& oc = p.stream.order();
     Json l;
     l["source"] = o.source_text;
     l["protocol"] = o.source.protocol == LivoxProtocol::sdk2 ? "livox-sdk2" : "livox-sdk1";
-    l["lidar"] = lidar_name;
-    l["address"] = live::format_address(receiver->device_address(0));
-    l["time_sync"] = live::describe(stream.clock().sync());
+    l["lidar"] = p.name;
+    l["address"] = live::format_address(run.receiver.device_address(p.device));
+    l["time_sync"] = live::describe(p.stream.clock().sync());
     l["clock_epochs"] = sc.epochs;
-    l["clock_offset_ns"] = stream.clock().offset_ns();
-    l["end"] = describe(feed.end());
+    l["clock_offset_ns"] = p.stream.clock().offset_ns();
+    l["end"] = feed.end() == LiveEnd::stop_requested && !g_stop_requested.load() ? "stopped: another LiDAR of the run failed"
+                                                                                 : describe(feed.end());
     Json counts;
-    counts["datagrams"] = rs.datagrams;
-    counts["bytes"] = rs.bytes;
+    counts["datagrams"] = run.receiver.datagrams(p.device);
+    counts["bytes"] = run.receiver.bytes(p.device);
     counts["point_packets"] = sc.point_packets;
     counts["imu_packets"] = sc.imu_packets;
     counts["returns"] = sc.returns;
@@ -464,19 +452,22 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     counts["malformed"] = sc.malformed_total();
     counts["foreign"] = rs.foreign;
     counts["oversize"] = rs.oversize;
-    counts["queue_drops"] = rs.queue_drops;
+    counts["queue_drops"] = run.receiver.queue_drops(p.device);
     if (rs.kernel_drops_known) counts["kernel_drops"] = rs.kernel_drops;
     l["packets"] = counts;
     l["socket_buffer_bytes"] = rs.socket_buffer_bytes;
     Json latency;
-    latency["packets"] = status.latency().count();
-    latency["median_ms"] = status.latency().percentile(50.0);
-    latency["p99_ms"] = status.latency().percentile(99.0);
-    latency["max_ms"] = status.latency().max();
+    {
+      const std::lock_guard<std::mutex> lock(p.status_mutex);
+      latency["packets"] = p.status.latency().count();
+      latency["median_ms"] = p.status.latency().percentile(50.0);
+      latency["p99_ms"] = p.status.latency().percentile(99.0);
+      latency["max_ms"] = p.status.latency().max();
+    }
     l["latency"] = latency;
-    if (view) {
-      const live::FoxgloveServer::Stats v = view->stats();
-      l["foxglove"] = {{"port", view->port()}, {"messages_sent", v.messages_sent},
+    if (run.view) {
+      const live::FoxgloveServer::Stats v = run.view->stats();
+      l["foxglove"] = {{"port", run.view->port()}, {"messages_sent", v.messages_sent},
                        {"messages_dropped", v.messages_dropped}, {"publishes_dropped", v.publishes_dropped}};
     }
     if (gravity) {
@@ -486,26 +477,195 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     doc["format"] = l["protocol"];
     doc["live"] = l;
   };
+  return run_cluster(c, out, err);
+}
 
-  int code = kOk;
-  try {
-    code = run_cluster(c, out, err);
-  } catch (...) {
-    receiver->stop();
-    if (recorder) recorder->close();
-    throw;
+}  // namespace
+
+int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
+  const LiveOptions& o = options;
+  StopSignals signals;
+  const auto wait = seconds(o.first_packet_timeout);
+
+  // The connection: which LiDARs, and where their packets arrive. SDK2:
+  // each --lidar given by address is heard passively; a serial number (or
+  // --configure) is found by discovery, one LiDAR at a time.
+  std::unique_ptr<Sdk1Session> sdk1;
+  std::vector<live::Endpoint> ports;
+  std::vector<std::uint32_t> devices;
+  std::vector<std::string> names;
+  if (o.source.protocol == LivoxProtocol::sdk2) {
+    std::uint32_t host = o.source.host_address;
+    const std::vector<std::string> chosen = o.lidars.empty() ? std::vector<std::string>{""} : o.lidars;
+    for (const std::string& l : chosen) {
+      const auto address = live::parse_address(l);
+      if (address && !o.configure) {
+        devices.push_back(*address);
+        names.emplace_back();
+      } else if (!l.empty() || o.configure) {
+        LiveOptions one = o;
+        one.lidars = l.empty() ? std::vector<std::string>{} : std::vector<std::string>{l};
+        const FoundLidar lidar = discover_sdk2(one, wait, err);
+        devices.push_back(lidar.address);
+        names.push_back(lidar.model + " " + lidar.serial);
+        if (o.configure) host = configure_sdk2(one, lidar, err);
+      } else {
+        devices.push_back(0);  // the first LiDAR heard
+        names.emplace_back();
+      }
+    }
+    ports.push_back(live::Endpoint{host, o.source.port});
+    ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
+  } else {
+    if (o.lidars.size() > 1)
+      throw UsageError("--lidar: SDK1 takes one LiDAR per run (its handshake owns the broadcast port)");
+    sdk1 = std::make_unique<Sdk1Session>(o, wait, err);
+    names.push_back(sdk1->lidar().model + " " + sdk1->lidar().serial);
+    devices.push_back(sdk1->lidar().address);
+    ports.push_back(sdk1->data_endpoint());
   }
-  receiver->stop();
-  if (recorder) {
+
+  live::ReceiverOptions ro;
+  ro.ports = ports;
+  if (!(devices.size() == 1 && devices[0] == 0)) ro.devices = devices;
+  ro.queue_packets = o.queue_packets;
+  ro.socket_buffer_bytes = o.socket_buffer_bytes;
+  if (sdk1) ro.on_tick = [s = sdk1.get()](std::chrono::steady_clock::time_point now) { s->heartbeat(now); };
+  std::unique_ptr<live::LivoxReceiver> receiver;
+  try {
+    receiver = std::make_unique<live::LivoxReceiver>(ro);
+  } catch (const std::system_error& e) {
+    throw NetworkError(std::string("live: ") + e.what());
+  }
+
+  // One pipeline per LiDAR; with several, every output name and live view
+  // topic carries the LiDAR's id.
+  const bool several = devices.size() > 1;
+  const live::LivoxPacketFormat format = packet_format(o.source.protocol);
+  std::vector<std::unique_ptr<LidarPipeline>> pipelines;
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    auto p = std::make_unique<LidarPipeline>(i, format, o);
+    p->id = several ? lidar_id(o.lidars[i]) : std::string();
+    p->name = names[i];
+    p->cluster = o.cluster;
+    ClusterOptions& c = p->cluster;
+    c.labels_path = output_for("--labels", c.labels_path, p->id);
+    c.report_path = output_for("--report", c.report_path, p->id);
+    c.ply_path = output_for("--ply", c.ply_path, p->id);
+    c.pcd_path = output_for("--pcd", c.pcd_path, p->id);
+    c.mcap_path = output_for("--mcap", c.mcap_path, p->id);
+    c.png_path = output_for("--png", c.png_path, p->id);
+    p->record_path = output_for("--record", o.record_path, p->id);
+    if (!p->record_path.empty()) {
+      try {
+        p->recorder = std::make_unique<LiveRecorder>(p->record_path);
+      } catch (const std::runtime_error&) {
+        throw UsageError("--record: cannot write '" + p->record_path + "'");
+      }
+    }
+    pipelines.push_back(std::move(p));
+  }
+
+  // The live view: one server, three channels per LiDAR.
+  std::unique_ptr<live::FoxgloveServer> view;
+  if (!o.foxglove.empty()) {
+    const auto [address, port] = parse_foxglove_endpoint(o.foxglove);
     try {
-      recorder->close();
-    } catch (const std::runtime_error&) {
-      throw UsageError("--record: writing '" + o.record_path + "' failed");
+      view = std::make_unique<live::FoxgloveServer>(live::FoxgloveServer::Options{address, port, "streamclust live"});
+    } catch (const std::exception& e) {
+      throw NetworkError(std::string("--foxglove: ") + e.what());
+    }
+    for (auto& p : pipelines) {
+      const std::string prefix = p->id.empty() ? std::string() : "/lidar_" + p->id;
+      auto channel = [&](const char* topic, const char* type, const char* schema) {
+        return view->advertise({0, prefix + topic, "cdr", schema, io::foxglove::ros2_definition(type), "ros2msg"});
+      };
+      p->view_points = channel(FoxgloveFrames::kPointsTopic, FoxgloveFrames::kPointCloudType,
+                               FoxgloveFrames::kPointCloudSchema);
+      p->view_clusters = channel(FoxgloveFrames::kClustersTopic, FoxgloveFrames::kSceneUpdateType,
+                                 FoxgloveFrames::kSceneUpdateSchema);
+      p->view_raw = channel(FoxgloveFrames::kRawTopic, FoxgloveFrames::kPointCloudType,
+                            FoxgloveFrames::kPointCloudSchema);
+    }
+    if (!o.cluster.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
+  }
+
+  if (sdk1) sdk1->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
+  receiver->start();
+
+  // The engine threads. With several LiDARs each writes whole lines tagged
+  // with its id; the main thread keeps the status lines and the stop.
+  std::atomic<bool> stop_all{false};
+  const SharedRun shared{o, *receiver, view.get(), stop_all};
+  std::mutex terminal_mutex;
+  std::vector<std::thread> engines;
+  for (auto& p : pipelines) {
+    engines.emplace_back([&, pipeline = p.get()] {
+      std::unique_ptr<LineStream> tagged_out, tagged_err;
+      if (several) {
+        tagged_out = std::make_unique<LineStream>(out, terminal_mutex, "[" + pipeline->id + "] ");
+        tagged_err = std::make_unique<LineStream>(err, terminal_mutex, "[" + pipeline->id + "] ");
+      }
+      try {
+        pipeline->code = run_pipeline(*pipeline, shared, several ? *tagged_out : out, several ? *tagged_err : err);
+      } catch (...) {
+        pipeline->failure = std::current_exception();
+      }
+      pipeline->done.store(true);
+    });
+  }
+
+  const bool terminal = ::isatty(2) == 1;
+  const auto status_every = terminal ? std::chrono::milliseconds(500) : std::chrono::milliseconds(10000);
+  auto status_line = [&](LidarPipeline& p) {
+    const live::ReceiverStats rs = receiver->stats();
+    const std::size_t depth = receiver->queue(p.device).size();
+    const std::lock_guard<std::mutex> lock(p.status_mutex);
+    const double elapsed = p.feed ? std::chrono::duration<double>(p.feed->elapsed()).count() : 0.0;
+    return (p.id.empty() ? std::string() : "[" + p.id + "] ") +
+           p.status.line(elapsed, p.stream.counters().returns, p.stream.order().lost,
+                         receiver->queue_drops(p.device) + rs.kernel_drops, depth, o.queue_packets);
+  };
+  auto last_status = std::chrono::steady_clock::now();
+  for (;;) {
+    const bool all_done = std::all_of(pipelines.begin(), pipelines.end(), [](const auto& p) { return p->done.load(); });
+    if (all_done) break;
+    const bool failed = std::any_of(pipelines.begin(), pipelines.end(), [](const auto& p) { return p->failure != nullptr && p->done.load(); });
+    if (g_stop_requested.load() || failed) stop_all.store(true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto now = std::chrono::steady_clock::now();
+    if (o.status && now - last_status >= status_every) {
+      last_status = now;
+      const std::lock_guard<std::mutex> lock(terminal_mutex);
+      if (terminal && !several) {
+        err << "\rstreamclust: live: " << status_line(*pipelines.front()) << "\033[K" << std::flush;
+      } else {
+        for (auto& p : pipelines) err << "streamclust: live: " << status_line(*p) << "\n";
+      }
     }
   }
+  for (std::thread& t : engines) t.join();
+  receiver->stop();
+
+  // Every recording is closed (complete) before a failure is reported.
+  std::exception_ptr failure;
+  int code = kOk;
+  for (auto& p : pipelines) {
+    if (p->recorder) {
+      try {
+        p->recorder->close();
+      } catch (const std::runtime_error&) {
+        if (!failure) failure = std::make_exception_ptr(UsageError("--record: writing '" + p->record_path + "' failed"));
+      }
+    }
+    if (p->failure && !failure) failure = p->failure;
+    if (code == kOk) code = p->code;
+  }
+  if (failure) std::rethrow_exception(failure);
   if (o.status) {
-    if (terminal) err << "\r\033[K";
-    err << "streamclust: live: " << describe(feed.end()) << "; " << status_line() << "\n";
+    if (terminal && !several) err << "\r\033[K";
+    for (auto& p : pipelines)
+      err << "streamclust: live: " << (p->feed ? describe(p->feed->end()) : "not started") << "; " << status_line(*p) << "\n";
   }
   return code;
 }

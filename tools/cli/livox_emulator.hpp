@@ -141,7 +141,7 @@ class LivoxEmulator {
       ret.z = returned ? r.z : 0.0f;
       ret.reflectivity = static_cast<std::uint8_t>(std::clamp(r.intensity, 0.0f, 255.0f));
       ret.time_ns = device_time(r.t);
-      if (!pending_.empty() && packet_full(ret)) {
+      if (!pending_.empty() && (packet_full(ret) || (sdk2_ && !fill_sdk2_gap(ret)))) {
         if (!emit()) return false;
       }
       if (pending_.empty()) pending_since_ = r.t - t0_;
@@ -183,6 +183,28 @@ class LivoxEmulator {
     return static_cast<std::uint64_t>(std::max<std::int64_t>(ns, 0));
   }
 
+  // SDK2 slots are equally spaced over a packet's time_interval, so a gap
+  // of k steps before `next` (rays without a return that a recording left
+  // out) becomes k - 1 empty slots, as the device sends them. False: the
+  // gap is no whole number of steps (within 0.5 us) or does not fit, and
+  // the packet ends before `next`.
+  bool fill_sdk2_gap(const live::LivoxReturn& next) {
+    const std::size_t n = pending_.size();
+    if (n < 2) return true;
+    const double step = static_cast<double>(pending_.back().time_ns - pending_.front().time_ns) / static_cast<double>(n - 1);
+    const double gap = static_cast<double>(next.time_ns) - static_cast<double>(pending_.back().time_ns);
+    if (!(step > 0.0)) return false;
+    const double k = std::round(gap / step);
+    if (k < 1.0 || std::abs(gap - k * step) > 500.0 || n + static_cast<std::size_t>(k) > 96) return false;
+    const live::LivoxReturn last = pending_.back();
+    for (int j = 1; j < static_cast<int>(k); ++j) {
+      live::LivoxReturn empty;  // (0,0,0): no return
+      empty.time_ns = last.time_ns + static_cast<std::uint64_t>(std::llround(j * step));
+      pending_.push_back(empty);
+    }
+    return true;
+  }
+
   bool packet_full(const live::LivoxReturn& next) const {
     if (sdk2_) return pending_.size() >= 96 || next.time_ns < pending_.front().time_ns;
     const io::LivoxDataType* type = io::find_sdk1_data_type(data_type_);
@@ -213,7 +235,9 @@ class LivoxEmulator {
       live::encode_sdk1_data_packet(h, live::sdk1_nominal_firing_interval_ns(data_type_), pending_.data(),
                                     pending_.size(), bytes);
     }
-    counters_.returns += pending_.size();
+    counters_.returns += static_cast<std::uint64_t>(std::count_if(pending_.begin(), pending_.end(), [](const live::LivoxReturn& r) {
+      return r.x != 0.0f || r.y != 0.0f || r.z != 0.0f;  // (0,0,0): an empty slot
+    }));
     pending_.clear();
     pace();
     if (!keep_host()) return false;

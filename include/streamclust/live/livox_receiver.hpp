@@ -120,6 +120,9 @@ class LivoxReceiver {
 
   /// Datagrams dropped because LiDAR `i`'s queue was full.
   std::uint64_t queue_drops(std::size_t i) const { return devices_.at(i)->drops.load(std::memory_order_relaxed); }
+  /// Datagrams (and their bytes) from LiDAR `i` handed to its queue.
+  std::uint64_t datagrams(std::size_t i) const { return devices_.at(i)->datagrams.load(std::memory_order_relaxed); }
+  std::uint64_t bytes(std::size_t i) const { return devices_.at(i)->bytes.load(std::memory_order_relaxed); }
 
  private:
   struct Device {
@@ -127,6 +130,7 @@ class LivoxReceiver {
     SpscRing<Datagram> queue;
     std::atomic<std::uint32_t> address{0};
     std::atomic<std::uint64_t> drops{0};
+    std::atomic<std::uint64_t> datagrams{0}, bytes{0};
   };
 
   void run() {
@@ -184,6 +188,8 @@ class LivoxReceiver {
       }
       datagrams_.fetch_add(1, std::memory_order_relaxed);
       bytes_.fetch_add(d.size, std::memory_order_relaxed);
+      target->datagrams.fetch_add(1, std::memory_order_relaxed);
+      target->bytes.fetch_add(d.size, std::memory_order_relaxed);
     }
   }
 
