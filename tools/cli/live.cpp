@@ -246,7 +246,7 @@ the LiDAR:
                                   is found by discovery); others on the port are counted as
                                   foreign and never mixed in. SDK2: repeat it for several LiDARs,
                                   one engine thread each; every output FILE.ext becomes
-                                  FILE-ID.ext and live view topics /lidar_ID/..., ID the value
+                                  FILE-ID.ext and live view topics /lidar_ID/... (ID: the value)
   With --ground (the objects presets) and no --mount or --poses, a LiDAR with an IMU gives the
   mount's roll and pitch from the first window's accelerometer (at rest) instead of the plane search.
   --discovery-address IP          where discovery requests go (default 255.255.255.255)
@@ -576,7 +576,9 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
       throw NetworkError(std::string("--foxglove: ") + e.what());
     }
     for (auto& p : pipelines) {
-      const std::string prefix = p->id.empty() ? std::string() : "/lidar_" + p->id;
+      std::string prefix = p->id.empty() ? std::string() : "/lidar_" + p->id;
+      std::replace(prefix.begin(), prefix.end(), '.', '_');  // a ROS-style name
+      std::replace(prefix.begin(), prefix.end(), '-', '_');
       auto channel = [&](const char* topic, const char* type, const char* schema) {
         return view->advertise({0, prefix + topic, "cdr", schema, io::foxglove::ros2_definition(type), "ros2msg"});
       };
