@@ -135,6 +135,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     labels_file << "cycle,time,index,label\n";
   }
   Report report;
+  report.cycles.keep_last(o.report_cycles_kept);
   report.input = o.input;
   report.format = io::to_string(reader->info().format);
   report.mode = Frame ? "frame" : "continuous";

@@ -326,6 +326,10 @@ std::string lidar_id(const std::string& lidar) {
   return id;
 }
 
+/// A live run's report lists its last minute of cycles at 20 Hz (its
+/// totals count every cycle): memory stays fixed however long it runs.
+constexpr std::size_t kReportCyclesKept = 1200;
+
 /// The run's shared parts, read by every engine thread.
 struct SharedRun {
   const LiveOptions& options;
@@ -549,6 +553,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     p->name = names[i];
     p->cluster = o.cluster;
     ClusterOptions& c = p->cluster;
+    c.report_cycles_kept = kReportCyclesKept;
     c.labels_path = output_for("--labels", c.labels_path, p->id);
     c.report_path = output_for("--report", c.report_path, p->id);
     c.ply_path = output_for("--ply", c.ply_path, p->id);

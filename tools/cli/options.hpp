@@ -108,6 +108,9 @@ struct ClusterOptions {
   /// -2 ground, -3 ceiling); otherwise both are empty.
   std::function<void(const CycleReport&, const std::vector<io::Record>&, const std::vector<std::int64_t>&)> on_cycle;
   bool cycle_windows = false;
+  /// > 0: the report keeps only the last this many cycles (fixed memory
+  /// for a run of any length); 0: every cycle.
+  std::size_t report_cycles_kept = 0;
   /// Adds its own members to the --report JSON document.
   std::function<void(nlohmann::ordered_json&)> report_extra;
 };

@@ -6,6 +6,7 @@
 /// `streamclust cluster`.
 
 #include "cli/json.hpp"
+#include "cli/latency_histogram.hpp"
 
 #include <streamclust/io/stream_time.hpp>
 #include <streamclust/percentiles.hpp>
@@ -14,10 +15,13 @@
 #include <streamclust/types.hpp>
 
 #include <cstdint>
+#include <deque>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace streamclust::cli {
@@ -41,6 +45,80 @@ struct CycleReport {
   double total_us = 0.0;
 };
 
+/// The cycles of a run: every cycle counted and summed, and the cycles
+/// themselves kept for the report: all of them (a recording's run), or,
+/// after `keep_last(n)`, the last n (a live run: fixed memory however long
+/// it runs; its latency summary then comes from a histogram of 0.1 ms
+/// bins). push_back: O(1).
+class CycleLog {
+ public:
+  CycleLog() = default;
+  CycleLog(const CycleLog& other)
+      : kept_(other.kept_), limit_(other.limit_), count_(other.count_), inserted_(other.inserted_),
+        evicted_(other.evicted_),
+        histogram_(other.histogram_ ? std::make_unique<LatencyHistogram>(*other.histogram_) : nullptr) {}
+  CycleLog& operator=(CycleLog other) {
+    std::swap(kept_, other.kept_);
+    limit_ = other.limit_;
+    count_ = other.count_;
+    inserted_ = other.inserted_;
+    evicted_ = other.evicted_;
+    std::swap(histogram_, other.histogram_);
+    return *this;
+  }
+
+  /// Keeps only the last `n` cycles from now on (0: every cycle).
+  void keep_last(std::size_t n) {
+    limit_ = n;
+    if (n > 0 && !histogram_) {
+      histogram_ = std::make_unique<LatencyHistogram>();
+      for (const CycleReport& c : kept_) histogram_->add(c.total_us / 1000.0);
+    }
+    trim();
+  }
+  void push_back(const CycleReport& c) {
+    ++count_;
+    inserted_ += c.inserted;
+    evicted_ += c.evicted;
+    if (histogram_) histogram_->add(c.total_us / 1000.0);
+    kept_.push_back(c);
+    trim();
+  }
+  /// Every cycle of the run, kept or not.
+  std::uint64_t size() const noexcept { return count_; }
+  /// The cycles kept, oldest first.
+  const std::deque<CycleReport>& kept() const noexcept { return kept_; }
+  std::uint64_t omitted() const noexcept { return count_ - kept_.size(); }
+  std::uint64_t inserted() const noexcept { return inserted_; }
+  std::uint64_t evicted() const noexcept { return evicted_; }
+  /// The cycle latencies of every cycle [us]: exact when every cycle is
+  /// kept, else median and P99 to the histogram's 0.1 ms (upper bin edges).
+  LatencySummary latency_us() const {
+    if (!histogram_) {
+      std::vector<double> v;
+      v.reserve(kept_.size());
+      for (const CycleReport& c : kept_) v.push_back(c.total_us);
+      return streamclust::summarize(std::move(v));
+    }
+    LatencySummary s;
+    s.count = static_cast<std::size_t>(histogram_->count());
+    s.median = histogram_->percentile(50.0) * 1000.0;
+    s.p99 = histogram_->percentile(99.0) * 1000.0;
+    s.max = histogram_->max() * 1000.0;
+    return s;
+  }
+
+ private:
+  void trim() {
+    while (limit_ > 0 && kept_.size() > limit_) kept_.pop_front();
+  }
+
+  std::deque<CycleReport> kept_;
+  std::size_t limit_ = 0;
+  std::uint64_t count_ = 0, inserted_ = 0, evicted_ = 0;
+  std::unique_ptr<LatencyHistogram> histogram_;
+};
+
 struct Report {
   std::string input, format, mode;
   io::TimeOrigin time_origin;  ///< the input's (stream_time.hpp): cycle times are written as origin + time
@@ -50,7 +128,7 @@ struct Report {
   bool adaptive = false;
   std::vector<AdaptiveStep> trace;
   AdaptiveStop stop = AdaptiveStop::not_run;
-  std::vector<CycleReport> cycles;
+  CycleLog cycles;
   std::uint64_t records = 0;
   RejectionCounts rejections{};
   bool ground = false;          ///< structure removal was on
@@ -59,14 +137,6 @@ struct Report {
   bool estimated_mount = false, estimated_height = false;
   double estimated_roll_deg = 0.0, estimated_pitch_deg = 0.0;  ///< when estimated_mount
 };
-
-/// The cycle latencies [us] of a report, in cycle order.
-inline std::vector<double> cycle_latencies_us(const Report& r) {
-  std::vector<double> v;
-  v.reserve(r.cycles.size());
-  for (const CycleReport& c : r.cycles) v.push_back(c.total_us);
-  return v;
-}
 
 /// The rows `cycle,time,index,label` of one labelled window; the time as
 /// origin + w.time with nanoseconds (io::format_time).
@@ -98,10 +168,7 @@ inline Json report_json(const Report& r) {
   doc["grid"] = {{"rows", r.grid_rows},       {"cols", r.grid_cols},         {"wrap_columns", r.grid_wraps},
                  {"adaptive", r.adaptive},    {"stop", to_string(r.stop)},   {"trace", std::move(trace)}};
   Json cycles = Json::array();
-  std::uint64_t inserted = 0, evicted = 0;
-  for (const CycleReport& c : r.cycles) {
-    inserted += c.inserted;
-    evicted += c.evicted;
+  for (const CycleReport& c : r.cycles.kept()) {
     Json latency = {{"insertion", c.total_us - c.retrieve_us},
                     {"retrieval", c.retrieve_us},
                     {"batch", c.batch_us},
@@ -119,6 +186,7 @@ inline Json report_json(const Report& r) {
     cycles.push_back(std::move(cycle));
   }
   doc["cycles"] = std::move(cycles);
+  if (r.cycles.omitted() > 0) doc["cycles_omitted"] = r.cycles.omitted();  // the oldest, not kept
   if (r.ground) {
     Json ground = {{"sensor_height", r.sensor_height}, {"sensor_height_estimated", r.estimated_height}};
     if (r.estimated_mount) ground["estimated_mount"] = {{"roll_deg", r.estimated_roll_deg}, {"pitch_deg", r.estimated_pitch_deg}};
@@ -128,10 +196,10 @@ inline Json report_json(const Report& r) {
   for (std::size_t k = 1; k < kRejectReasonCount; ++k) {
     rejected[to_string(static_cast<RejectReason>(k))] = r.rejections.by_reason[k];
   }
-  const LatencySummary latency = streamclust::summarize(cycle_latencies_us(r));
+  const LatencySummary latency = r.cycles.latency_us();
   doc["totals"] = {{"records", r.records},
-                   {"inserted", inserted},
-                   {"evicted", evicted},
+                   {"inserted", r.cycles.inserted()},
+                   {"evicted", r.cycles.evicted()},
                    {"cycles", r.cycles.size()},
                    {"rejected", std::move(rejected)},
                    {"latency_us", {{"median", latency.median}, {"p99", latency.p99}, {"max", latency.max}}}};
@@ -147,7 +215,7 @@ inline void write_report_file(const std::string& path, const Report& r,
 }
 
 inline std::string summary_line(const Report& r) {
-  const LatencySummary latency = streamclust::summarize(cycle_latencies_us(r));
+  const LatencySummary latency = r.cycles.latency_us();
   std::ostringstream s;
   s.precision(3);
   s << std::fixed << "streamclust: " << r.records << " records, " << r.rejections[RejectReason::accepted]
