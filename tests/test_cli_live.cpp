@@ -138,6 +138,14 @@ void check_offline_equal(const TempDir& dir, const std::string& live_labels, con
 
 nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
 
+/// The number after `label` in a line of text (the replay's summary,
+/// "... corrupted 52 (10 oversize; 4810 returns)"; live's messages).
+double number_after(const std::string& text, const std::string& label) {
+  const auto at = text.find(label);
+  REQUIRE_MESSAGE(at != std::string::npos, "no '", label, "' in: ", text);
+  return std::stod(text.substr(at + label.size()));
+}
+
 }  // namespace
 
 TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --record file; points are the input's") {
@@ -178,21 +186,43 @@ TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --re
   }
 }
 
-TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and points its streams at the host") {
+TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number, points its streams at the host and "
+          "sets its data type and work mode; its IMU's gravity mounts the objects preset") {
   TempDir dir("cli_live", "configure");
   const std::string url = "livox-sdk2://127.0.0.9:47401";
+  // Not quiet: the setup's messages say where the mount came from.
   LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--wait", "60",
-                   "--idle-exit", "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "--foxglove", "127.0.0.1:0", "-q"},
+                   "--data-type", "3", "--work-mode", "sampling", "--idle-exit", "0.5", "--report",
+                   dir.path("live.json"), "--preset", "objects-mid360", "--foxglove", "127.0.0.1:0", "--no-status"},
                   56000);
-  const RunResult sent = replay({"--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
-                                  "livox-sdk2://127.0.0.9:1000", "--device-address", "127.0.0.8", "--serial",
-                                  "EMU2CONFIG", "--wait-configure", "-q"});
+  // A Mid-360 rolled 4 deg and pitched 12 deg down, at rest: its IMU reads gravity in that frame.
+  const RunResult sent = replay({"--simulate", "--sensor", "mid360", "--seconds", "1.0", "--mount", "4,12,0",
+                                  "--imu", "4,12", "--to", "livox-sdk2://127.0.0.9:1000", "--device-address",
+                                  "127.0.0.8", "--serial", "EMU2CONFIG", "--wait-configure"});
   const RunResult got = live.join();
   REQUIRE_MESSAGE(sent.code == 0, sent.err);
   REQUIRE_MESSAGE(got.code == 0, got.err);
   const auto report = read_json(dir.path("live.json"));
   INFO("packets: ", report["live"]["packets"].dump());
+  INFO("live: ", got.err);
   CHECK(report["live"]["address"] == "127.0.0.8");
+  // The device took the parameter write's data type (spherical) and work mode (sampling, 0x01), and sent that type.
+  CHECK(sent.out.find("configured by the host: data type 3, work mode 0x1\n") != std::string::npos);
+  CHECK(report["live"]["data_type"] == 3);
+  // Gravity from the IMU gives the mount; the plane search only measures the height.
+  const auto& gravity = report["live"]["imu_gravity"];
+  REQUIRE(gravity.is_object());
+  CHECK(std::abs(gravity["roll_deg"].get<double>() - 4.0) < 0.05);  // exact readings: float rounding only
+  CHECK(std::abs(gravity["pitch_deg"].get<double>() - 12.0) < 0.05);
+  CHECK(gravity["samples"].get<int>() >= 90);  // 200 Hz over the first window
+  CHECK(got.err.find("gravity from the IMU") != std::string::npos);
+  CHECK(got.err.find("(the mount given is used)") != std::string::npos);
+  CHECK_FALSE(report["ground"].contains("estimated_mount"));
+  // The floor the plane search sees agrees with the IMU: both conventions place the sensor alike.
+  const auto plane = got.err.find("ground of the first window: ");
+  REQUIRE(plane != std::string::npos);
+  CHECK(std::abs(number_after(got.err.substr(plane), "roll ") - 4.0) < 1.0);
+  CHECK(std::abs(number_after(got.err.substr(plane), "pitch ") - 12.0) < 1.0);
   // The live view served every cycle (no viewer connected: nothing sent, nothing dropped).
   CHECK(report["live"]["foxglove"]["port"].get<int>() > 0);
   CHECK(report["live"]["foxglove"]["publishes_dropped"] == 0);
@@ -232,7 +262,8 @@ TEST_CASE("live SDK1: broadcast, handshake, heartbeats; every data type equals c
   }
 }
 
-TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboot starts a new clock epoch") {
+TEST_CASE("live: loss, duplicates and reordering are counted and undone; a clock jump and a reboot start new "
+          "clock epochs; GPS time is reported") {
   TempDir dir("cli_live", "faults");
   const std::string input = dir.path("office.csv");
   REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.5", "--out", input, "-q"}).code == 0);
@@ -241,7 +272,8 @@ TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboo
                    dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
                   47501);
   const RunResult sent = replay({input, "--to", url, "--device-address", "127.0.0.3", "--drop", "0.02",
-                                  "--duplicate", "0.02", "--swap", "0.05", "--reboot-at", "0.8", "-q"});
+                                  "--duplicate", "0.02", "--swap", "0.05", "--time-sync", "gps", "--clock-jump",
+                                  "0.4:3600", "--reboot-at", "0.8", "-q"});
   const RunResult got = live.join();
   REQUIRE_MESSAGE(sent.code == 0, sent.err);
   REQUIRE_MESSAGE(got.code == 0, got.err);
@@ -252,10 +284,51 @@ TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboo
   CHECK(packets["lost"].get<int>() < 150);
   CHECK(packets["duplicates"].get<int>() > 10);
   CHECK(packets["late"] == 0);                   // every swap within the reorder window
-  CHECK(report["live"]["clock_epochs"] == 2);    // the reboot
+  CHECK(report["live"]["clock_epochs"] == 3);    // the clock jump and the reboot
+  CHECK(report["live"]["time_sync"] == "GPS");
   // No flood of rejections: the stream stays in order across the reboot.
   CHECK(report["totals"]["rejected"]["time_backwards"].get<int>() == 0);
   CHECK(report["totals"]["rejected"]["time_jump"].get<int>() == 0);
+  check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
+}
+
+TEST_CASE("live SDK2: the packet counter wraps at 65535 unnoticed; damaged datagrams are counted and skipped; "
+          "PTP time is reported") {
+  TempDir dir("cli_live", "damaged");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.2", "--out", input, "-q"}).code == 0);
+  const std::string url = "livox-sdk2://127.0.0.1:47901";
+  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
+                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  47901);
+  // 2,500 packets from counter 65000: the counter wraps after 536.
+  const RunResult sent = replay({input, "--to", url, "--device-address", "127.0.0.7", "--first-counter", "65000",
+                                  "--corrupt", "0.03", "--time-sync", "ptp"});
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  const auto report = read_json(dir.path("live.json"));
+  INFO("packets: ", report["live"]["packets"].dump());
+  INFO("replay: ", sent.out);
+  const auto packets_sent = static_cast<std::uint64_t>(number_after(sent.out, "replay: "));
+  const auto returns_sent = static_cast<std::uint64_t>(number_after(sent.out, "point packets ("));
+  const auto damaged = static_cast<std::uint64_t>(number_after(sent.out, "corrupted "));
+  const auto oversize = static_cast<std::uint64_t>(number_after(sent.out, "corrupted " + std::to_string(damaged) + " ("));
+  const auto damaged_returns = static_cast<std::uint64_t>(number_after(sent.out, "oversize; "));
+  CHECK(packets_sent > 2000);
+  CHECK(damaged > 30);  // about 3 % of 2,500, every fifth oversize
+  CHECK(oversize > 5);
+  const auto& packets = report["live"]["packets"];
+  CHECK(packets["oversize"] == oversize);
+  CHECK(packets["malformed"] == damaged - oversize);
+  // Each damaged packet is one gap in the counter, across the wrap too; nothing else is missing.
+  CHECK(packets["lost"] == damaged);
+  CHECK(packets["counter_jumps"] == 0);
+  CHECK(packets["late"] == 0);
+  CHECK(packets["point_packets"] == packets_sent - damaged);
+  CHECK(packets["returns"] == returns_sent - damaged_returns);
+  CHECK(report["live"]["time_sync"] == "PTP");
+  CHECK(report["live"]["clock_epochs"] == 1);
   check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
 }
 

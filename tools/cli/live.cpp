@@ -447,6 +447,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     l["lidar"] = lidar_name;
     l["address"] = live::format_address(receiver->device_address(0));
     l["time_sync"] = live::describe(stream.clock().sync());
+    l["data_type"] = sc.data_type;
     l["clock_epochs"] = sc.epochs;
     l["clock_offset_ns"] = stream.clock().offset_ns();
     l["end"] = describe(feed.end());
