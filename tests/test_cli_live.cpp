@@ -138,6 +138,30 @@ void check_offline_equal(const TempDir& dir, const std::string& live_labels, con
 
 nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
 
+/// `seconds` of a simulated Mid-360 in the office, as `dir`/office.csv.
+std::string simulated_office(const TempDir& dir, const std::string& seconds) {
+  const std::string path = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", seconds, "--out", path, "-q"}).code == 0);
+  return path;
+}
+
+/// A passive SDK2 run with the carc-mid360 preset on 127.0.0.1:`port` (labels
+/// of every cycle, recording and report in `dir`) against `replay ARGS` from
+/// `device`; both must succeed. Returns the replay's result and the report.
+std::pair<RunResult, nlohmann::json> run_passive_sdk2(const TempDir& dir, unsigned port, const std::string& device,
+                                                      std::vector<std::string> replay_args) {
+  const std::string url = "livox-sdk2://127.0.0.1:" + std::to_string(port);
+  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
+                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  port);
+  replay_args.insert(replay_args.end(), {"--to", url, "--device-address", device});
+  const RunResult sent = replay(replay_args);
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  return {sent, read_json(dir.path("live.json"))};
+}
+
 /// The number after `label` in a line of text (the replay's summary,
 /// "... corrupted 52 (10 oversize; 4810 returns)"; live's messages).
 double number_after(const std::string& text, const std::string& label) {
@@ -265,19 +289,11 @@ TEST_CASE("live SDK1: broadcast, handshake, heartbeats; every data type equals c
 TEST_CASE("live: loss, duplicates and reordering are counted and undone; a clock jump and a reboot start new "
           "clock epochs; GPS time is reported") {
   TempDir dir("cli_live", "faults");
-  const std::string input = dir.path("office.csv");
-  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.5", "--out", input, "-q"}).code == 0);
-  const std::string url = "livox-sdk2://127.0.0.1:47501";
-  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
-                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
-                  47501);
-  const RunResult sent = replay({input, "--to", url, "--device-address", "127.0.0.3", "--drop", "0.02",
-                                  "--duplicate", "0.02", "--swap", "0.05", "--time-sync", "gps", "--clock-jump",
-                                  "0.4:3600", "--reboot-at", "0.8", "-q"});
-  const RunResult got = live.join();
-  REQUIRE_MESSAGE(sent.code == 0, sent.err);
-  REQUIRE_MESSAGE(got.code == 0, got.err);
-  const auto report = read_json(dir.path("live.json"));
+  const std::string input = simulated_office(dir, "1.5");
+  const auto report = run_passive_sdk2(dir, 47501, "127.0.0.3",
+                                       {input, "--drop", "0.02", "--duplicate", "0.02", "--swap", "0.05", "--time-sync",
+                                        "gps", "--clock-jump", "0.4:3600", "--reboot-at", "0.8", "-q"})
+                          .second;
   INFO("packets: ", report["live"]["packets"].dump());
   const auto& packets = report["live"]["packets"];
   CHECK(packets["lost"].get<int>() > 10);        // about 2 % of 3,100 packets
@@ -295,19 +311,12 @@ TEST_CASE("live: loss, duplicates and reordering are counted and undone; a clock
 TEST_CASE("live SDK2: the packet counter wraps at 65535 unnoticed; damaged datagrams are counted and skipped; "
           "PTP time is reported") {
   TempDir dir("cli_live", "damaged");
-  const std::string input = dir.path("office.csv");
-  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.2", "--out", input, "-q"}).code == 0);
-  const std::string url = "livox-sdk2://127.0.0.1:47901";
-  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
-                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
-                  47901);
+  const std::string input = simulated_office(dir, "1.2");
   // 2,500 packets from counter 65000: the counter wraps after 536.
-  const RunResult sent = replay({input, "--to", url, "--device-address", "127.0.0.7", "--first-counter", "65000",
-                                  "--corrupt", "0.03", "--time-sync", "ptp"});
-  const RunResult got = live.join();
-  REQUIRE_MESSAGE(sent.code == 0, sent.err);
-  REQUIRE_MESSAGE(got.code == 0, got.err);
-  const auto report = read_json(dir.path("live.json"));
+  const auto run = run_passive_sdk2(dir, 47901, "127.0.0.7",
+                                    {input, "--first-counter", "65000", "--corrupt", "0.03", "--time-sync", "ptp"});
+  const RunResult& sent = run.first;  // no structured binding: INFO captures it (clang 14)
+  const nlohmann::json& report = run.second;
   INFO("packets: ", report["live"]["packets"].dump());
   INFO("replay: ", sent.out);
   const auto packets_sent = static_cast<std::uint64_t>(number_after(sent.out, "replay: "));
@@ -406,4 +415,9 @@ TEST_CASE("live: bad sources and options are usage errors; silence is a network 
   CHECK(silent.err.find("127.0.0.1:47601") != std::string::npos);
   CHECK(run_cli({"replay", "--simulate"}).code == 2);  // no --to
   CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--data-type", "7"}).code == 2);
+  CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--corrupt", "1.5"}).code == 2);
+  CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--first-counter", "65536"}).code == 2);
+  const RunResult no_counter = run_cli({"replay", "--simulate", "--to", "livox-sdk1://", "--first-counter", "1"});
+  CHECK(no_counter.code == 2);
+  CHECK(no_counter.err.find("SDK2") != std::string::npos);
 }

@@ -105,6 +105,9 @@ class LivoxStream {
         order_.restart();
       }
       counters_.epochs = clock_.epochs();
+    } else if (clock_.straggler()) {  // the previous epoch's, which was flushed: late
+      order_.count_late();
+      return;
     }
     for (LivoxReturn& r : slot.contents.returns) r.time_ns = static_cast<std::uint64_t>(clock_.map(r.time_ns));
     slot.arrival_steady_ns = d.arrival_steady_ns;
