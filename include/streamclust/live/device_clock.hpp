@@ -14,7 +14,10 @@
 /// its arrival differ by more than `jump_threshold_ns`, or the sync type
 /// changes, the offset is fixed again at that packet. A new epoch never maps
 /// a time before the last one mapped (the stream stays ordered), so the
-/// clusterer sees a continuous stream, never a flood of backwards times.
+/// clusterer sees a continuous stream, never a flood of backwards times. An
+/// epoch held after the last mapped time leads the arrivals from its start
+/// (the host clock stepped back, or the device runs fast): the next jump is
+/// measured from that lead, not from 0, or every packet would be a jump.
 /// A packet sent before a jump and reordered after it (arriving within
 /// `kStragglerWindowNs` of the epoch's first packet) fits the previous epoch,
 /// not the current one: it starts no epoch and is a `straggler`. Later, a
@@ -48,17 +51,18 @@ class DeviceClock {
   bool observe(std::uint64_t device_ns, std::int64_t arrival_ns, LivoxTimeSync sync) noexcept {
     const bool first = epochs_ == 0;
     straggler_ = false;
-    if (!first && sync == sync_ && fits(offset_ns_, device_ns, arrival_ns)) {
+    if (!first && sync == sync_ && fits(offset_ns_, lead_ns_, device_ns, arrival_ns)) {
       last_drift_ns_ = difference(predict(device_ns), arrival_ns);
       return false;
     }
     if (epochs_ > 1 && sync == previous_sync_ && difference(arrival_ns, epoch_arrival_ns_) <= kStragglerWindowNs &&
-        fits(previous_offset_ns_, device_ns, arrival_ns)) {
+        fits(previous_offset_ns_, previous_lead_ns_, device_ns, arrival_ns)) {
       straggler_ = true;  // the previous epoch's: not a new one
       return false;
     }
     // New epoch: fix the offset here, no earlier than the last mapped time.
     previous_offset_ns_ = offset_ns_;
+    previous_lead_ns_ = lead_ns_;
     previous_sync_ = sync_;
     offset_ns_ = difference(arrival_ns, static_cast<std::int64_t>(device_ns));
     if (!first && predict(device_ns) <= last_mapped_ns_)
@@ -66,6 +70,7 @@ class DeviceClock {
     sync_ = sync;
     epoch_arrival_ns_ = arrival_ns;
     last_drift_ns_ = difference(predict(device_ns), arrival_ns);
+    lead_ns_ = last_drift_ns_;  // 0 unless held after the last mapped time
     ++epochs_;
     return true;
   }
@@ -100,9 +105,10 @@ class DeviceClock {
     return static_cast<std::int64_t>(device_ns + static_cast<std::uint64_t>(offset_ns));
   }
   std::int64_t predict(std::uint64_t device_ns) const noexcept { return predict(device_ns, offset_ns_); }
-  // Device time mapped by `offset_ns` is within the threshold of its arrival.
-  bool fits(std::int64_t offset_ns, std::uint64_t device_ns, std::int64_t arrival_ns) const noexcept {
-    const std::int64_t drift = difference(predict(device_ns, offset_ns), arrival_ns);
+  // Device time mapped by `offset_ns` is within the threshold of its
+  // arrival plus the epoch's lead.
+  bool fits(std::int64_t offset_ns, std::int64_t lead_ns, std::uint64_t device_ns, std::int64_t arrival_ns) const noexcept {
+    const std::int64_t drift = difference(difference(predict(device_ns, offset_ns), arrival_ns), lead_ns);
     return drift <= jump_threshold_ns_ && drift >= -jump_threshold_ns_;
   }
   static std::int64_t difference(std::int64_t a, std::int64_t b) noexcept {
@@ -111,6 +117,7 @@ class DeviceClock {
 
   std::int64_t jump_threshold_ns_;
   std::int64_t offset_ns_ = 0, previous_offset_ns_ = 0;
+  std::int64_t lead_ns_ = 0, previous_lead_ns_ = 0;  // mapped time - arrival at an epoch's first packet [ns]
   std::int64_t last_mapped_ns_ = std::numeric_limits<std::int64_t>::min();
   std::int64_t last_drift_ns_ = 0;
   std::int64_t epoch_arrival_ns_ = 0;  // arrival of the current epoch's first packet [ns]
