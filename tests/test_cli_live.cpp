@@ -48,11 +48,38 @@ bool udp_port_held(unsigned port) {
   return false;
 }
 
-/// `live ARGS` on its own thread; `join` returns its result.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define STREAMCLUST_LIVE_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#define STREAMCLUST_LIVE_TEST_SANITIZED 1
+#endif
+#endif
+
+/// The emulated LiDAR sends at its real rate, or at 0.7 of it in a
+/// sanitizer build, where the live run's queue also holds a whole test
+/// stream (16384 packets; default 4096): there the engine runs several
+/// times slower, and on a shared two-core machine the receiver thread can
+/// miss its turn long enough for the socket buffer to overflow. The
+/// exactness checked here needs nothing lost; the sustained rate is the
+/// benchmark's. Not slower than 0.7: the device clock runs at the recorded
+/// rate, so its lead over the arrivals grows by (1 / speed - 1) s a second
+/// of stream, and beyond 1 s it is a clock jump (a new epoch); 0.7 keeps the
+/// longest stream here without a jump (1.5 s) at 0.64 s.
+#ifdef STREAMCLUST_LIVE_TEST_SANITIZED
+constexpr const char* kReplaySpeed = "0.7";
+constexpr const char* kLiveQueue = "16384";
+#else
+constexpr const char* kReplaySpeed = "1";
+constexpr const char* kLiveQueue = "4096";
+#endif
+
+/// `live ARGS --queue kLiveQueue` on its own thread; `join` returns its result.
 class LiveThread {
  public:
   LiveThread(std::vector<std::string> args, unsigned wait_for_port) {
     args.insert(args.begin(), "live");
+    args.insert(args.end(), {"--queue", kLiveQueue});
     thread_ = std::thread([this, args] { result_ = run_cli(args); });
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (!udp_port_held(wait_for_port) && std::chrono::steady_clock::now() < until)
@@ -67,23 +94,6 @@ class LiveThread {
   std::thread thread_;
   RunResult result_;
 };
-
-/// The emulated LiDAR sends at its real rate, or at half of it in a
-/// sanitizer build: there the engine runs several times slower, and on a
-/// shared two-core machine the receiver thread can miss its turn long
-/// enough for the socket buffer to overflow. The exactness checked here
-/// needs nothing lost; the sustained rate is the benchmark's.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr const char* kReplaySpeed = "0.5";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(undefined_behavior_sanitizer)
-constexpr const char* kReplaySpeed = "0.5";
-#else
-constexpr const char* kReplaySpeed = "1";
-#endif
-#else
-constexpr const char* kReplaySpeed = "1";
-#endif
 
 /// `replay ARGS --speed kReplaySpeed`.
 RunResult replay(std::vector<std::string> args) {
@@ -138,6 +148,38 @@ void check_offline_equal(const TempDir& dir, const std::string& live_labels, con
 
 nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
 
+/// `seconds` of a simulated Mid-360 in the office, as `dir`/office.csv.
+std::string simulated_office(const TempDir& dir, const std::string& seconds) {
+  const std::string path = dir.path("office.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", seconds, "--out", path, "-q"}).code == 0);
+  return path;
+}
+
+/// A passive SDK2 run with the carc-mid360 preset on 127.0.0.1:`port` (labels
+/// of every cycle, recording and report in `dir`) against `replay ARGS` from
+/// `device`; both must succeed. Returns the replay's result and the report.
+std::pair<RunResult, nlohmann::json> run_passive_sdk2(const TempDir& dir, unsigned port, const std::string& device,
+                                                      std::vector<std::string> replay_args) {
+  const std::string url = "livox-sdk2://127.0.0.1:" + std::to_string(port);
+  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
+                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  port);
+  replay_args.insert(replay_args.end(), {"--to", url, "--device-address", device});
+  const RunResult sent = replay(replay_args);
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(sent.code == 0, sent.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  return {sent, read_json(dir.path("live.json"))};
+}
+
+/// The number after `label` in a line of text (the replay's summary,
+/// "... corrupted 52 (10 oversize; 4810 returns)"; live's messages).
+double number_after(const std::string& text, const std::string& label) {
+  const auto at = text.find(label);
+  REQUIRE_MESSAGE(at != std::string::npos, "no '", label, "' in: ", text);
+  return std::stod(text.substr(at + label.size()));
+}
+
 }  // namespace
 
 TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --record file; points are the input's") {
@@ -178,21 +220,43 @@ TEST_CASE("live SDK2, passive: every data type; labels equal cluster on the --re
   }
 }
 
-TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number and points its streams at the host") {
+TEST_CASE("live SDK2 --configure: discovery finds the LiDAR by serial number, points its streams at the host and "
+          "sets its data type and work mode; its IMU's gravity mounts the objects preset") {
   TempDir dir("cli_live", "configure");
   const std::string url = "livox-sdk2://127.0.0.9:47401";
+  // Not quiet: the setup's messages say where the mount came from.
   LiveThread live({url, "--configure", "--lidar", "EMU2CONFIG", "--discovery-address", "127.0.0.8", "--wait", "60",
-                   "--idle-exit", "0.5", "--report", dir.path("live.json"), "--preset", "carc-mid360", "--foxglove", "127.0.0.1:0", "-q"},
+                   "--data-type", "3", "--work-mode", "sampling", "--idle-exit", "0.5", "--report",
+                   dir.path("live.json"), "--preset", "objects-mid360", "--foxglove", "127.0.0.1:0", "--no-status"},
                   56000);
-  const RunResult sent = replay({"--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
-                                  "livox-sdk2://127.0.0.9:1000", "--device-address", "127.0.0.8", "--serial",
-                                  "EMU2CONFIG", "--wait-configure", "-q"});
+  // A Mid-360 rolled 4 deg and pitched 12 deg down, at rest: its IMU reads gravity in that frame.
+  const RunResult sent = replay({"--simulate", "--sensor", "mid360", "--seconds", "1.0", "--mount", "4,12,0",
+                                  "--imu", "4,12", "--to", "livox-sdk2://127.0.0.9:1000", "--device-address",
+                                  "127.0.0.8", "--serial", "EMU2CONFIG", "--wait-configure"});
   const RunResult got = live.join();
   REQUIRE_MESSAGE(sent.code == 0, sent.err);
   REQUIRE_MESSAGE(got.code == 0, got.err);
   const auto report = read_json(dir.path("live.json"));
   INFO("packets: ", report["live"]["packets"].dump());
+  INFO("live: ", got.err);
   CHECK(report["live"]["address"] == "127.0.0.8");
+  // The device took the parameter write's data type (spherical) and work mode (sampling, 0x01), and sent that type.
+  CHECK(sent.out.find("configured by the host: data type 3, work mode 0x1\n") != std::string::npos);
+  CHECK(report["live"]["data_type"] == 3);
+  // Gravity from the IMU gives the mount; the plane search only measures the height.
+  const auto& gravity = report["live"]["imu_gravity"];
+  REQUIRE(gravity.is_object());
+  CHECK(std::abs(gravity["roll_deg"].get<double>() - 4.0) < 0.05);  // exact readings: float rounding only
+  CHECK(std::abs(gravity["pitch_deg"].get<double>() - 12.0) < 0.05);
+  CHECK(gravity["samples"].get<int>() >= 90);  // 200 Hz over the first window
+  CHECK(got.err.find("gravity from the IMU") != std::string::npos);
+  CHECK(got.err.find("(the mount given is used)") != std::string::npos);
+  CHECK_FALSE(report["ground"].contains("estimated_mount"));
+  // The floor the plane search sees agrees with the IMU: both conventions place the sensor alike.
+  const auto plane = got.err.find("ground of the first window: ");
+  REQUIRE(plane != std::string::npos);
+  CHECK(std::abs(number_after(got.err.substr(plane), "roll ") - 4.0) < 1.0);
+  CHECK(std::abs(number_after(got.err.substr(plane), "pitch ") - 12.0) < 1.0);
   // The live view served every cycle (no viewer connected: nothing sent, nothing dropped).
   CHECK(report["live"]["foxglove"]["port"].get<int>() > 0);
   CHECK(report["live"]["foxglove"]["publishes_dropped"] == 0);
@@ -232,30 +296,58 @@ TEST_CASE("live SDK1: broadcast, handshake, heartbeats; every data type equals c
   }
 }
 
-TEST_CASE("live: loss, duplicates and reordering are counted and undone; a reboot starts a new clock epoch") {
+TEST_CASE("live: loss, duplicates and reordering are counted and undone; a clock jump and a reboot start new "
+          "clock epochs; GPS time is reported") {
   TempDir dir("cli_live", "faults");
-  const std::string input = dir.path("office.csv");
-  REQUIRE(run_cli({"simulate", "--sensor", "mid360", "--seconds", "1.5", "--out", input, "-q"}).code == 0);
-  const std::string url = "livox-sdk2://127.0.0.1:47501";
-  LiveThread live({url, "--idle-exit", "0.5", "--labels", dir.path("live.csv"), "--cycles", "all", "--record",
-                   dir.path("live.mcap"), "--report", dir.path("live.json"), "--preset", "carc-mid360", "-q"},
-                  47501);
-  const RunResult sent = replay({input, "--to", url, "--device-address", "127.0.0.3", "--drop", "0.02",
-                                  "--duplicate", "0.02", "--swap", "0.05", "--reboot-at", "0.8", "-q"});
-  const RunResult got = live.join();
-  REQUIRE_MESSAGE(sent.code == 0, sent.err);
-  REQUIRE_MESSAGE(got.code == 0, got.err);
-  const auto report = read_json(dir.path("live.json"));
+  const std::string input = simulated_office(dir, "1.5");
+  const auto report = run_passive_sdk2(dir, 47501, "127.0.0.3",
+                                       {input, "--drop", "0.02", "--duplicate", "0.02", "--swap", "0.05", "--time-sync",
+                                        "gps", "--clock-jump", "0.4:3600", "--reboot-at", "0.8", "-q"})
+                          .second;
   INFO("packets: ", report["live"]["packets"].dump());
   const auto& packets = report["live"]["packets"];
   CHECK(packets["lost"].get<int>() > 10);        // about 2 % of 3,100 packets
   CHECK(packets["lost"].get<int>() < 150);
   CHECK(packets["duplicates"].get<int>() > 10);
   CHECK(packets["late"] == 0);                   // every swap within the reorder window
-  CHECK(report["live"]["clock_epochs"] == 2);    // the reboot
+  CHECK(report["live"]["clock_epochs"] == 3);    // the clock jump and the reboot
+  CHECK(report["live"]["time_sync"] == "GPS");
   // No flood of rejections: the stream stays in order across the reboot.
   CHECK(report["totals"]["rejected"]["time_backwards"].get<int>() == 0);
   CHECK(report["totals"]["rejected"]["time_jump"].get<int>() == 0);
+  check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
+}
+
+TEST_CASE("live SDK2: the packet counter wraps at 65535 unnoticed; damaged datagrams are counted and skipped; "
+          "PTP time is reported") {
+  TempDir dir("cli_live", "damaged");
+  const std::string input = simulated_office(dir, "1.2");
+  // 2,500 packets from counter 65000: the counter wraps after 536.
+  const auto run = run_passive_sdk2(dir, 46901, "127.0.0.7",
+                                    {input, "--first-counter", "65000", "--corrupt", "0.03", "--time-sync", "ptp"});
+  const RunResult& sent = run.first;  // no structured binding: INFO captures it (clang 14)
+  const nlohmann::json& report = run.second;
+  INFO("packets: ", report["live"]["packets"].dump());
+  INFO("replay: ", sent.out);
+  const auto packets_sent = static_cast<std::uint64_t>(number_after(sent.out, "replay: "));
+  const auto returns_sent = static_cast<std::uint64_t>(number_after(sent.out, "point packets ("));
+  const auto damaged = static_cast<std::uint64_t>(number_after(sent.out, "corrupted "));
+  const auto oversize = static_cast<std::uint64_t>(number_after(sent.out, "corrupted " + std::to_string(damaged) + " ("));
+  const auto damaged_returns = static_cast<std::uint64_t>(number_after(sent.out, "oversize; "));
+  CHECK(packets_sent > 2000);
+  CHECK(damaged > 30);  // about 3 % of 2,500, every fifth oversize
+  CHECK(oversize > 5);
+  const auto& packets = report["live"]["packets"];
+  CHECK(packets["oversize"] == oversize);
+  CHECK(packets["malformed"] == damaged - oversize);
+  // Each damaged packet is one gap in the counter, across the wrap too; nothing else is missing.
+  CHECK(packets["lost"] == damaged);
+  CHECK(packets["counter_jumps"] == 0);
+  CHECK(packets["late"] == 0);
+  CHECK(packets["point_packets"] == packets_sent - damaged);
+  CHECK(packets["returns"] == returns_sent - damaged_returns);
+  CHECK(report["live"]["time_sync"] == "PTP");
+  CHECK(report["live"]["clock_epochs"] == 1);
   check_offline_equal(dir, dir.path("live.csv"), dir.path("live.mcap"), {"--preset", "carc-mid360"});
 }
 
@@ -333,6 +425,11 @@ TEST_CASE("live: bad sources and options are usage errors; silence is a network 
   CHECK(silent.err.find("127.0.0.1:47601") != std::string::npos);
   CHECK(run_cli({"replay", "--simulate"}).code == 2);  // no --to
   CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--data-type", "7"}).code == 2);
+  CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--corrupt", "1.5"}).code == 2);
+  CHECK(run_cli({"replay", "--simulate", "--to", "livox-sdk2://", "--first-counter", "65536"}).code == 2);
+  const RunResult no_counter = run_cli({"replay", "--simulate", "--to", "livox-sdk1://", "--first-counter", "1"});
+  CHECK(no_counter.code == 2);
+  CHECK(no_counter.err.find("SDK2") != std::string::npos);
 }
 
 TEST_CASE("live: two LiDARs on one port, one engine each; every output per LiDAR equals cluster on its recording") {

@@ -6,11 +6,13 @@
 // empty slots, tags, the CRC-0 rule and every malformed class; encode ->
 // decode round trips within each type's quantisation; control frames with
 // hand-checked bytes, every status, the discovery and parameter messages and
-// the key-value parser's bounds.
+// the key-value parser's bounds; the packets through LivoxStream across a
+// clock jump.
 
 #include <doctest/doctest.h>
 
 #include <streamclust/live/livox_crc.hpp>
+#include <streamclust/live/livox_stream.hpp>
 #include <streamclust/live/sdk2_control.hpp>
 #include <streamclust/live/sdk2_device.hpp>
 #include <streamclust/live/sdk2_packets.hpp>
@@ -599,4 +601,43 @@ TEST_CASE("SDK2 key-value parser: bounded, rejects overruns and trailing bytes")
   list.add(0x0100, value.data(), 1000);
   CHECK_THROWS_AS(list.add(0x0101, value.data(), 400), std::invalid_argument);  // would pass 1376 bytes
   CHECK(list.count() == 1);
+}
+
+TEST_CASE("LivoxStream: a packet sent before a clock jump and reordered after it is late, not two more epochs") {
+  live::LivoxPacketFormat format;
+  format.decode = [](const std::uint8_t* d, std::size_t n, live::LivoxPacketContents& out) {
+    return live::decode_sdk2_packet(d, n, out);
+  };
+  live::LivoxStream stream(format, live::LivoxStream::Options{8, 1'000'000'000});
+  std::vector<live::LivoxReturn> returns;
+  std::vector<live::LivoxImuSample> imu;
+  std::vector<live::PacketArrival> arrivals;
+  const std::int64_t host0 = 1'700'000'000'000'000'000;
+  constexpr std::uint64_t hour_ns = 3'600'000'000'000;
+  // Packet i (one return) leaves the device at device time 1 s + i x 0.5 ms
+  // and arrives i x 0.5 ms after host0; from packet 20 on the clock is an hour ahead.
+  auto send = [&](int i, int arrives_as) {
+    const live::LivoxReturn r{1.0f, 2.0f, static_cast<float>(i), 10, 0, 0};
+    live::Sdk2PacketFields f;
+    f.udp_cnt = static_cast<std::uint16_t>(i);
+    f.timestamp_ns = 1'000'000'000 + static_cast<std::uint64_t>(i) * 500'000 + (i >= 20 ? hour_ns : 0);
+    Bytes bytes;
+    live::encode_sdk2_point_packet(f, live::Sdk2DataType::cartesian_mm, &r, 1, bytes);
+    live::Datagram d;
+    std::copy(bytes.begin(), bytes.end(), d.bytes.begin());
+    d.size = static_cast<std::uint16_t>(bytes.size());
+    d.arrival_ns = host0 + arrives_as * 500'000;
+    stream.consume(d, returns, imu, arrivals);
+  };
+  for (int i = 0; i < 19; ++i) send(i, i);
+  send(20, 19);  // the first packet after the jump overtakes the last one before it
+  send(19, 20);
+  for (int i = 21; i < 40; ++i) send(i, i);
+  stream.flush(returns, arrivals);
+  CHECK(stream.counters().epochs == 2);
+  CHECK(stream.order().late == 1);  // packet 19: its epoch was flushed when packet 20 began the next
+  CHECK(stream.order().lost == 0);
+  REQUIRE(returns.size() == 39);
+  for (std::size_t k = 1; k < returns.size(); ++k) CHECK(returns[k].time_ns > returns[k - 1].time_ns);
+  CHECK(returns[19].z == 20.0f);
 }

@@ -128,6 +128,51 @@ TEST_CASE("DeviceClock: one offset per epoch; a reboot or a PTP step starts a ne
   CHECK(clock.observe(~std::uint64_t{0}, host0, live::LivoxTimeSync::ptp));
 }
 
+TEST_CASE("DeviceClock: an epoch held after the last mapped time keeps its lead; only a further jump is another epoch") {
+  live::DeviceClock clock;
+  const std::int64_t host0 = 1'700'000'000'000'000'000;
+  CHECK(clock.observe(0, host0, live::LivoxTimeSync::none));
+  clock.map(10'000'000);
+  // The host clock steps back 3 s: held after the last mapped time, 3 s ahead of the arrivals.
+  CHECK(clock.observe(10'500'000, host0 - 3'000'000'000 + 10'500'000, live::LivoxTimeSync::none));
+  CHECK(clock.map(10'500'000) == host0 + 10'000'001);
+  // The packets after it keep that lead: no epoch each (they used to be one each).
+  for (std::uint64_t k = 1; k <= 100; ++k) {
+    const auto t = static_cast<std::int64_t>(10'500'000 + k * 500'000);
+    CHECK_FALSE(clock.observe(static_cast<std::uint64_t>(t), host0 - 3'000'000'000 + t, live::LivoxTimeSync::none));
+  }
+  CHECK(clock.epochs() == 2);
+  // A further jump beyond the threshold from that lead is an epoch again.
+  CHECK(clock.observe(5'000'000'000'000, host0 - 3'000'000'000 + 70'000'000, live::LivoxTimeSync::none));
+  CHECK(clock.epochs() == 3);
+}
+
+TEST_CASE("DeviceClock: a packet of the previous epoch reordered after a jump is a straggler; a step back later is an epoch") {
+  live::DeviceClock clock;
+  const std::int64_t host0 = 1'700'000'000'000'000'000;
+  constexpr std::uint64_t boot = 1'000'000'000, hour = 3'600'000'000'000;
+  CHECK(clock.observe(boot, host0, live::LivoxTimeSync::none));
+  CHECK(clock.observe(boot + hour + 1'000'000, host0 + 1'000'000, live::LivoxTimeSync::none));  // the jump
+  CHECK(clock.epochs() == 2);
+  // Sent 0.5 ms before the jump, arriving 0.5 ms after it: the previous epoch's.
+  CHECK_FALSE(clock.observe(boot + 500'000, host0 + 1'500'000, live::LivoxTimeSync::none));
+  CHECK(clock.straggler());
+  CHECK(clock.epochs() == 2);
+  CHECK_FALSE(clock.observe(boot + hour + 2'000'000, host0 + 2'000'000, live::LivoxTimeSync::none));
+  CHECK_FALSE(clock.straggler());
+  // Another sync type is never the previous epoch's.
+  CHECK(clock.observe(boot + 600'000, host0 + 2'100'000, live::LivoxTimeSync::ptp));
+  CHECK(clock.epochs() == 3);
+  // Past the straggler window, the clock stepping back to the previous epoch's time is a new epoch.
+  live::DeviceClock glitch;
+  CHECK(glitch.observe(boot, host0, live::LivoxTimeSync::ptp));
+  CHECK(glitch.observe(boot + hour + 1'000'000, host0 + 1'000'000, live::LivoxTimeSync::ptp));
+  const std::int64_t later = 1'000'000 + live::DeviceClock::kStragglerWindowNs + 1'000'000;
+  CHECK(glitch.observe(boot + static_cast<std::uint64_t>(later), host0 + later, live::LivoxTimeSync::ptp));
+  CHECK_FALSE(glitch.straggler());
+  CHECK(glitch.epochs() == 3);
+}
+
 namespace {
 
 struct TestPacket {

@@ -438,6 +438,7 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
     l["lidar"] = p.name;
     l["address"] = live::format_address(run.receiver.device_address(p.device));
     l["time_sync"] = live::describe(p.stream.clock().sync());
+    l["data_type"] = sc.data_type;
     l["clock_epochs"] = sc.epochs;
     l["clock_offset_ns"] = p.stream.clock().offset_ns();
     l["end"] = feed.end() == LiveEnd::stop_requested && !g_stop_requested.load() ? "stopped: another LiDAR of the run failed"

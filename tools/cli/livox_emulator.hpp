@@ -15,8 +15,11 @@
 ///   host's listen port, answers the handshake, start/stop sampling and
 ///   heartbeats on its command port (65000), streams to the handshake's data
 ///   port, and stops when heartbeats stay away for 3 s.
-/// Faults: drop, duplicate or swap packets with given probabilities, jump
-/// the device clock, reboot (clock from 0 and counter reset).
+/// Faults: drop, duplicate or swap packets with given probabilities, send
+/// damaged datagrams in place of some (truncated, a wrong length, an unknown
+/// data type, a wrong CRC, oversize), jump the device clock, reboot (clock
+/// from 0 and counter reset), start the SDK2 packet counter anywhere (near
+/// 65535 it wraps early).
 ///
 /// Not thread-safe; one emulator per thread.
 
@@ -55,6 +58,8 @@ struct EmulatorOptions {
   double speed = 1.0;                    ///< x the recorded rate; 0: as fast as possible
   bool wait_for_configure = false;       ///< SDK2: stream only after a host's parameter write
   double drop = 0.0, duplicate = 0.0, swap = 0.0;  ///< per point packet probabilities
+  double corrupt = 0.0;                  ///< per point packet: a damaged datagram is sent instead
+  std::uint16_t first_counter = 0;       ///< SDK2: udp_cnt of the first point packet
   std::uint64_t seed = 1;
   std::optional<double> reboot_at;       ///< [s of stream]: clock restarts at 0, counter at 0
   std::optional<std::pair<double, double>> clock_jump;  ///< at [s of stream], by [s]
@@ -65,11 +70,14 @@ struct EmulatorOptions {
 
 struct EmulatorCounters {
   std::uint64_t packets = 0, returns = 0, dropped = 0, duplicated = 0, swapped = 0, imu_packets = 0;
+  std::uint64_t corrupted = 0;           ///< point packets sent damaged (oversize ones included)
+  std::uint64_t corrupted_returns = 0;   ///< the returns those packets held
+  std::uint64_t oversize = 0;            ///< of the corrupted: longer than any Livox packet
 };
 
 class LivoxEmulator {
  public:
-  explicit LivoxEmulator(const EmulatorOptions& o) : o_(o), random_(o.seed) {
+  explicit LivoxEmulator(const EmulatorOptions& o) : o_(o), random_(o.seed), counter_(o.first_counter) {
     sdk2_ = o.target.protocol == LivoxProtocol::sdk2;
     data_type_ = o.data_type.value_or(sdk2_ ? 1 : 2);
     if (sdk2_) {
@@ -160,6 +168,11 @@ class LivoxEmulator {
 
   const EmulatorCounters& counters() const { return counters_; }
 
+  /// The point data type sent (a host's parameter write may change it).
+  std::uint8_t data_type() const { return data_type_; }
+  /// The work mode a host's parameter write asked for (SDK2), if any.
+  std::optional<std::uint8_t> work_mode() const { return work_mode_; }
+
  private:
   std::uint32_t target_address() const {
     return o_.target.host_address != 0 ? o_.target.host_address : 0x7F000001u;
@@ -230,14 +243,14 @@ class LivoxEmulator {
     } else {
       live::Sdk1PacketHeader h;
       h.data_type = data_type_;
-      h.timestamp_type = o_.sync == live::LivoxTimeSync::ptp ? 1 : 0;
-      h.timestamp = first;
+      live::set_sdk1_packet_time(h, sdk1_timestamp_type(), first);
       live::encode_sdk1_data_packet(h, live::sdk1_nominal_firing_interval_ns(data_type_), pending_.data(),
                                     pending_.size(), bytes);
     }
-    counters_.returns += static_cast<std::uint64_t>(std::count_if(pending_.begin(), pending_.end(), [](const live::LivoxReturn& r) {
+    const auto returns = static_cast<std::uint64_t>(std::count_if(pending_.begin(), pending_.end(), [](const live::LivoxReturn& r) {
       return r.x != 0.0f || r.y != 0.0f || r.z != 0.0f;  // (0,0,0): an empty slot
     }));
+    counters_.returns += returns;
     pending_.clear();
     pace();
     if (!keep_host()) return false;
@@ -247,6 +260,10 @@ class LivoxEmulator {
     if (u(random_) < o_.drop) {
       ++counters_.dropped;
       return true;
+    }
+    if (o_.corrupt > 0.0 && u(random_) < o_.corrupt) {
+      damage(bytes);
+      counters_.corrupted_returns += returns;
     }
     if (held_) {  // the swapped packet goes after this one
       send_datagram(bytes);
@@ -265,6 +282,36 @@ class LivoxEmulator {
       ++counters_.duplicated;
     }
     return true;
+  }
+
+  // Damages a packet so that no receiver can take it for a valid one, in
+  // turn: cut inside the header, 4 bytes more than its length, an unknown
+  // data type, a wrong CRC (SDK2; SDK1 has none: a reserved timestamp
+  // type), padded beyond any Livox packet (2000 bytes).
+  void damage(std::vector<std::uint8_t>& bytes) {
+    switch (counters_.corrupted++ % 5) {
+      case 0: bytes.resize(16); break;
+      case 1: bytes.insert(bytes.end(), 4, 0); break;
+      case 2: bytes[sdk2_ ? 10 : 9] = 0x7F; break;
+      case 3:
+        if (sdk2_) {  // the CRC of the packet as it was, then one byte changed
+          const std::uint32_t crc = live::crc32_iso_hdlc(bytes.data() + 28, bytes.size() - 28);
+          for (std::size_t i = 0; i < 4; ++i) bytes[24 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+          bytes.back() ^= 0xFF;
+        } else {
+          bytes[8] = 2;
+        }
+        break;
+      default:
+        bytes.resize(2000, 0);
+        ++counters_.oversize;
+        break;
+    }
+  }
+
+  // The SDK1 timestamp type of the clock's sync: 0 none, 1 PTP, 3 GPS (UTC).
+  std::uint8_t sdk1_timestamp_type() const {
+    return o_.sync == live::LivoxTimeSync::ptp ? 1 : o_.sync == live::LivoxTimeSync::gps ? 3 : 0;
   }
 
   // Sends a packet when the device would: its first point's stream time,
@@ -303,8 +350,7 @@ class LivoxEmulator {
         imu_->send_to(imu_to_, bytes.data(), bytes.size());
       } else {
         live::Sdk1PacketHeader h;
-        h.timestamp_type = o_.sync == live::LivoxTimeSync::ptp ? 1 : 0;
-        h.timestamp = next_imu_ns_;
+        live::set_sdk1_packet_time(h, sdk1_timestamp_type(), next_imu_ns_);
         live::encode_sdk1_imu_packet(h, s, bytes);
         points_->send_to(imu_to_, bytes.data(), bytes.size());
       }
@@ -388,6 +434,8 @@ class LivoxEmulator {
           (kv.key == live::sdk2_key_point_destination ? points_to_ : imu_to_) = to;
         } else if (kv.key == live::sdk2_key_point_data_type && live::parse_sdk2_u8(kv, value)) {
           if (value >= 1 && value <= 3) data_type_ = value;
+        } else if (kv.key == live::sdk2_key_work_mode && live::parse_sdk2_u8(kv, value)) {
+          work_mode_ = value;
         }
       }
       live::encode_sdk2_set_parameters_ack(frame.seq, ack, reply);
@@ -401,6 +449,7 @@ class LivoxEmulator {
   EmulatorOptions o_;
   bool sdk2_ = true;
   std::uint8_t data_type_ = 1;  // may change by a host's parameter write (SDK2)
+  std::optional<std::uint8_t> work_mode_;  // written by a host (SDK2)
   std::mt19937_64 random_;
   std::unique_ptr<live::UdpSocket> points_, imu_, command_;
   live::Endpoint points_to_, imu_to_;

@@ -23,7 +23,7 @@ double parse_probability(const std::string& option, const std::string& value) {
 
 ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
   ReplayOptions o;
-  bool to_given = false, ego_speed_given = false;
+  bool to_given = false, ego_speed_given = false, first_counter_given = false;
   for (ArgCursor c(args); !c.done(); c.next()) {
     const std::string& a = c.option();
     if (parse_input_option(c, o.read)) continue;
@@ -64,6 +64,14 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       o.emulator.duplicate = parse_probability(a, c.value());
     } else if (a == "--swap") {
       o.emulator.swap = parse_probability(a, c.value());
+    } else if (a == "--corrupt") {
+      o.emulator.corrupt = parse_probability(a, c.value());
+    } else if (a == "--first-counter") {
+      const std::string v = c.value();
+      std::int64_t n = 0;
+      if (!io::detail::parse_int64(v, n) || n < 0 || n > 65535) throw UsageError("--first-counter: expected 0 to 65535, got '" + v + "'");
+      o.emulator.first_counter = static_cast<std::uint16_t>(n);
+      first_counter_given = true;
     } else if (a == "--fault-seed") {
       o.emulator.seed = parse_count(a, c.value());
     } else if (a == "--reboot-at") {
@@ -77,8 +85,10 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       if (!(o.emulator.clock_jump->first > 0.0) || !(std::abs(o.emulator.clock_jump->second) < 1e9))
         throw UsageError("--clock-jump: expected AT > 0 and |SECONDS| < 1e9");
     } else if (a == "--time-sync") {
-      const std::string v = c.choice({"none", "ptp"});
-      o.emulator.sync = v == "ptp" ? live::LivoxTimeSync::ptp : live::LivoxTimeSync::none;
+      const std::string v = c.choice({"none", "ptp", "gps"});
+      o.emulator.sync = v == "ptp"   ? live::LivoxTimeSync::ptp
+                        : v == "gps" ? live::LivoxTimeSync::gps
+                                     : live::LivoxTimeSync::none;
     } else if (a == "--imu") {
       const std::array<double, 3> m = parse_mount(c.value() + ",0");
       o.emulator.imu_mount = std::array<double, 2>{m[0], m[1]};
@@ -105,6 +115,7 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
     throw UsageError(sdk2 ? "--data-type: SDK2 point data types are 1, 2 and 3"
                           : "--data-type: SDK1 point data types are 0-5, 7 and 8");
   if (o.emulator.wait_for_configure && !sdk2) throw UsageError("--wait-configure: an SDK2 device's mode (SDK1 always handshakes)");
+  if (first_counter_given && !sdk2) throw UsageError("--first-counter: SDK2 packets have a counter (SDK1 packets have none)");
   return o;
 }
 
@@ -128,13 +139,18 @@ device's rate, for `streamclust live` and for anyone without the hardware.
   --wait-configure                SDK2: answer discovery and wait for a host's parameter write
   --speed X                       x the recorded rate (default 1; 0: as fast as possible)
   --imu ROLL,PITCH                send a resting IMU's samples (200 Hz) for this mount [deg]
-  --time-sync none|ptp            the clock's sync type (ptp: Unix time)
+  --time-sync none|ptp|gps        the clock's sync type (ptp, gps: Unix time; SDK1 GPS as UTC fields)
   --wait S                        seconds to wait for a host (default 10)
 faults:
   --drop P  --duplicate P  --swap P   per point packet (swap: sent after the next one)
+  --corrupt P                     per point packet: a damaged datagram instead (in turn truncated,
+                                  too long, unknown data type, wrong CRC (SDK1: bad time type),
+                                  oversize: 2000 bytes)
   --fault-seed N                  their random seed (default 1)
   --clock-jump AT:S               at AT seconds of stream, the clock jumps by S seconds
   --reboot-at AT                  at AT seconds, a reboot: clock from 0, packet counter from 0
+  --first-counter N               SDK2: the first packet's counter (udp_cnt; e.g. 65000 wraps
+                                  after 536 packets, a quarter of a second)
 input: --format, --topic, --time-unit, --point-rate, --time-origin as for cluster;
 --simulate takes simulate's scenario options (--sensor, --scene, --seconds, --seed, ...),
 with the sensor's ego-motion as --ego-speed M/S (here --speed is the replay's rate).
@@ -166,7 +182,17 @@ int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
   if (!o.quiet) {
     out << "streamclust: replay: " << c.packets << " point packets (" << c.returns << " returns), " << c.imu_packets
         << " IMU packets; dropped " << c.dropped << ", duplicated " << c.duplicated << ", swapped " << c.swapped
+        << ", corrupted " << c.corrupted << " (" << c.oversize << " oversize; " << c.corrupted_returns << " returns)"
         << (host_present ? "" : "; the host went away") << "\n";
+    if (o.emulator.wait_for_configure) {
+      out << "streamclust: replay: configured by the host: data type " << int{emulator.data_type()} << ", work mode ";
+      if (const auto mode = emulator.work_mode()) {
+        out << "0x" << std::hex << int{*mode} << std::dec;
+      } else {
+        out << "not written";
+      }
+      out << "\n";
+    }
   }
   (void)err;
   return kOk;

@@ -14,7 +14,14 @@
 /// its arrival differ by more than `jump_threshold_ns`, or the sync type
 /// changes, the offset is fixed again at that packet. A new epoch never maps
 /// a time before the last one mapped (the stream stays ordered), so the
-/// clusterer sees a continuous stream, never a flood of backwards times.
+/// clusterer sees a continuous stream, never a flood of backwards times. An
+/// epoch held after the last mapped time leads the arrivals from its start
+/// (the host clock stepped back, or the device runs fast): the next jump is
+/// measured from that lead, not from 0, or every packet would be a jump.
+/// A packet sent before a jump and reordered after it (arriving within
+/// `kStragglerWindowNs` of the epoch's first packet) fits the previous epoch,
+/// not the current one: it starts no epoch and is a `straggler`. Later, a
+/// clock that steps back to the previous epoch's time starts a new epoch.
 ///
 /// Not thread-safe: one per device, on the thread that decodes its packets.
 
@@ -28,6 +35,11 @@ namespace streamclust::live {
 
 class DeviceClock {
  public:
+  /// How long after an epoch began a packet of the previous epoch is a
+  /// straggler [ns]: 20 ms, far above reordering on a link (the reorder
+  /// window holds 4 ms of a Mid-360), far below a clock's glitch and return.
+  static constexpr std::int64_t kStragglerWindowNs = 20'000'000;
+
   /// A mapped time this far from its packet's arrival starts a new epoch
   /// (default 1 s: far above network latency and a packet's span, far
   /// below a reboot's jump or a PTP step).
@@ -38,19 +50,27 @@ class DeviceClock {
   /// when this packet starts a new epoch (always for the first packet).
   bool observe(std::uint64_t device_ns, std::int64_t arrival_ns, LivoxTimeSync sync) noexcept {
     const bool first = epochs_ == 0;
-    if (!first && sync == sync_) {
-      const std::int64_t drift = difference(predict(device_ns), arrival_ns);
-      if (drift <= jump_threshold_ns_ && drift >= -jump_threshold_ns_) {
-        last_drift_ns_ = drift;
-        return false;
-      }
+    straggler_ = false;
+    if (!first && sync == sync_ && fits(offset_ns_, lead_ns_, device_ns, arrival_ns)) {
+      last_drift_ns_ = difference(predict(device_ns), arrival_ns);
+      return false;
+    }
+    if (epochs_ > 1 && sync == previous_sync_ && difference(arrival_ns, epoch_arrival_ns_) <= kStragglerWindowNs &&
+        fits(previous_offset_ns_, previous_lead_ns_, device_ns, arrival_ns)) {
+      straggler_ = true;  // the previous epoch's: not a new one
+      return false;
     }
     // New epoch: fix the offset here, no earlier than the last mapped time.
+    previous_offset_ns_ = offset_ns_;
+    previous_lead_ns_ = lead_ns_;
+    previous_sync_ = sync_;
     offset_ns_ = difference(arrival_ns, static_cast<std::int64_t>(device_ns));
     if (!first && predict(device_ns) <= last_mapped_ns_)
       offset_ns_ = difference(last_mapped_ns_, static_cast<std::int64_t>(device_ns - 1));
     sync_ = sync;
+    epoch_arrival_ns_ = arrival_ns;
     last_drift_ns_ = difference(predict(device_ns), arrival_ns);
+    lead_ns_ = last_drift_ns_;  // 0 unless held after the last mapped time
     ++epochs_;
     return true;
   }
@@ -62,6 +82,11 @@ class DeviceClock {
     if (t > last_mapped_ns_) last_mapped_ns_ = t;
     return t;
   }
+
+  /// True when the packet last observed fits the previous epoch and not
+  /// the current one (sent before the jump, reordered after it): the caller
+  /// drops it as late (its time belongs before what the epoch began after).
+  bool straggler() const noexcept { return straggler_; }
 
   /// Epochs so far (1 after the first packet).
   std::uint32_t epochs() const noexcept { return epochs_; }
@@ -76,18 +101,28 @@ class DeviceClock {
  private:
   // Two's-complement arithmetic without signed overflow: device times are
   // whatever a packet says.
-  std::int64_t predict(std::uint64_t device_ns) const noexcept {
-    return static_cast<std::int64_t>(device_ns + static_cast<std::uint64_t>(offset_ns_));
+  std::int64_t predict(std::uint64_t device_ns, std::int64_t offset_ns) const noexcept {
+    return static_cast<std::int64_t>(device_ns + static_cast<std::uint64_t>(offset_ns));
+  }
+  std::int64_t predict(std::uint64_t device_ns) const noexcept { return predict(device_ns, offset_ns_); }
+  // Device time mapped by `offset_ns` is within the threshold of its
+  // arrival plus the epoch's lead.
+  bool fits(std::int64_t offset_ns, std::int64_t lead_ns, std::uint64_t device_ns, std::int64_t arrival_ns) const noexcept {
+    const std::int64_t drift = difference(difference(predict(device_ns, offset_ns), arrival_ns), lead_ns);
+    return drift <= jump_threshold_ns_ && drift >= -jump_threshold_ns_;
   }
   static std::int64_t difference(std::int64_t a, std::int64_t b) noexcept {
     return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
   }
 
   std::int64_t jump_threshold_ns_;
-  std::int64_t offset_ns_ = 0;
+  std::int64_t offset_ns_ = 0, previous_offset_ns_ = 0;
+  std::int64_t lead_ns_ = 0, previous_lead_ns_ = 0;  // mapped time - arrival at an epoch's first packet [ns]
   std::int64_t last_mapped_ns_ = std::numeric_limits<std::int64_t>::min();
   std::int64_t last_drift_ns_ = 0;
-  LivoxTimeSync sync_ = LivoxTimeSync::none;
+  std::int64_t epoch_arrival_ns_ = 0;  // arrival of the current epoch's first packet [ns]
+  LivoxTimeSync sync_ = LivoxTimeSync::none, previous_sync_ = LivoxTimeSync::none;
+  bool straggler_ = false;
   std::uint32_t epochs_ = 0;
 };
 

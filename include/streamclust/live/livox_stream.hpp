@@ -47,6 +47,7 @@ struct LivoxStreamCounters {
   /// (truncated .. bad_time; the first two entries stay 0).
   std::array<std::uint64_t, 8> malformed{};
   std::uint32_t epochs = 0;          ///< clock epochs (1 after the first packet)
+  std::uint8_t data_type = 0;        ///< the data_type byte of the last point packet decoded
 
   std::uint64_t malformed_total() const noexcept {
     std::uint64_t n = 0;
@@ -95,6 +96,7 @@ class LivoxStream {
       return;
     }
     ++counters_.point_packets;
+    counters_.data_type = s.data_type;
     counters_.empty_slots += s.empty_slots;
     if (clock_.observe(s.first_time_ns, d.arrival_ns, s.sync)) {
       // A new epoch: what the old one holds goes first, in its own order.
@@ -103,6 +105,9 @@ class LivoxStream {
         order_.restart();
       }
       counters_.epochs = clock_.epochs();
+    } else if (clock_.straggler()) {  // the previous epoch's, which was flushed: late
+      order_.count_late();
+      return;
     }
     for (LivoxReturn& r : slot.contents.returns) r.time_ns = static_cast<std::uint64_t>(clock_.map(r.time_ns));
     slot.arrival_steady_ns = d.arrival_steady_ns;

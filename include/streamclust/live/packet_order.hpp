@@ -95,6 +95,10 @@ class ReorderWindow {
     recent_count_ = 0;
   }
 
+  /// Counts a packet the caller drops as late before committing it (one
+  /// of a clock epoch already flushed).
+  void count_late() noexcept { ++counters_.late; }
+
   const OrderCounters& counters() const noexcept { return counters_; }
 
  private:
