@@ -147,6 +147,25 @@ TEST_CASE("DeviceClock: an epoch held after the last mapped time keeps its lead;
   CHECK(clock.epochs() == 3);
 }
 
+TEST_CASE("DeviceClock: a clock at another rate than the host's (a replay at 2x or 0.5x) stays one epoch; a step does not") {
+  const std::int64_t host0 = 1'700'000'000'000'000'000;
+  for (const double rate : {2.0, 0.5}) {
+    CAPTURE(rate);
+    live::DeviceClock clock;
+    // A packet every 0.5 ms of device time for 10 s of host time: the drift grows to 10 s (2x) or -5 s (0.5x).
+    std::uint64_t device = 1'000'000'000;
+    for (std::int64_t host = 0; host <= 10'000'000'000; host += 500'000) {
+      device = 1'000'000'000 + static_cast<std::uint64_t>(static_cast<double>(host) * rate);
+      clock.observe(device, host0 + host, live::LivoxTimeSync::none);
+    }
+    CHECK(clock.epochs() == 1);
+    CHECK(clock.map(device) - (host0 + 10'000'000'000) == static_cast<std::int64_t>((rate - 1.0) * 10'000'000'000));
+    // A reboot is still a step of more than the threshold between two packets.
+    CHECK(clock.observe(1'000, host0 + 10'000'500'000, live::LivoxTimeSync::none));
+    CHECK(clock.epochs() == 2);
+  }
+}
+
 TEST_CASE("DeviceClock: a packet of the previous epoch reordered after a jump is a straggler; a step back later is an epoch") {
   live::DeviceClock clock;
   const std::int64_t host0 = 1'700'000'000'000'000'000;

@@ -10,14 +10,15 @@
 /// network latency (tens of microseconds on a direct link).
 ///
 /// A clock jump (a reboot restarts the clock at 0; acquiring PTP or GPS
-/// moves it by years) starts a new epoch: when a packet's mapped time and
-/// its arrival differ by more than `jump_threshold_ns`, or the sync type
-/// changes, the offset is fixed again at that packet. A new epoch never maps
-/// a time before the last one mapped (the stream stays ordered), so the
-/// clusterer sees a continuous stream, never a flood of backwards times. An
-/// epoch held after the last mapped time leads the arrivals from its start
-/// (the host clock stepped back, or the device runs fast): the next jump is
-/// measured from that lead, not from 0, or every packet would be a jump.
+/// moves it by years) starts a new epoch: when a packet's drift (mapped time
+/// minus arrival) differs from the previous packet's by more than
+/// `jump_threshold_ns`, or the sync type changes, the offset is fixed again
+/// at that packet. A jump is a step between two packets, never the slow sum
+/// of a clock that runs at another rate than the host's (a crystal's ppm, or
+/// a replay at another speed): such a clock stays in one epoch and its
+/// mapped times drift from the host's. A new epoch never maps a time before
+/// the last one mapped (the stream stays ordered), so the clusterer sees a
+/// continuous stream, never a flood of backwards times.
 /// A packet sent before a jump and reordered after it (arriving within
 /// `kStragglerWindowNs` of the epoch's first packet) fits the previous epoch,
 /// not the current one: it starts no epoch and is a `straggler`. Later, a
@@ -51,26 +52,25 @@ class DeviceClock {
   bool observe(std::uint64_t device_ns, std::int64_t arrival_ns, LivoxTimeSync sync) noexcept {
     const bool first = epochs_ == 0;
     straggler_ = false;
-    if (!first && sync == sync_ && fits(offset_ns_, lead_ns_, device_ns, arrival_ns)) {
+    if (!first && sync == sync_ && fits(offset_ns_, last_drift_ns_, device_ns, arrival_ns)) {
       last_drift_ns_ = difference(predict(device_ns), arrival_ns);
       return false;
     }
     if (epochs_ > 1 && sync == previous_sync_ && difference(arrival_ns, epoch_arrival_ns_) <= kStragglerWindowNs &&
-        fits(previous_offset_ns_, previous_lead_ns_, device_ns, arrival_ns)) {
+        fits(previous_offset_ns_, previous_drift_ns_, device_ns, arrival_ns)) {
       straggler_ = true;  // the previous epoch's: not a new one
       return false;
     }
     // New epoch: fix the offset here, no earlier than the last mapped time.
     previous_offset_ns_ = offset_ns_;
-    previous_lead_ns_ = lead_ns_;
+    previous_drift_ns_ = last_drift_ns_;
     previous_sync_ = sync_;
     offset_ns_ = difference(arrival_ns, static_cast<std::int64_t>(device_ns));
     if (!first && predict(device_ns) <= last_mapped_ns_)
       offset_ns_ = difference(last_mapped_ns_, static_cast<std::int64_t>(device_ns - 1));
     sync_ = sync;
     epoch_arrival_ns_ = arrival_ns;
-    last_drift_ns_ = difference(predict(device_ns), arrival_ns);
-    lead_ns_ = last_drift_ns_;  // 0 unless held after the last mapped time
+    last_drift_ns_ = difference(predict(device_ns), arrival_ns);  // 0 unless held after the last mapped time
     ++epochs_;
     return true;
   }
@@ -94,8 +94,8 @@ class DeviceClock {
   std::int64_t offset_ns() const noexcept { return offset_ns_; }
   /// The current epoch's time sync.
   LivoxTimeSync sync() const noexcept { return sync_; }
-  /// Mapped time minus arrival of the last packet observed [ns]: grows with
-  /// the drift between the two clocks and with queueing delay.
+  /// Mapped time minus arrival of the last packet observed [ns]: follows
+  /// the drift between the two clocks and the network's delay.
   std::int64_t last_drift_ns() const noexcept { return last_drift_ns_; }
 
  private:
@@ -105,11 +105,12 @@ class DeviceClock {
     return static_cast<std::int64_t>(device_ns + static_cast<std::uint64_t>(offset_ns));
   }
   std::int64_t predict(std::uint64_t device_ns) const noexcept { return predict(device_ns, offset_ns_); }
-  // Device time mapped by `offset_ns` is within the threshold of its
-  // arrival plus the epoch's lead.
-  bool fits(std::int64_t offset_ns, std::int64_t lead_ns, std::uint64_t device_ns, std::int64_t arrival_ns) const noexcept {
-    const std::int64_t drift = difference(difference(predict(device_ns, offset_ns), arrival_ns), lead_ns);
-    return drift <= jump_threshold_ns_ && drift >= -jump_threshold_ns_;
+  // The drift of device time mapped by `offset_ns` is within the threshold
+  // of `reference_drift_ns` (the epoch's previous packet's).
+  bool fits(std::int64_t offset_ns, std::int64_t reference_drift_ns, std::uint64_t device_ns,
+            std::int64_t arrival_ns) const noexcept {
+    const std::int64_t step = difference(difference(predict(device_ns, offset_ns), arrival_ns), reference_drift_ns);
+    return step <= jump_threshold_ns_ && step >= -jump_threshold_ns_;
   }
   static std::int64_t difference(std::int64_t a, std::int64_t b) noexcept {
     return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
@@ -117,9 +118,8 @@ class DeviceClock {
 
   std::int64_t jump_threshold_ns_;
   std::int64_t offset_ns_ = 0, previous_offset_ns_ = 0;
-  std::int64_t lead_ns_ = 0, previous_lead_ns_ = 0;  // mapped time - arrival at an epoch's first packet [ns]
   std::int64_t last_mapped_ns_ = std::numeric_limits<std::int64_t>::min();
-  std::int64_t last_drift_ns_ = 0;
+  std::int64_t last_drift_ns_ = 0, previous_drift_ns_ = 0;  // mapped time - arrival of an epoch's last packet [ns]
   std::int64_t epoch_arrival_ns_ = 0;  // arrival of the current epoch's first packet [ns]
   LivoxTimeSync sync_ = LivoxTimeSync::none, previous_sync_ = LivoxTimeSync::none;
   bool straggler_ = false;
