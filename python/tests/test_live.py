@@ -42,12 +42,16 @@ def collect(stream):
     return retrievals
 
 
+def received(retrievals):
+    """(xyz, t, intensity) of every point received: the retrievals' new points."""
+    return tuple(np.concatenate([getattr(r, name) for r in retrievals])
+                 for name in ("new_xyz", "new_t", "new_intensity"))
+
+
 def check_points_and_offline_labels(retrievals, csv, quantum_m, **options):
     """The received points are the input's (within the data type's quantum,
     1 us of relative time); every cycle equals cluster_stream over them."""
-    xyz = np.concatenate([r.new_xyz for r in retrievals])
-    t = np.concatenate([r.new_t for r in retrievals])
-    intensity = np.concatenate([r.new_intensity for r in retrievals])
+    xyz, t, intensity = received(retrievals)
     given = streamclust.read(csv)
     finite = np.isfinite(given["x"]) & np.isfinite(given["y"]) & np.isfinite(given["z"])
     expected = np.stack([given["x"], given["y"], given["z"]], axis=1)[finite]
@@ -57,9 +61,15 @@ def check_points_and_offline_labels(retrievals, csv, quantum_m, **options):
     assert np.abs(dt).max() <= 1e-6
     assert np.array_equal(intensity, np.clip(given["intensity"][finite], 0, 255).astype(np.uint8).astype(np.float32))
 
+    check_offline_labels(retrievals, **options)
+
+
+def check_offline_labels(retrievals, **options):
+    """Every cycle equals cluster_stream over the received points."""
+    xyz, t, intensity = received(retrievals)
     offline = streamclust.cluster_stream(xyz, t, intensity, **options)
     assert [r.cycle for r in retrievals] == [r.cycle for r in offline]
-    assert len(offline) > 10
+    assert len(offline) >= 8  # many cycles
     for live_r, off in zip(retrievals, offline):
         assert live_r.time == off.time
         assert np.array_equal(live_r.index, off.index)
@@ -100,18 +110,22 @@ def test_sdk1_handshake_points_and_labels_equal_offline(tool, tmp_path):
     check_points_and_offline_labels(retrievals, csv, 0.0009, **options)
 
 
-def test_sdk2_configure_finds_the_lidar_by_serial(tool):
+def test_sdk2_configure_finds_the_lidar_by_serial_objects_preset_equals_offline(tool):
     sender = replay(tool, "--simulate", "--sensor", "mid360", "--seconds", "0.6", "--to",
                     "livox-sdk2://127.0.0.39:1000", "--device-address", "127.0.0.38", "--serial", "EMUPYTHON",
                     "--wait-configure", "-q")
+    # The objects preset: the mount and sensor height are estimated from the first window.
+    options = dict(preset="objects-mid360", window_time=0.2)
     stream = streamclust.live("livox-sdk2://127.0.0.39:48401", configure=True, lidar="EMUPYTHON",
-                              discovery_address="127.0.0.38", idle_exit=0.5, wait=20, **PRESET)
+                              discovery_address="127.0.0.38", idle_exit=0.5, wait=20, **options)
     retrievals = collect(stream)
     finish(sender)
     counters = retrievals[-1].counters
     assert counters["lidar"].endswith(" EMUPYTHON")
     assert counters["point_packets"] > 1000 and counters["lost"] == 0
     assert sum(len(r.new_t) for r in retrievals) == counters["points"]
+    assert np.any(np.concatenate([r.labels for r in retrievals]) == streamclust.GROUND)
+    check_offline_labels(retrievals, **options)
 
 
 def test_leaving_the_loop_stops_the_receiver_and_the_lidar(tool):
