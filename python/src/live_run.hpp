@@ -143,10 +143,13 @@ class LiveRun {
 
   /// Stops the receiver and the LiDAR; later `next` calls return None.
   void close() {
-    py::gil_scoped_release release;  // the mutex before the GIL (next() may hold it while it waits)
-    const std::lock_guard<std::mutex> lock(mutex_);
-    source_->close();
-    done_ = true;
+    {
+      py::gil_scoped_release release;  // the mutex before the GIL (next() may hold it while it waits)
+      const std::lock_guard<std::mutex> lock(mutex_);
+      source_->close();
+      done_ = true;
+    }
+    ready_.clear();  // retrievals not taken (the GIL again)
   }
 
   /// The connection's counters now (see docs/python.md, "Live sources").
@@ -158,9 +161,15 @@ class LiveRun {
   }
 
   /// Whole seconds of the host clock the times count from; None before the first packet.
-  py::object time_origin() const {
-    if (!origin_s_) return py::none();
-    return py::int_(*origin_s_);
+  py::object time_origin() {
+    std::optional<std::int64_t> origin;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      origin = origin_s_;
+    }
+    if (!origin) return py::none();
+    return py::int_(*origin);
   }
 
  private:

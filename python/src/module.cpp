@@ -24,7 +24,6 @@
 #include <streamclust/eval/report.hpp>
 #include <streamclust/io/error.hpp>
 #include <streamclust/io/reader.hpp>
-#include <streamclust/retrieval_schedule.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -33,7 +32,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <mutex>
 #include <optional>
 #include <string>

@@ -60,11 +60,11 @@ def _count(name, value, low, high):
 class LiveStream:
     """The iterator :func:`live` returns: retrievals as they are due.
 
-    Iterating connects nothing more: the LiDAR was connected when the
-    stream was made. ``close()`` (also: leaving a ``with`` block, breaking
-    out of a ``for`` loop over it once it is garbage, an exception through
-    the loop) stops the receiver thread and the LiDAR (SDK1: stop sampling)
-    within about 20 ms. Not for several threads at once.
+    The LiDAR was connected when the stream was made. ``close()`` (also:
+    leaving a ``with`` block, by an exception too, or dropping the stream,
+    as breaking out of ``for r in live(...)`` does) stops the receiver
+    thread and the LiDAR (SDK1: stop sampling) within about 20 ms. One
+    thread at a time.
     """
 
     def __init__(self, run):

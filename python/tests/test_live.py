@@ -88,7 +88,9 @@ def test_sdk2_passive_points_and_labels_equal_offline(tool, tmp_path):
         sender = replay(tool, csv, "--to", url, "--device-address", "127.0.0.31", "--data-type", "1", "-q")
         retrievals = collect(stream)
         counters = stream.counters
+        origin = stream.time_origin
     finish(sender)
+    assert abs(origin + retrievals[-1].time - time.time()) < 30  # host clock, Unix time
     assert counters["lost"] == 0 and counters["queue_drops"] == 0 and counters["malformed"] == 0
     assert counters["end"] == "idle_exit: no packets"
     assert counters["lidar"] == "LiDAR at 127.0.0.31"
