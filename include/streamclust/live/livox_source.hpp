@@ -7,9 +7,9 @@
 /// Livox SDKs number them). The command-line tool and the Python module
 /// read sources with this one parser, so both accept and refuse the same.
 
+#include <streamclust/io/input_stream.hpp>
 #include <streamclust/live/udp_socket.hpp>
 
-#include <charconv>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -59,9 +59,8 @@ inline LivoxSourceUrl parse_livox_source_url(const std::string& text) {
   }
   if (colon != std::string::npos) {
     const std::string port = rest.substr(colon + 1);
-    long p = 0;
-    const auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), p);
-    if (port.empty() || ec != std::errc() || end != port.data() + port.size() || p < 1 || p > 65535)
+    std::int64_t p = 0;
+    if (!io::detail::parse_int64(port, p) || p < 1 || p > 65535)
       throw std::invalid_argument("SOURCE: port '" + port + "' is not 1-65535; " + expected);
     url.port = static_cast<std::uint16_t>(p);
   }
