@@ -4,7 +4,7 @@
 # ones: each is selectable by its registered name and its options are
 # keywords (docs/python.md, "Your own policies in Python"):
 #
-#   find_package(streamclust REQUIRED COMPONENTS io)
+#   find_package(streamclust REQUIRED COMPONENTS io live)
 #   streamclust_add_python_module(my_streamclust_python
 #     POLICIES ${CMAKE_CURRENT_SOURCE_DIR}/intensity_gated.hpp   # as streamclust_add_tool
 #     LINKAGES my::IntensityGatedLinkage)
@@ -39,9 +39,9 @@ function(streamclust_add_python_module target)
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "streamclust_add_python_module(${target}): unknown arguments ${ARG_UNPARSED_ARGUMENTS}")
   endif()
-  if(NOT TARGET streamclust::io)
-    message(FATAL_ERROR "streamclust_add_python_module(${target}): the module reads recordings; "
-                        "find the package with find_package(streamclust REQUIRED COMPONENTS io)")
+  if(NOT TARGET streamclust::io OR NOT TARGET streamclust::live)
+    message(FATAL_ERROR "streamclust_add_python_module(${target}): the module reads recordings and live "
+                        "sensors; find the package with find_package(streamclust REQUIRED COMPONENTS io live)")
   endif()
   find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
   find_package(pybind11 2.6 CONFIG QUIET)
@@ -82,7 +82,8 @@ function(streamclust_add_python_module target)
   if(_STREAMCLUST_OWN_POLICIES)  # without policies of its own, the stock registry (cli/tool_policies.hpp)
     target_compile_definitions(${target} PRIVATE "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")
   endif()
-  target_link_libraries(${target} PRIVATE streamclust::streamclust streamclust::io nlohmann_json::nlohmann_json)
+  target_link_libraries(${target} PRIVATE streamclust::streamclust streamclust::io streamclust::live
+                        nlohmann_json::nlohmann_json)
   target_compile_features(${target} PRIVATE cxx_std_17)
   set_target_properties(${target} PROPERTIES OUTPUT_NAME _streamclust LIBRARY_OUTPUT_DIRECTORY "${_package}")
 

@@ -11,7 +11,10 @@
 
 #include "array_checks.hpp"
 #include "erased_clusterer.hpp"
+#include "live_run.hpp"
 #include "options_bridge.hpp"
+#include "retrieval_arrays.hpp"
+#include "scheduled_run.hpp"
 #include "window_rows.hpp"
 
 #include "cli/evaluate.hpp"
@@ -21,7 +24,6 @@
 #include <streamclust/eval/report.hpp>
 #include <streamclust/io/error.hpp>
 #include <streamclust/io/reader.hpp>
-#include <streamclust/retrieval_schedule.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -30,7 +32,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -41,51 +42,7 @@ namespace py = pybind11;
 
 namespace streamclust::python {
 
-/// One row of Retrieval.components (a numpy structured array).
-struct ComponentRecord {
-  std::int64_t id;      ///< stable component id
-  std::int64_t size;    ///< points in the window
-  float centroid[3];    ///< mean position [m]
-  float min[3];         ///< box, lower corner [m]
-  float max[3];         ///< box, upper corner [m]
-  double t_min;         ///< oldest point [s]
-  double t_max;         ///< newest point [s]
-};
-
 namespace {
-
-template <class T>
-py::array_t<T> copy_to_array(const std::vector<T>& v) {
-  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
-  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
-  return a;
-}
-
-py::array_t<ComponentRecord> components_array(const std::vector<ComponentSummary>& components) {
-  py::array_t<ComponentRecord> a(static_cast<py::ssize_t>(components.size()));
-  ComponentRecord* out = a.mutable_data();
-  for (const ComponentSummary& c : components) {
-    ComponentRecord r{};
-    r.id = static_cast<std::int64_t>(c.id);
-    r.size = static_cast<std::int64_t>(c.size);
-    for (int k = 0; k < 3; ++k) {
-      r.centroid[k] = c.centroid[k];
-      r.min[k] = c.min[k];
-      r.max[k] = c.max[k];
-    }
-    r.t_min = c.time_begin;
-    r.t_max = c.time_end;
-    *out++ = r;
-  }
-  return a;
-}
-
-/// (cycle, time, index, labels, components): what streamclust.Retrieval wraps.
-/// One copy of the rows into new arrays. GIL held.
-py::tuple retrieval_tuple(std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result) {
-  return py::make_tuple(cycle, time, copy_to_array(rows.index), copy_to_array(rows.label),
-                        components_array(result.components));
-}
 
 std::optional<double> optional_time(const py::object& time, const char* name) {
   if (time.is_none()) return std::nullopt;
@@ -224,47 +181,19 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   } else {
     resolve_setup(o, nullptr);
   }
-  StreamSession session(make_erased_clusterer(o));
-  WindowRows rows;
-  RetrievalSchedule schedule(o.rate_hz);
-  StreamTimeOrder record_times(cli::engine_time_order_params(o));  // as the CLI: only valid times move the schedule
-  std::uint64_t valid_times = 0;
-  std::uint64_t cycle = 0, inserted_since = 0;
-  double first_time = 0.0;
-  auto run_cycle = [&](double cycle_time) {
-    session.advance_to(cycle_time);  // as the CLI's run_cycle (a no-op after the scheduled advance)
-    const Clustering& result = session.retrieve(rows);
+  ScheduledRun run(o);
+  auto keep = [&](std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result) {
     if (all || std::binary_search(wanted.begin(), wanted.end(), cycle)) {
       py::gil_scoped_acquire acquire;
-      out.append(retrieval_tuple(cycle, cycle_time, rows, result));
+      out.append(retrieval_tuple(cycle, time, rows, result));
     }
-    inserted_since = 0;
-    ++cycle;
   };
-  std::size_t offered = 0;  // points [0, offered) went to the engine
-  for (std::size_t i = 0; i < points.size; ++i) {
-    if (record_times.admit_time(points.t[i]) != RejectReason::accepted) continue;
-    ++valid_times;
-    const bool started = schedule.started();
-    const std::optional<double> due = schedule.on_record(points.t[i]);
-    if (!started && schedule.started()) first_time = schedule.first_time();
-    if (!due) continue;
-    inserted_since += session.insert(points.slice(offered, i), nullptr);
-    offered = i;
-    // No cycle while the engine buffers its first window for the grid.
-    session.advance_to(*due);
-    if (session.calibrating()) continue;
-    run_cycle(*due);
-  }
-  inserted_since += session.insert(points.slice(offered, points.size), nullptr);
-  if (valid_times == 0) {
+  run.feed(points, keep);
+  if (run.valid_times() == 0) {
     py::gil_scoped_acquire acquire;
     throw py::value_error("t: no usable time (finite, within +-9e9 s, not a jump; the CLI exits 4 on such a stream)");
   }
-  session.complete_calibration();
-  if (inserted_since > 0 || cycle == 0) {
-    run_cycle(schedule.started() ? std::max(session.last_accepted_time(), first_time) : 0.0);
-  }
+  run.finish(keep);
   py::gil_scoped_acquire acquire;
   return out;
 }
@@ -394,6 +323,10 @@ PYBIND11_MODULE(_streamclust, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const streamclust::io::InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const streamclust::live::ConnectionError& e) {
+      PyErr_SetString(PyExc_ConnectionError, e.what());
+    } catch (const sp::LiveTimeout& e) {
+      PyErr_SetString(PyExc_TimeoutError, e.what());
     }
   });
 
@@ -417,6 +350,21 @@ PYBIND11_MODULE(_streamclust, m) {
       .def_property_readonly("grid", &sp::Clusterer::grid);
   m.def("cluster_stream", &sp::cluster_stream, py::arg("args"), py::arg("xyz"), py::arg("t"), py::arg("intensity"),
         py::arg("cycles"));
+  py::class_<sp::LiveRun>(m, "LiveRun")
+      .def(py::init([](const std::vector<std::string>& args, const std::string& source,
+                       const std::vector<std::string>& lidars, bool configure,
+                       const std::optional<std::string>& discovery_address, double wait, double duration,
+                       double idle_exit, std::size_t queue, std::size_t reorder) {
+             return std::make_unique<sp::LiveRun>(
+                 args, sp::live_source_options(source, lidars, configure, discovery_address, wait, duration,
+                                               idle_exit, queue, reorder));
+           }),
+           py::arg("args"), py::arg("source"), py::arg("lidars"), py::arg("configure"), py::arg("discovery_address"),
+           py::arg("wait"), py::arg("duration"), py::arg("idle_exit"), py::arg("queue"), py::arg("reorder"))
+      .def("next", &sp::LiveRun::next)
+      .def("close", &sp::LiveRun::close)
+      .def("counters", &sp::LiveRun::counters)
+      .def_property_readonly("time_origin", &sp::LiveRun::time_origin);
   m.def("read", &sp::read_file, py::arg("path"), py::arg("args"));
   m.def("simulate", &sp::simulate, py::arg("args"));
   m.def("evaluate", &sp::evaluate, py::arg("labels"), py::arg("truth"), py::arg("min_points"));

@@ -22,8 +22,8 @@ from ._options import (POLICY_KEYWORDS, READ_KEYWORDS, SIMULATION_KEYWORDS, rera
                        to_arguments)
 from ._retrieval import CEILING, COMPONENT_DTYPE, GROUND, UNLABELLED, Retrieval
 
-__all__ = ["Clusterer", "Retrieval", "Simulation", "cluster_stream", "read", "simulate", "evaluate",
-           "REJECT_REASONS", "COMPONENT_DTYPE", "PRESETS", "UNLABELLED", "GROUND", "CEILING"]
+__all__ = ["Clusterer", "Retrieval", "Simulation", "cluster_stream", "read", "simulate", "evaluate", "live",
+           "LiveStream", "LiveRetrieval", "REJECT_REASONS", "COMPONENT_DTYPE", "PRESETS", "UNLABELLED", "GROUND", "CEILING"]
 
 #: Names of the rejection reason codes returned by ``insert(..., reasons=True)``
 #: (code i is REJECT_REASONS[i]; 0 is "accepted").
@@ -243,3 +243,6 @@ def evaluate(labels, truth, *, min_points=10):
     if isinstance(min_points, bool) or not isinstance(min_points, Integral) or min_points < 1:
         raise ValueError(f"min_points: expected a whole number >= 1, got {min_points!r}")
     return _call(_streamclust.evaluate, labels, truth, int(min_points))
+
+
+from ._live import LiveRetrieval, LiveStream, live  # noqa: E402 (uses _call above)

@@ -69,24 +69,7 @@ class StopSignals {
 };
 
 live::LivoxPacketFormat packet_format(LivoxProtocol protocol) {
-  live::LivoxPacketFormat f;
-  if (protocol == LivoxProtocol::sdk2) {
-    f.decode = [](const std::uint8_t* d, std::size_t n, live::LivoxPacketContents& out) {
-      return live::decode_sdk2_packet(d, n, out);
-    };
-    return f;
-  }
-  // SDK1 packets do not say which device sent them: the data type's
-  // devices' firing interval spaces the points (and packets, for loss).
-  f.decode = [](const std::uint8_t* d, std::size_t n, live::LivoxPacketContents& out) {
-    const std::uint8_t data_type = n > 9 ? d[9] : 0;
-    return live::decode_sdk1_packet(d, n, live::sdk1_nominal_firing_interval_ns(data_type), out);
-  };
-  f.packet_period_ns = [](const live::LivoxPacketSummary& s) {
-    return static_cast<std::int64_t>(
-        live::expected_sdk1_packet_period_ns(s.data_type, live::sdk1_nominal_firing_interval_ns(s.data_type)));
-  };
-  return f;
+  return protocol == LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format();
 }
 
 std::chrono::steady_clock::duration seconds(double s) {
@@ -119,41 +102,11 @@ std::pair<std::string, std::uint16_t> parse_foxglove_endpoint(const std::string&
 }
 
 LivoxSourceUrl parse_livox_url(const std::string& text) {
-  const std::string expected = "expected livox-sdk2://[HOST_IP][:PORT] or livox-sdk1://[HOST_IP][:PORT], got '" +
-                               text + "'";
-  LivoxSourceUrl url;
-  std::string rest;
-  if (text.rfind("livox-sdk2://", 0) == 0) {
-    url.protocol = LivoxProtocol::sdk2;
-    url.port = kSdk2PointPort;
-    rest = text.substr(13);
-  } else if (text.rfind("livox-sdk1://", 0) == 0) {
-    url.protocol = LivoxProtocol::sdk1;
-    url.port = kSdk1BroadcastPort;
-    rest = text.substr(13);
-  } else {
-    throw UsageError("SOURCE: " + expected);
+  try {
+    return live::parse_livox_source_url(text);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
-  if (!rest.empty() && rest.back() == '/') rest.pop_back();
-  const auto colon = rest.find(':');
-  const std::string host = rest.substr(0, colon);
-  if (!host.empty()) {
-    const auto a = live::parse_address(host);
-    if (!a) throw UsageError("SOURCE: host '" + host + "' is not a dotted IPv4 address; " + expected);
-    url.host_address = *a;
-  }
-  if (colon != std::string::npos) {
-    const std::string port = rest.substr(colon + 1);
-    std::int64_t p = 0;
-    if (!io::detail::parse_int64(port, p) || p < 1 || p > 65535)
-      throw UsageError("SOURCE: port '" + port + "' is not 1-65535; " + expected);
-    url.port = static_cast<std::uint16_t>(p);
-  }
-  // The derived ports must fit: SDK2 commands at port - 200, IMU at + 100;
-  // SDK1 commands at + 500, data at + 1000.
-  const bool fits = url.protocol == LivoxProtocol::sdk2 ? url.port > 200 && url.port <= 65435 : url.port <= 64535;
-  if (!fits) throw UsageError("SOURCE: port " + std::to_string(url.port) + " leaves no room for the derived ports; " + expected);
-  return url;
 }
 
 LiveOptions parse_live_options(const std::vector<std::string>& args) {

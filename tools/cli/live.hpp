@@ -11,6 +11,9 @@
 
 #include "cli/options.hpp"
 
+#include <streamclust/live/lidar_connection.hpp>
+#include <streamclust/live/livox_source.hpp>
+
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -26,27 +29,14 @@ namespace streamclust::cli {
 /// LiDAR answering discovery or a handshake, a socket error).
 inline constexpr int kNetworkError = 6;
 
-/// A network failure (exit code 6), naming the endpoint and the OS reason.
-class NetworkError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// A network failure (exit code 6), naming the endpoint and the OS reason:
+/// the library's LiDAR-connection error.
+using NetworkError = live::ConnectionError;
 
-enum class LivoxProtocol { sdk2, sdk1 };
-
-/// `livox-sdk2://[HOST_IP][:PORT]` or `livox-sdk1://[HOST_IP][:PORT]`.
-struct LivoxSourceUrl {
-  LivoxProtocol protocol = LivoxProtocol::sdk2;
-  std::uint32_t host_address = 0;  ///< the host interface to bind (0: every interface)
-  /// SDK2: the host's point port (IMU: port + 100, commands: port - 200);
-  /// SDK1: the host's broadcast-listen port (commands: port + 500, data and
-  /// IMU: port + 1000), as the Livox SDKs number them.
-  std::uint16_t port = 0;
-};
-
-/// The default host ports: SDK2 points 56301, SDK1 broadcast listen 55000.
-inline constexpr std::uint16_t kSdk2PointPort = 56301;
-inline constexpr std::uint16_t kSdk1BroadcastPort = 55000;
+using live::kSdk1BroadcastPort;
+using live::kSdk2PointPort;
+using live::LivoxProtocol;
+using live::LivoxSourceUrl;
 
 /// Parses a source URL; UsageError naming what was expected.
 LivoxSourceUrl parse_livox_url(const std::string& text);

@@ -1,0 +1,232 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// LiveSource: one Livox LiDAR's decoded returns as they arrive, for the
+/// module's `streamclust.live`. It connects as `streamclust live` does
+/// (SDK2: passive, or discovery and configure; SDK1: broadcast, handshake,
+/// sampling and heartbeats, <streamclust/live/sdk2_session.hpp>,
+/// <streamclust/live/sdk1_session.hpp>), runs the receiver thread
+/// (LivoxReceiver) and decodes, orders and clocks the packets
+/// (LivoxStream) on the caller's thread in `pull`. The stream ends after
+/// `duration`, after `idle_exit` without packets, or when the receiver
+/// fails; `close` (and destruction) stops the receiver and the LiDAR (SDK1:
+/// stop sampling).
+///
+/// Thread safety: one thread at a time (the binding serialises calls); the
+/// receiver thread only fills the queue. No Python here: callers release
+/// the GIL around every call.
+
+#include <streamclust/live/lidar_connection.hpp>
+#include <streamclust/live/livox_receiver.hpp>
+#include <streamclust/live/livox_source.hpp>
+#include <streamclust/live/livox_stream.hpp>
+#include <streamclust/live/sdk1_session.hpp>
+#include <streamclust/live/sdk2_session.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace streamclust::python {
+
+struct LiveSourceOptions {
+  live::LivoxSourceUrl source;
+  std::string source_text;                     ///< as given, for messages
+  bool configure = false;                      ///< SDK2: discovery, then point the LiDAR's streams at this host
+  std::vector<std::string> lidars;             ///< serial numbers or addresses (empty: the first heard)
+  std::optional<std::uint32_t> discovery_address;  ///< where SDK2 discovery requests go (default broadcast)
+  std::chrono::steady_clock::duration wait = std::chrono::seconds(10);  ///< for discovery, handshake, first packet
+  std::chrono::steady_clock::duration duration{};   ///< of wall time from the connection; zero: none
+  std::chrono::steady_clock::duration idle_exit{};  ///< without packets ends the stream; zero: never
+  std::size_t queue_packets = 4096;            ///< receiver-to-caller queue [packets]
+  std::size_t reorder_packets = 8;             ///< packets held to undo reordering
+};
+
+/// Why a live stream ended.
+enum class LiveSourceEnd { running, duration, idle, receiver_failed, closed };
+
+inline const char* describe(LiveSourceEnd e) {
+  switch (e) {
+    case LiveSourceEnd::running: return "running";
+    case LiveSourceEnd::duration: return "duration reached";
+    case LiveSourceEnd::idle: return "idle_exit: no packets";
+    case LiveSourceEnd::receiver_failed: return "the receiver failed";
+    case LiveSourceEnd::closed: return "closed";
+  }
+  return "unknown";
+}
+
+class LiveSource {
+ public:
+  /// Connects and starts receiving; live::ConnectionError when the LiDAR
+  /// does not answer within `o.wait` or a port cannot be bound.
+  explicit LiveSource(const LiveSourceOptions& o) : options_(o) {
+    std::vector<live::Endpoint> ports;
+    std::vector<std::uint32_t> devices;
+    if (o.source.protocol == live::LivoxProtocol::sdk2) {
+      std::uint32_t host = o.source.host_address;
+      const bool by_serial =
+          std::any_of(o.lidars.begin(), o.lidars.end(), [](const std::string& l) { return !live::parse_address(l); });
+      if (o.configure || by_serial) {
+        live::Sdk2DiscoveryOptions d;
+        d.host_address = o.source.host_address;
+        d.request_address = o.discovery_address.value_or(0xFFFFFFFFu);
+        d.lidars = o.lidars;
+        d.timeout = o.wait;
+        const live::FoundLidar lidar = live::discover_sdk2(d);
+        name_ = lidar.model + " " + lidar.serial;
+        devices.push_back(lidar.address);
+        if (o.configure) {
+          live::Sdk2ConfigureOptions c;
+          c.host_address = o.source.host_address;
+          c.point_port = o.source.port;
+          host = live::configure_sdk2(lidar, c);
+        }
+      } else {
+        for (const std::string& l : o.lidars) devices.push_back(*live::parse_address(l));
+      }
+      ports.push_back(live::Endpoint{host, o.source.port});
+      ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
+    } else {
+      live::Sdk1SessionOptions s;
+      s.host_address = o.source.host_address;
+      s.listen_port = o.source.port;
+      s.lidars = o.lidars;
+      s.timeout = o.wait;
+      sdk1_ = std::make_unique<live::Sdk1Session>(s);
+      name_ = sdk1_->lidar().model + " " + sdk1_->lidar().serial;
+      devices.push_back(sdk1_->lidar().address);
+      ports.push_back(sdk1_->data_endpoint());
+    }
+    if (devices.size() > 1) throw std::invalid_argument("lidar: one LiDAR per live source");
+    where_ = live::format_endpoint(ports.front());
+
+    live::ReceiverOptions ro;
+    ro.ports = ports;
+    ro.devices = devices;
+    ro.queue_packets = o.queue_packets;
+    if (sdk1_) ro.on_tick = [s = sdk1_.get()](std::chrono::steady_clock::time_point now) { s->heartbeat(now); };
+    try {
+      receiver_ = std::make_unique<live::LivoxReceiver>(ro);
+    } catch (const std::system_error& e) {
+      throw live::ConnectionError(std::string("live: ") + e.what());
+    }
+    if (sdk1_) sdk1_->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
+    receiver_->start();
+    stream_ = std::make_unique<live::LivoxStream>(
+        o.source.protocol == live::LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format(),
+        live::LivoxStream::Options{o.reorder_packets, 1'000'000'000});
+    start_ = last_datagram_ = std::chrono::steady_clock::now();
+  }
+
+  ~LiveSource() { close(); }
+  LiveSource(const LiveSource&) = delete;
+  LiveSource& operator=(const LiveSource&) = delete;
+
+  /// Appends the returns released until `deadline` to `out` (stream order,
+  /// host clock). Returns as soon as some came, when the deadline passes or
+  /// when the stream ends (what the reorder window held comes first).
+  /// Polls the queue every 200 us while it is empty.
+  void pull(std::vector<live::LivoxReturn>& out, std::chrono::steady_clock::time_point deadline) {
+    const std::size_t before = out.size();
+    for (;;) {
+      if (end_ != LiveSourceEnd::running) return;
+      auto now = std::chrono::steady_clock::now();
+      // The duration ends the stream even under load (the queue never
+      // empties when the caller is behind).
+      if (options_.duration.count() > 0 && now - start_ >= options_.duration) {
+        finish(LiveSourceEnd::duration, out);
+        return;
+      }
+      bool any = false;
+      for (int burst = 0; burst < 256; ++burst) {
+        live::Datagram* d = receiver_->queue(0).front();
+        if (d == nullptr) break;
+        stream_->consume(*d, out, imu_, arrivals_);
+        receiver_->queue(0).pop();
+        any = true;
+      }
+      imu_.clear();
+      arrivals_.clear();
+      now = std::chrono::steady_clock::now();
+      if (any) last_datagram_ = now;
+      if (out.size() > before) {
+        if (!first_) first_ = now;
+        return;
+      }
+      if (any) continue;
+      // Held packets are released after 20 ms without a datagram (the
+      // reorder window must not keep a pausing stream's last points).
+      if (now - last_datagram_ > std::chrono::milliseconds(20) && stream_->held() > 0) {
+        stream_->flush(out, arrivals_);
+        if (out.size() > before) return;
+      }
+      if (first_ && options_.idle_exit.count() > 0 && now - last_datagram_ >= options_.idle_exit) {
+        finish(LiveSourceEnd::idle, out);
+        return;
+      }
+      if (!receiver_->error().empty()) {
+        failure_ = receiver_->error();
+        finish(LiveSourceEnd::receiver_failed, out);
+        return;
+      }
+      if (now >= deadline) return;
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+
+  /// Stops the receiver and the LiDAR (SDK1: stop sampling, disconnect).
+  /// Idempotent; within one receiver poll period (20 ms).
+  void close() {
+    if (receiver_) receiver_->stop();
+    sdk1_.reset();
+    if (end_ == LiveSourceEnd::running) end_ = LiveSourceEnd::closed;
+  }
+
+  LiveSourceEnd end() const { return end_; }
+  /// The receiver's error when it failed (end() == receiver_failed).
+  const std::string& failure() const { return failure_; }
+  /// True once a first return came.
+  bool started() const { return first_.has_value(); }
+  /// Wall time since the connection.
+  std::chrono::steady_clock::duration elapsed() const { return std::chrono::steady_clock::now() - start_; }
+  /// "MODEL SERIAL" when the LiDAR was found by discovery or broadcast, else
+  /// "LiDAR at ADDRESS" once it sent (empty before).
+  std::string lidar_name() const {
+    if (!name_.empty()) return name_;
+    const std::uint32_t a = receiver_->device_address(0);
+    return a == 0 ? std::string() : "LiDAR at " + live::format_address(a);
+  }
+  /// Where the points arrive (HOST:PORT).
+  const std::string& endpoint() const { return where_; }
+  live::ReceiverStats receiver_stats() const { return receiver_->stats(); }
+  const live::LivoxStream& stream() const { return *stream_; }
+  const LiveSourceOptions& options() const { return options_; }
+
+ private:
+  void finish(LiveSourceEnd why, std::vector<live::LivoxReturn>& out) {
+    stream_->flush(out, arrivals_);
+    arrivals_.clear();
+    end_ = why;
+  }
+
+  LiveSourceOptions options_;
+  std::unique_ptr<live::Sdk1Session> sdk1_;
+  std::unique_ptr<live::LivoxReceiver> receiver_;
+  std::unique_ptr<live::LivoxStream> stream_;
+  std::string name_, where_, failure_;
+  std::chrono::steady_clock::time_point start_, last_datagram_;
+  std::optional<std::chrono::steady_clock::time_point> first_;
+  LiveSourceEnd end_ = LiveSourceEnd::running;
+  std::vector<live::LivoxImuSample> imu_;  // not used by the module: dropped each pull
+  std::vector<live::PacketArrival> arrivals_;
+};
+
+}  // namespace streamclust::python
