@@ -468,3 +468,36 @@ TEST_CASE("live: two LiDARs on one port, one engine each; every output per LiDAR
   CHECK(shared.code == 2);
   CHECK(shared.err.find("one per LiDAR") != std::string::npos);
 }
+
+TEST_CASE("live SDK1: two LiDARs, one handshake and engine each, share the data port; each equals cluster on its recording") {
+  TempDir dir("cli_live", "several_sdk1");
+  const std::string office = dir.path("office.csv"), forest = dir.path("forest.csv");
+  REQUIRE(run_cli({"simulate", "--sensor", "avia", "--seconds", "1.0", "--out", office, "-q"}).code == 0);
+  REQUIRE(run_cli({"simulate", "--sensor", "avia", "--scene", "forest", "--seconds", "1.0", "--out", forest, "-q"})
+              .code == 0);
+  const std::string url = "livox-sdk1://127.0.0.1:53500";
+  LiveThread live({url, "--lidar", "127.0.0.16", "--lidar", "127.0.0.17", "--idle-exit", "0.5", "--labels",
+                   dir.path("live.csv"), "--cycles", "all", "--record", dir.path("live.mcap"), "--report",
+                   dir.path("live.json"), "--preset", "carc-avia", "-q"},
+                  53500);
+  RunResult second;
+  std::thread other([&] { second = replay({forest, "--to", url, "--device-address", "127.0.0.17", "-q"}); });
+  const RunResult first = replay({office, "--to", url, "--device-address", "127.0.0.16", "-q"});
+  other.join();
+  const RunResult got = live.join();
+  REQUIRE_MESSAGE(first.code == 0, first.err);
+  REQUIRE_MESSAGE(second.code == 0, second.err);
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  for (const auto& lidar : {std::pair<std::string, std::string>{"127.0.0.16", office}, {"127.0.0.17", forest}}) {
+    const std::string id = lidar.first, input = lidar.second;
+    CAPTURE(id);
+    const auto report = read_json(dir.path("live-" + id + ".json"));
+    INFO("packets: ", report["live"]["packets"].dump());
+    CHECK(report["live"]["address"] == id);
+    CHECK(report["live"]["protocol"] == "livox-sdk1");
+    CHECK(report["live"]["packets"]["lost"] == 0);
+    check_same_points(input, dir.path("live-" + id + ".mcap"), 0.0009);
+    check_offline_equal(dir, dir.path("live-" + id + ".csv"), dir.path("live-" + id + ".mcap"),
+                        {"--preset", "carc-avia"});
+  }
+}

@@ -197,7 +197,7 @@ the LiDAR:
                                   this host (without it the LiDAR's stored destination is used)
   --lidar SERIAL|IP               the LiDAR to use (default: the first one heard; a serial number
                                   is found by discovery); others on the port are counted as
-                                  foreign and never mixed in. SDK2: repeat it for several LiDARs,
+                                  foreign and never mixed in. Repeat it for several LiDARs,
                                   one engine thread each; every output FILE.ext becomes
                                   FILE-ID.ext and live view topics /lidar_ID/... (ID: the value)
   With --ground (the objects presets) and no --mount or --poses, a LiDAR with an IMU gives the
@@ -278,6 +278,10 @@ std::string lidar_id(const std::string& lidar) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-') ch = '_';
   return id;
 }
+
+/// SDK1 LiDARs of one run: each commands from its own port above the
+/// listen port + 500, below the data port at + 1000.
+constexpr std::size_t kMaxSdk1Lidars = 16;
 
 /// A live run's report lists its last minute of cycles at 20 Hz (its
 /// totals count every cycle): memory stays fixed however long it runs.
@@ -447,8 +451,10 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
 
   // The connection: which LiDARs, and where their packets arrive. SDK2:
   // each --lidar given by address is heard passively; a serial number (or
-  // --configure) is found by discovery, one LiDAR at a time.
-  std::unique_ptr<Sdk1Session> sdk1;
+  // --configure) is found by discovery, one LiDAR at a time. SDK1: one
+  // handshake per LiDAR, each from its own command port, all streaming to
+  // the one data port.
+  std::vector<std::unique_ptr<Sdk1Session>> sdk1;
   std::vector<live::Endpoint> ports;
   std::vector<std::uint32_t> devices;
   std::vector<std::string> names;
@@ -475,12 +481,16 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     ports.push_back(live::Endpoint{host, o.source.port});
     ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
   } else {
-    if (o.lidars.size() > 1)
-      throw UsageError("--lidar: SDK1 takes one LiDAR per run (its handshake owns the broadcast port)");
-    sdk1 = std::make_unique<Sdk1Session>(o, wait, err);
-    names.push_back(sdk1->lidar().model + " " + sdk1->lidar().serial);
-    devices.push_back(sdk1->lidar().address);
-    ports.push_back(sdk1->data_endpoint());
+    if (o.lidars.size() > kMaxSdk1Lidars)
+      throw UsageError("--lidar: at most " + std::to_string(kMaxSdk1Lidars) + " SDK1 LiDARs per run");
+    const std::vector<std::string> chosen = o.lidars.empty() ? std::vector<std::string>{""} : o.lidars;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const std::vector<std::string> one = chosen[i].empty() ? std::vector<std::string>{} : std::vector<std::string>{chosen[i]};
+      sdk1.push_back(std::make_unique<Sdk1Session>(o, one, i, wait, err));
+      names.push_back(sdk1.back()->lidar().model + " " + sdk1.back()->lidar().serial);
+      devices.push_back(sdk1.back()->lidar().address);
+    }
+    ports.push_back(sdk1.front()->data_endpoint());
   }
 
   live::ReceiverOptions ro;
@@ -488,7 +498,11 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   if (!(devices.size() == 1 && devices[0] == 0)) ro.devices = devices;
   ro.queue_packets = o.queue_packets;
   ro.socket_buffer_bytes = o.socket_buffer_bytes;
-  if (sdk1) ro.on_tick = [s = sdk1.get()](std::chrono::steady_clock::time_point now) { s->heartbeat(now); };
+  if (!sdk1.empty()) {
+    ro.on_tick = [&sdk1](std::chrono::steady_clock::time_point now) {
+      for (auto& s : sdk1) s->heartbeat(now);
+    };
+  }
   std::unique_ptr<live::LivoxReceiver> receiver;
   try {
     receiver = std::make_unique<live::LivoxReceiver>(ro);
@@ -551,7 +565,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     if (!o.cluster.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
   }
 
-  if (sdk1) sdk1->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
+  for (auto& s : sdk1) s->start_sampling();  // the data port is bound: nothing the LiDARs send is lost
   receiver->start();
 
   // The engine threads. With several LiDARs each writes whole lines tagged

@@ -15,6 +15,8 @@
 
 #include <chrono>
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace streamclust::cli {
 
@@ -43,19 +45,24 @@ inline std::uint32_t configure_sdk2(const LiveOptions& o, const FoundLidar& lida
   return live::configure_sdk2(lidar, c);
 }
 
-/// The SDK1 connection of a live run.
+/// The SDK1 connection of a live run to the LiDAR chosen by `lidars` (any
+/// when empty); the run's `index`-th LiDAR commands from port PORT + 500 +
+/// index (the data port, PORT + 1000, is shared).
 class Sdk1Session : public live::Sdk1Session {
  public:
-  Sdk1Session(const LiveOptions& o, std::chrono::steady_clock::duration timeout, std::ostream& err)
-      : live::Sdk1Session(options(o, timeout, err)) {}
+  Sdk1Session(const LiveOptions& o, const std::vector<std::string>& lidars, std::size_t index,
+              std::chrono::steady_clock::duration timeout, std::ostream& err)
+      : live::Sdk1Session(options(o, lidars, index, timeout, err)) {}
 
  private:
-  static live::Sdk1SessionOptions options(const LiveOptions& o, std::chrono::steady_clock::duration timeout,
+  static live::Sdk1SessionOptions options(const LiveOptions& o, const std::vector<std::string>& lidars,
+                                          std::size_t index, std::chrono::steady_clock::duration timeout,
                                           std::ostream& err) {
     live::Sdk1SessionOptions s;
     s.host_address = o.source.host_address;
     s.listen_port = o.source.port;
-    s.lidars = o.lidars;
+    s.command_port = static_cast<std::uint16_t>(o.source.port + 500 + index);
+    s.lidars = lidars;
     s.timeout = timeout;
     s.notes = o.cluster.quiet ? nullptr : &err;
     return s;

@@ -49,6 +49,9 @@ struct Sdk1SessionOptions {
   /// The host's broadcast-listen port; commands leave from listen_port + 500,
   /// data and IMU arrive on listen_port + 1000.
   std::uint16_t listen_port = 55000;
+  /// The host's command port for this LiDAR (0: listen_port + 500); each
+  /// LiDAR of a host needs its own, while they share the data port.
+  std::uint16_t command_port = 0;
   std::vector<std::string> lidars;  ///< serial numbers or addresses to choose (empty: the first to broadcast)
   std::chrono::steady_clock::duration timeout = std::chrono::seconds(10);  ///< for the broadcast
   std::ostream* notes = nullptr;    ///< where the LiDAR streams (null: not said)
@@ -92,7 +95,7 @@ class Sdk1Session {
     host_ = o.host_address != 0 ? o.host_address : local_address_towards(lidar_.address);
     if (host_ == 0) throw ConnectionError("SDK1: no route to the LiDAR at " + format_address(lidar_.address));
     data_port_ = static_cast<std::uint16_t>(o.listen_port + 1000);
-    const Endpoint command_at{host_, static_cast<std::uint16_t>(o.listen_port + 500)};
+    const Endpoint command_at{host_, o.command_port != 0 ? o.command_port : static_cast<std::uint16_t>(o.listen_port + 500)};
     command_ = bind_or_fail(command_at, "SDK1: cannot bind the command port " + format_endpoint(command_at));
     to_ = Endpoint{lidar_.address, lidar_.command_port};
 
