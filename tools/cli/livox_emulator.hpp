@@ -151,6 +151,7 @@ class LivoxEmulator {
       ret.time_ns = device_time(r.t);
       if (!pending_.empty() && (packet_full(ret) || (sdk2_ && !fill_sdk2_gap(ret)))) {
         if (!emit()) return false;
+        if (!sdk2_ && !send_sdk1_empty_packets(ret)) return false;
       }
       if (pending_.empty()) pending_since_ = r.t - t0_;
       pending_.push_back(ret);
@@ -218,6 +219,28 @@ class LivoxEmulator {
     return true;
   }
 
+  // SDK1 packets follow each other every packet period, so a gap of whole
+  // periods before `next` (a recording left out rays without a return) is
+  // sent as packets of empty slots, as the device sends them. A gap above
+  // kLongestScanGap is a clock jump: nothing is filled. False: the host
+  // went away.
+  bool send_sdk1_empty_packets(const live::LivoxReturn& next) {
+    constexpr std::uint64_t kLongestScanGap = 50'000'000;  // [ns]
+    const io::LivoxDataType* type = io::find_sdk1_data_type(data_type_);
+    const std::uint64_t period = std::uint64_t{live::sdk1_nominal_firing_interval_ns(data_type_)} * type->structs_per_package;
+    if (next.time_ns < last_packet_ns_ || next.time_ns - last_packet_ns_ > kLongestScanGap) return true;
+    const double since = pending_since_;  // [s] of the packet just sent
+    const std::uint64_t sent_ns = last_packet_ns_;
+    while (next.time_ns >= last_packet_ns_ + period + period / 2) {
+      live::LivoxReturn empty;  // (0,0,0): no return
+      empty.time_ns = last_packet_ns_ + period;
+      pending_since_ = since + static_cast<double>(empty.time_ns - sent_ns) * 1e-9;
+      pending_.push_back(empty);
+      if (!emit()) return false;
+    }
+    return true;
+  }
+
   bool packet_full(const live::LivoxReturn& next) const {
     if (sdk2_) return pending_.size() >= 96 || next.time_ns < pending_.front().time_ns;
     const io::LivoxDataType* type = io::find_sdk1_data_type(data_type_);
@@ -231,6 +254,7 @@ class LivoxEmulator {
   bool emit() {
     std::vector<std::uint8_t> bytes;
     const std::uint64_t first = pending_.front().time_ns;
+    last_packet_ns_ = first;
     if (sdk2_) {
       live::Sdk2PacketFields f;
       f.udp_cnt = counter_++;
@@ -458,6 +482,7 @@ class LivoxEmulator {
   double t0_ = 0.0, pending_since_ = 0.0;  // [s]
   std::uint16_t counter_ = 0, imu_counter_ = 0, seq1_ = 1;
   std::uint64_t next_imu_ns_ = 0;
+  std::uint64_t last_packet_ns_ = 0;  // device time of the last packet sent [ns]
   std::vector<live::LivoxReturn> pending_;
   std::optional<std::vector<std::uint8_t>> held_;
   EmulatorCounters counters_;
