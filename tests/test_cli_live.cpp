@@ -501,3 +501,26 @@ TEST_CASE("live SDK1: two LiDARs, one handshake and engine each, share the data 
                         {"--preset", "carc-avia"});
   }
 }
+
+TEST_CASE("live: a LiDAR of the run that never sends fails the run (exit 6); the others stop with complete outputs") {
+  TempDir dir("cli_live", "one_silent");
+  const std::string office = simulated_office(dir, "3.0");
+  const std::string url = "livox-sdk2://127.0.0.1:47771";
+  LiveThread live({url, "--lidar", "127.0.0.18", "--lidar", "127.0.0.19", "--wait", "1", "--labels",
+                   dir.path("live.csv"), "--cycles", "all", "--record", dir.path("live.mcap"), "--report",
+                   dir.path("live.json"), "--preset", "carc-mid360", "-q"},
+                  47771);
+  const RunResult sent = replay({office, "--to", url, "--device-address", "127.0.0.18", "-q"});
+  const RunResult got = live.join();
+  CHECK_MESSAGE(sent.code == 0, sent.err);
+  CHECK(got.code == 6);
+  INFO("stderr: ", got.err);
+  CHECK(got.err.find("no SDK2 point packet from LiDAR at 127.0.0.19") != std::string::npos);
+  const auto report = read_json(dir.path("live-127.0.0.18.json"));
+  CHECK(report["live"]["end"] == "stopped: another LiDAR of the run failed");
+  CHECK(report["live"]["packets"]["returns"] > 0);
+  // What the stopped LiDAR's run wrote is whole: its recording replays to
+  // the labels it wrote.
+  check_offline_equal(dir, dir.path("live-127.0.0.18.csv"), dir.path("live-127.0.0.18.mcap"),
+                      {"--preset", "carc-mid360"});
+}

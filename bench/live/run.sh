@@ -14,7 +14,8 @@
 #             loses a packet or falls behind: the highest sustained multiple;
 #   soak      (SOAK_SECONDS > 0) the Mid-360 objects preset at 1x for that
 #             long: resident memory every second, drops.
-# Results: build/bench-live/results.json and a table on stdout.
+# Results: each run's live report (OUT/NAME.json) and resident memory
+# (OUT/NAME.rss, kB each second), and the table on stdout and in OUT/table.txt.
 #
 # Knobs: SECONDS_PER_RUN (default 20), SPEEDS (default "1 2 3 4 5 6 8"),
 #        SOAK_SECONDS (default 0), OUT (default build/bench-live).
@@ -29,6 +30,8 @@ mkdir -p "$OUT"
 [[ -x "$TOOL" ]] || { echo "bench/live/run.sh: no tool at $TOOL (build it, or pass its path)" >&2; exit 2; }
 
 PORT=47901
+: > "$OUT/table.txt"
+say() { echo "$*" | tee -a "$OUT/table.txt"; }
 # run_one NAME SENSOR PRESET SPEED SECONDS: one live run against one replay;
 # writes $OUT/NAME.json (the live report) and $OUT/NAME.rss (kB per second).
 run_one() {
@@ -61,7 +64,7 @@ print(f'{l["latency"]["median_ms"]:.1f} {l["latency"]["p99_ms"]:.1f} {d["totals"
 PY
 }
 
-echo "sensor preset speed | latency median/P99 ms | cycle median/P99 ms | dropped+lost | returns | RSS first/max/last kB"
+say "sensor preset speed | latency median/P99 ms | cycle median/P99 ms | dropped+lost | returns | RSS first/max/last kB"
 for sensor in mid360 avia; do
   for family in carc objects; do
     preset="$family-$sensor"
@@ -69,7 +72,7 @@ for sensor in mid360 avia; do
       name="$preset-x$speed"
       run_one "$name" "$sensor" "$preset" "$speed" "$SECONDS_PER_RUN"
       read -r lat_med lat_p99 cyc_med cyc_p99 dropped returns rss0 rssmax rsslast < <(summary "$name")
-      echo "$sensor $preset ${speed}x | $lat_med / $lat_p99 | $cyc_med / $cyc_p99 | $dropped | $returns | $rss0 / $rssmax / $rsslast"
+      say "$sensor $preset ${speed}x | $lat_med / $lat_p99 | $cyc_med / $cyc_p99 | $dropped | $returns | $rss0 / $rssmax / $rsslast"
       [[ $dropped -gt 0 ]] && break  # the highest sustained multiple is the last speed without drops
     done
   done
@@ -77,5 +80,5 @@ done
 if [[ $SOAK_SECONDS -gt 0 ]]; then
   run_one soak mid360 objects-mid360 1 "$SOAK_SECONDS"
   read -r lat_med lat_p99 cyc_med cyc_p99 dropped returns rss0 rssmax rsslast < <(summary soak)
-  echo "soak mid360 objects-mid360 1x ${SOAK_SECONDS}s | $lat_med / $lat_p99 | $cyc_med / $cyc_p99 | $dropped | $returns | $rss0 / $rssmax / $rsslast"
+  say "soak mid360 objects-mid360 1x ${SOAK_SECONDS}s | $lat_med / $lat_p99 | $cyc_med / $cyc_p99 | $dropped | $returns | $rss0 / $rssmax / $rsslast"
 fi

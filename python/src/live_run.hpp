@@ -23,6 +23,7 @@
 #include "retrieval_arrays.hpp"
 #include "scheduled_run.hpp"
 
+#include <streamclust/live/live_counters.hpp>
 #include <streamclust/live/livox_returns.hpp>
 
 #include <pybind11/numpy.h>
@@ -126,11 +127,11 @@ class LiveRun {
         step();
       }
       if (!source_->started() && !done_ && source_->elapsed() > source_->options().wait) {
-        const live::ReceiverStats rs = source_->receiver_stats();
+        const live::LiveCounters counters = source_->counters();
         const bool sdk2 = source_->options().source.protocol == live::LivoxProtocol::sdk2;
         throw LiveTimeout("live: no " + std::string(sdk2 ? "SDK2" : "SDK1") + " point packet on UDP " +
                           source_->endpoint() + " within " + seconds_text(source_->options().wait) + " s (" +
-                          std::to_string(rs.foreign) + " datagrams from other addresses" +
+                          std::to_string(counters.foreign) + " datagrams from other addresses" +
                           (sdk2 && !source_->options().configure ? "; is the LiDAR's destination this host? try configure=True" : "") +
                           ")");
       }
@@ -287,22 +288,11 @@ class LiveRun {
 
   // GIL held.
   py::dict counters_dict() const {
-    const live::ReceiverStats rs = source_->receiver_stats();
     const live::LivoxStreamCounters& sc = source_->stream().counters();
-    const live::OrderCounters& oc = source_->stream().order();
     py::dict d;
     d["lidar"] = source_->lidar_name();
-    d["points"] = sc.returns;
-    d["point_packets"] = sc.point_packets;
-    d["imu_packets"] = sc.imu_packets;
-    d["lost"] = oc.lost;
-    d["late"] = oc.late;
-    d["duplicates"] = oc.duplicates;
-    d["malformed"] = sc.malformed_total();
-    d["datagrams"] = rs.datagrams;
-    d["foreign"] = rs.foreign;
-    d["queue_drops"] = rs.queue_drops;
-    d["kernel_drops"] = rs.kernel_drops_known ? py::object(py::int_(rs.kernel_drops)) : py::object(py::none());
+    live::for_each_counter(source_->counters(), [&d](const char* name, std::uint64_t value) { d[name] = value; });
+    if (!d.contains("kernel_drops")) d["kernel_drops"] = py::none();  // the OS does not say
     d["clock_epochs"] = sc.epochs;
     d["time_sync"] = live::describe(source_->stream().clock().sync());
     d["end"] = describe(source_->end());

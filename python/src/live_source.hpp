@@ -4,10 +4,9 @@
 /// \file
 /// LiveSource: one Livox LiDAR's decoded returns as they arrive, for the
 /// module's `streamclust.live`. It connects as `streamclust live` does
-/// (SDK2: passive, or discovery and configure; SDK1: broadcast, handshake,
-/// sampling and heartbeats, <streamclust/live/sdk2_session.hpp>,
-/// <streamclust/live/sdk1_session.hpp>), runs the receiver thread
-/// (LivoxReceiver) and decodes, orders and clocks the packets
+/// (<streamclust/live/livox_connection.hpp>: SDK2 passive, or discovery and
+/// configure; SDK1 broadcast, handshake, sampling and heartbeats), runs the
+/// receiver thread and decodes, orders and clocks the packets
 /// (LivoxStream) on the caller's thread in `pull`. The stream ends after
 /// `duration`, after `idle_exit` without packets, or when the receiver
 /// fails; `close` (and destruction) stops the receiver and the LiDAR (SDK1:
@@ -17,12 +16,9 @@
 /// receiver thread only fills the queue. No Python here: callers release
 /// the GIL around every call.
 
-#include <streamclust/live/lidar_connection.hpp>
-#include <streamclust/live/livox_receiver.hpp>
-#include <streamclust/live/livox_source.hpp>
+#include <streamclust/live/live_counters.hpp>
+#include <streamclust/live/livox_connection.hpp>
 #include <streamclust/live/livox_stream.hpp>
-#include <streamclust/live/sdk1_session.hpp>
-#include <streamclust/live/sdk2_session.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -30,7 +26,7 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <system_error>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -68,58 +64,16 @@ class LiveSource {
   /// Connects and starts receiving; live::ConnectionError when the LiDAR
   /// does not answer within `o.wait` or a port cannot be bound.
   explicit LiveSource(const LiveSourceOptions& o) : options_(o) {
-    std::vector<live::Endpoint> ports;
-    std::vector<std::uint32_t> devices;
-    if (o.source.protocol == live::LivoxProtocol::sdk2) {
-      std::uint32_t host = o.source.host_address;
-      const bool by_serial =
-          std::any_of(o.lidars.begin(), o.lidars.end(), [](const std::string& l) { return !live::parse_address(l); });
-      if (o.configure || by_serial) {
-        live::Sdk2DiscoveryOptions d;
-        d.host_address = o.source.host_address;
-        d.request_address = o.discovery_address.value_or(0xFFFFFFFFu);
-        d.lidars = o.lidars;
-        d.timeout = o.wait;
-        const live::FoundLidar lidar = live::discover_sdk2(d);
-        name_ = lidar.model + " " + lidar.serial;
-        devices.push_back(lidar.address);
-        if (o.configure) {
-          live::Sdk2ConfigureOptions c;
-          c.host_address = o.source.host_address;
-          c.point_port = o.source.port;
-          host = live::configure_sdk2(lidar, c);
-        }
-      } else {
-        for (const std::string& l : o.lidars) devices.push_back(*live::parse_address(l));
-      }
-      ports.push_back(live::Endpoint{host, o.source.port});
-      ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
-    } else {
-      live::Sdk1SessionOptions s;
-      s.host_address = o.source.host_address;
-      s.listen_port = o.source.port;
-      s.lidars = o.lidars;
-      s.timeout = o.wait;
-      sdk1_ = std::make_unique<live::Sdk1Session>(s);
-      name_ = sdk1_->lidar().model + " " + sdk1_->lidar().serial;
-      devices.push_back(sdk1_->lidar().address);
-      ports.push_back(sdk1_->data_endpoint());
-    }
-    if (devices.size() > 1) throw std::invalid_argument("lidar: one LiDAR per live source");
-    where_ = live::format_endpoint(ports.front());
-
-    live::ReceiverOptions ro;
-    ro.ports = ports;
-    ro.devices = devices;
-    ro.queue_packets = o.queue_packets;
-    if (sdk1_) ro.on_tick = [s = sdk1_.get()](std::chrono::steady_clock::time_point now) { s->heartbeat(now); };
-    try {
-      receiver_ = std::make_unique<live::LivoxReceiver>(ro);
-    } catch (const std::system_error& e) {
-      throw live::ConnectionError(std::string("live: ") + e.what());
-    }
-    if (sdk1_) sdk1_->start_sampling();  // the data port is bound: nothing the LiDAR sends is lost
-    receiver_->start();
+    if (o.lidars.size() > 1) throw std::invalid_argument("lidar: one LiDAR per live source");
+    live::LivoxConnectionOptions co;
+    co.source = o.source;
+    co.lidars = o.lidars;
+    co.configure = o.configure;
+    co.discovery_address = o.discovery_address;
+    co.wait = o.wait;
+    co.queue_packets = o.queue_packets;
+    connection_ = std::make_unique<live::LivoxConnection>(co);
+    connection_->start();
     stream_ = std::make_unique<live::LivoxStream>(
         o.source.protocol == live::LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format(),
         live::LivoxStream::Options{o.reorder_packets, 1'000'000'000});
@@ -147,10 +101,10 @@ class LiveSource {
       }
       bool any = false;
       for (int burst = 0; burst < 256; ++burst) {
-        live::Datagram* d = receiver_->queue(0).front();
+        live::Datagram* d = connection_->receiver().queue(0).front();
         if (d == nullptr) break;
         stream_->consume(*d, out, imu_, arrivals_);
-        receiver_->queue(0).pop();
+        connection_->receiver().queue(0).pop();
         any = true;
       }
       imu_.clear();
@@ -172,8 +126,8 @@ class LiveSource {
         finish(LiveSourceEnd::idle, out);
         return;
       }
-      if (!receiver_->error().empty()) {
-        failure_ = receiver_->error();
+      if (!connection_->receiver().error().empty()) {
+        failure_ = connection_->receiver().error();
         finish(LiveSourceEnd::receiver_failed, out);
         return;
       }
@@ -185,8 +139,7 @@ class LiveSource {
   /// Stops the receiver and the LiDAR (SDK1: stop sampling, disconnect).
   /// Idempotent; within one receiver poll period (20 ms).
   void close() {
-    if (receiver_) receiver_->stop();
-    sdk1_.reset();
+    if (connection_) connection_->stop();
     if (end_ == LiveSourceEnd::running) end_ = LiveSourceEnd::closed;
   }
 
@@ -199,14 +152,11 @@ class LiveSource {
   std::chrono::steady_clock::duration elapsed() const { return std::chrono::steady_clock::now() - start_; }
   /// "MODEL SERIAL" when the LiDAR was found by discovery or broadcast, else
   /// "LiDAR at ADDRESS" once it sent (empty before).
-  std::string lidar_name() const {
-    if (!name_.empty()) return name_;
-    const std::uint32_t a = receiver_->device_address(0);
-    return a == 0 ? std::string() : "LiDAR at " + live::format_address(a);
-  }
+  std::string lidar_name() const { return connection_->lidar_name(0); }
   /// Where the points arrive (HOST:PORT).
-  const std::string& endpoint() const { return where_; }
-  live::ReceiverStats receiver_stats() const { return receiver_->stats(); }
+  const std::string& endpoint() const { return connection_->endpoint(); }
+  /// The packet counters now (docs/python.md, "Live sources").
+  live::LiveCounters counters() const { return live::live_counters(connection_->receiver(), 0, *stream_); }
   const live::LivoxStream& stream() const { return *stream_; }
   const LiveSourceOptions& options() const { return options_; }
 
@@ -218,10 +168,9 @@ class LiveSource {
   }
 
   LiveSourceOptions options_;
-  std::unique_ptr<live::Sdk1Session> sdk1_;
-  std::unique_ptr<live::LivoxReceiver> receiver_;
+  std::unique_ptr<live::LivoxConnection> connection_;
   std::unique_ptr<live::LivoxStream> stream_;
-  std::string name_, where_, failure_;
+  std::string failure_;
   std::chrono::steady_clock::time_point start_, last_datagram_;
   std::optional<std::chrono::steady_clock::time_point> first_;
   LiveSourceEnd end_ = LiveSourceEnd::running;

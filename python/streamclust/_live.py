@@ -99,12 +99,13 @@ class LiveStream:
 
     @property
     def counters(self):
-        """The connection's counters now: lidar ("MODEL SERIAL" or "LiDAR at
-        ADDRESS"), points, point_packets, imu_packets, lost, late, duplicates,
-        malformed, datagrams, foreign (from other addresses), queue_drops
-        (the consumer fell behind), kernel_drops (None where the OS does not
-        say), clock_epochs, time_sync, end ("running", "duration reached",
-        "idle_exit: no packets", "closed")."""
+        """The connection's counters now, named as in the CLI's report:
+        lidar ("MODEL SERIAL" or "LiDAR at ADDRESS"), datagrams, bytes,
+        point_packets, imu_packets, returns, empty_slots, lost, late,
+        duplicates, counter_jumps, malformed, foreign (from other addresses),
+        oversize, queue_drops (the consumer fell behind), kernel_drops (None
+        where the OS does not say), clock_epochs, time_sync, end ("running",
+        "duration reached", "idle_exit: no packets", "closed")."""
         if self._run is None:
             raise ValueError("counters: the live stream is closed")
         return self._run.counters()

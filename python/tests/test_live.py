@@ -94,7 +94,7 @@ def test_sdk2_passive_points_and_labels_equal_offline(tool, tmp_path):
     assert counters["lost"] == 0 and counters["queue_drops"] == 0 and counters["malformed"] == 0
     assert counters["end"] == "idle_exit: no packets"
     assert counters["lidar"] == "LiDAR at 127.0.0.31"
-    assert counters["points"] == sum(len(r.new_t) for r in retrievals)
+    assert counters["returns"] == sum(len(r.new_t) for r in retrievals)
     check_points_and_offline_labels(retrievals, csv, 0.0009, **PRESET)
 
 
@@ -125,7 +125,7 @@ def test_sdk2_configure_finds_the_lidar_by_serial_objects_preset_equals_offline(
     counters = retrievals[-1].counters
     assert counters["lidar"].endswith(" EMUPYTHON")
     assert counters["point_packets"] > 1000 and counters["lost"] == 0
-    assert sum(len(r.new_t) for r in retrievals) == counters["points"]
+    assert sum(len(r.new_t) for r in retrievals) == counters["returns"]
     assert np.any(np.concatenate([r.labels for r in retrievals]) == streamclust.GROUND)
     check_offline_labels(retrievals, **options)
 

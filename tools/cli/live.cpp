@@ -9,11 +9,12 @@
 #include "cli/json.hpp"
 #include "cli/line_stream.hpp"
 #include "cli/live_feed.hpp"
-#include "cli/live_sessions.hpp"
 #include "cli/live_status.hpp"
 #include "cli/run_setup.hpp"
 #include "live/foxglove_server.hpp"
 
+#include <streamclust/live/live_counters.hpp>
+#include <streamclust/live/livox_connection.hpp>
 #include <streamclust/live/sdk1_packets.hpp>
 #include <streamclust/live/sdk2_packets.hpp>
 #include <streamclust/motion/imu_gravity.hpp>
@@ -279,10 +280,6 @@ std::string lidar_id(const std::string& lidar) {
   return id;
 }
 
-/// SDK1 LiDARs of one run: each commands from its own port above the
-/// listen port + 500, below the data port at + 1000.
-constexpr std::size_t kMaxSdk1Lidars = 16;
-
 /// A live run's report lists its last minute of cycles at 20 Hz (its
 /// totals count every cycle): memory stays fixed however long it runs.
 constexpr std::size_t kReportCyclesKept = 1200;
@@ -388,7 +385,6 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
   c.report_extra = [&](Json& doc) {
     const live::ReceiverStats rs = run.receiver.stats();
     const live::LivoxStreamCounters& sc = p.stream.counters();
-    const live::OrderCounters& oc = p.stream.order();
     Json l;
     l["source"] = o.source_text;
     l["protocol"] = o.source.protocol == LivoxProtocol::sdk2 ? "livox-sdk2" : "livox-sdk1";
@@ -401,21 +397,8 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
     l["end"] = feed.end() == LiveEnd::stop_requested && !g_stop_requested.load() ? "stopped: another LiDAR of the run failed"
                                                                                  : describe(feed.end());
     Json counts;
-    counts["datagrams"] = run.receiver.datagrams(p.device);
-    counts["bytes"] = run.receiver.bytes(p.device);
-    counts["point_packets"] = sc.point_packets;
-    counts["imu_packets"] = sc.imu_packets;
-    counts["returns"] = sc.returns;
-    counts["empty_slots"] = sc.empty_slots;
-    counts["lost"] = oc.lost;
-    counts["late"] = oc.late;
-    counts["duplicates"] = oc.duplicates;
-    counts["counter_jumps"] = oc.counter_jumps;
-    counts["malformed"] = sc.malformed_total();
-    counts["foreign"] = rs.foreign;
-    counts["oversize"] = rs.oversize;
-    counts["queue_drops"] = run.receiver.queue_drops(p.device);
-    if (rs.kernel_drops_known) counts["kernel_drops"] = rs.kernel_drops;
+    live::for_each_counter(live::live_counters(run.receiver, p.device, p.stream),
+                           [&counts](const char* name, std::uint64_t value) { counts[name] = value; });
     l["packets"] = counts;
     l["socket_buffer_bytes"] = rs.socket_buffer_bytes;
     Json latency;
@@ -449,76 +432,33 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   StopSignals signals;
   const auto wait = seconds(o.first_packet_timeout);
 
-  // The connection: which LiDARs, and where their packets arrive. SDK2:
-  // each --lidar given by address is heard passively; a serial number (or
-  // --configure) is found by discovery, one LiDAR at a time. SDK1: one
-  // handshake per LiDAR, each from its own command port, all streaming to
-  // the one data port.
-  std::vector<std::unique_ptr<Sdk1Session>> sdk1;
-  std::vector<live::Endpoint> ports;
-  std::vector<std::uint32_t> devices;
-  std::vector<std::string> names;
-  if (o.source.protocol == LivoxProtocol::sdk2) {
-    std::uint32_t host = o.source.host_address;
-    const std::vector<std::string> chosen = o.lidars.empty() ? std::vector<std::string>{""} : o.lidars;
-    for (const std::string& l : chosen) {
-      const auto address = live::parse_address(l);
-      if (address && !o.configure) {
-        devices.push_back(*address);
-        names.emplace_back();
-      } else if (!l.empty() || o.configure) {
-        LiveOptions one = o;
-        one.lidars = l.empty() ? std::vector<std::string>{} : std::vector<std::string>{l};
-        const FoundLidar lidar = discover_sdk2(one, wait, err);
-        devices.push_back(lidar.address);
-        names.push_back(lidar.model + " " + lidar.serial);
-        if (o.configure) host = configure_sdk2(one, lidar, err);
-      } else {
-        devices.push_back(0);  // the first LiDAR heard
-        names.emplace_back();
-      }
-    }
-    ports.push_back(live::Endpoint{host, o.source.port});
-    ports.push_back(live::Endpoint{host, static_cast<std::uint16_t>(o.source.port + 100)});
-  } else {
-    if (o.lidars.size() > kMaxSdk1Lidars)
-      throw UsageError("--lidar: at most " + std::to_string(kMaxSdk1Lidars) + " SDK1 LiDARs per run");
-    const std::vector<std::string> chosen = o.lidars.empty() ? std::vector<std::string>{""} : o.lidars;
-    for (std::size_t i = 0; i < chosen.size(); ++i) {
-      const std::vector<std::string> one = chosen[i].empty() ? std::vector<std::string>{} : std::vector<std::string>{chosen[i]};
-      sdk1.push_back(std::make_unique<Sdk1Session>(o, one, i, wait, err));
-      names.push_back(sdk1.back()->lidar().model + " " + sdk1.back()->lidar().serial);
-      devices.push_back(sdk1.back()->lidar().address);
-    }
-    ports.push_back(sdk1.front()->data_endpoint());
-  }
-
-  live::ReceiverOptions ro;
-  ro.ports = ports;
-  if (!(devices.size() == 1 && devices[0] == 0)) ro.devices = devices;
-  ro.queue_packets = o.queue_packets;
-  ro.socket_buffer_bytes = o.socket_buffer_bytes;
-  if (!sdk1.empty()) {
-    ro.on_tick = [&sdk1](std::chrono::steady_clock::time_point now) {
-      for (auto& s : sdk1) s->heartbeat(now);
-    };
-  }
-  std::unique_ptr<live::LivoxReceiver> receiver;
-  try {
-    receiver = std::make_unique<live::LivoxReceiver>(ro);
-  } catch (const std::system_error& e) {
-    throw NetworkError(std::string("live: ") + e.what());
-  }
+  // The connection: each chosen LiDAR found, configured or shaken hands
+  // with, one receiver queue each.
+  if (o.source.protocol == LivoxProtocol::sdk1 && o.lidars.size() > live::kMaxSdk1Lidars)
+    throw UsageError("--lidar: at most " + std::to_string(live::kMaxSdk1Lidars) + " SDK1 LiDARs per run");
+  live::LivoxConnectionOptions co;
+  co.source = o.source;
+  co.lidars = o.lidars;
+  co.configure = o.configure;
+  co.discovery_address = o.discovery_address;
+  co.data_type = o.data_type;
+  co.work_mode_sampling = o.work_mode_sampling;
+  co.wait = wait;
+  co.queue_packets = o.queue_packets;
+  co.socket_buffer_bytes = o.socket_buffer_bytes;
+  co.notes = o.cluster.quiet ? nullptr : &err;
+  live::LivoxConnection connection(co);
+  live::LivoxReceiver& receiver = connection.receiver();
 
   // One pipeline per LiDAR; with several, every output name and live view
   // topic carries the LiDAR's id.
-  const bool several = devices.size() > 1;
+  const bool several = connection.lidars() > 1;
   const live::LivoxPacketFormat format = packet_format(o.source.protocol);
   std::vector<std::unique_ptr<LidarPipeline>> pipelines;
-  for (std::size_t i = 0; i < devices.size(); ++i) {
+  for (std::size_t i = 0; i < connection.lidars(); ++i) {
     auto p = std::make_unique<LidarPipeline>(i, format, o);
     p->id = several ? lidar_id(o.lidars[i]) : std::string();
-    p->name = names[i];
+    p->name = connection.lidar_name(i);
     p->cluster = o.cluster;
     ClusterOptions& c = p->cluster;
     c.report_cycles_kept = kReportCyclesKept;
@@ -565,13 +505,12 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     if (!o.cluster.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
   }
 
-  for (auto& s : sdk1) s->start_sampling();  // the data port is bound: nothing the LiDARs send is lost
-  receiver->start();
+  connection.start();
 
   // The engine threads. With several LiDARs each writes whole lines tagged
   // with its id; the main thread keeps the status lines and the stop.
   std::atomic<bool> stop_all{false};
-  const SharedRun shared{o, *receiver, view.get(), stop_all};
+  const SharedRun shared{o, receiver, view.get(), stop_all};
   std::mutex terminal_mutex;
   std::vector<std::thread> engines;
   for (auto& p : pipelines) {
@@ -593,13 +532,13 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   const bool terminal = ::isatty(2) == 1;
   const auto status_every = terminal ? std::chrono::milliseconds(500) : std::chrono::milliseconds(10000);
   auto status_line = [&](LidarPipeline& p) {
-    const live::ReceiverStats rs = receiver->stats();
-    const std::size_t depth = receiver->queue(p.device).size();
+    const live::ReceiverStats rs = receiver.stats();
+    const std::size_t depth = receiver.queue(p.device).size();
     const std::lock_guard<std::mutex> lock(p.status_mutex);
     const double elapsed = p.feed ? std::chrono::duration<double>(p.feed->elapsed()).count() : 0.0;
     return (p.id.empty() ? std::string() : "[" + p.id + "] ") +
            p.status.line(elapsed, p.stream.counters().returns, p.stream.order().lost,
-                         receiver->queue_drops(p.device) + rs.kernel_drops, depth, o.queue_packets);
+                         receiver.queue_drops(p.device) + rs.kernel_drops, depth, o.queue_packets);
   };
   auto last_status = std::chrono::steady_clock::now();
   for (;;) {
@@ -620,7 +559,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
   for (std::thread& t : engines) t.join();
-  receiver->stop();
+  connection.stop();
 
   // Every recording is closed (complete) before a failure is reported.
   std::exception_ptr failure;

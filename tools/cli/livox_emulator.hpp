@@ -24,7 +24,7 @@
 /// Not thread-safe; one emulator per thread.
 
 #include "cli/live.hpp"
-#include "cli/live_sessions.hpp"
+#include <streamclust/live/lidar_connection.hpp>
 
 #include <streamclust/io/record.hpp>
 #include <streamclust/live/sdk1_control.hpp>
@@ -82,13 +82,13 @@ class LivoxEmulator {
     data_type_ = o.data_type.value_or(sdk2_ ? 1 : 2);
     if (sdk2_) {
       const auto& p = live::sdk2_mid360_ports;
-      points_ = bind_or_fail({o.device_address, p.lidar_points}, "emulator: cannot bind the point port");
-      imu_ = bind_or_fail({o.device_address, p.lidar_imu}, "emulator: cannot bind the IMU port");
+      points_ = live::bind_or_fail({o.device_address, p.lidar_points}, "emulator: cannot bind the point port");
+      imu_ = live::bind_or_fail({o.device_address, p.lidar_imu}, "emulator: cannot bind the IMU port");
       points_to_ = {target_address(), o.target.port};
       imu_to_ = {target_address(), static_cast<std::uint16_t>(o.target.port + 100)};
     } else {
-      command_ = bind_or_fail({o.device_address, live::sdk1_lidar_command_port}, "emulator: cannot bind the command port");
-      points_ = bind_or_fail({o.device_address, 0}, "emulator: cannot bind the data port");
+      command_ = live::bind_or_fail({o.device_address, live::sdk1_lidar_command_port}, "emulator: cannot bind the command port");
+      points_ = live::bind_or_fail({o.device_address, 0}, "emulator: cannot bind the data port");
       imu_ = nullptr;
     }
   }
@@ -100,8 +100,8 @@ class LivoxEmulator {
     if (sdk2_) {
       if (!o_.wait_for_configure) return;
       const auto& p = live::sdk2_mid360_ports;
-      auto discovery = bind_or_fail({o_.device_address, p.discovery}, "emulator: cannot bind the discovery port");
-      command_ = bind_or_fail({o_.device_address, p.lidar_command}, "emulator: cannot bind the command port");
+      auto discovery = live::bind_or_fail({o_.device_address, p.discovery}, "emulator: cannot bind the discovery port");
+      command_ = live::bind_or_fail({o_.device_address, p.lidar_command}, "emulator: cannot bind the command port");
       while (!configured_) {
         if (std::chrono::steady_clock::now() >= until)
           throw NetworkError("emulator: no host configured the SDK2 device within the timeout");

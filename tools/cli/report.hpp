@@ -53,19 +53,6 @@ struct CycleReport {
 class CycleLog {
  public:
   CycleLog() = default;
-  CycleLog(const CycleLog& other)
-      : kept_(other.kept_), limit_(other.limit_), count_(other.count_), inserted_(other.inserted_),
-        evicted_(other.evicted_),
-        histogram_(other.histogram_ ? std::make_unique<LatencyHistogram>(*other.histogram_) : nullptr) {}
-  CycleLog& operator=(CycleLog other) {
-    std::swap(kept_, other.kept_);
-    limit_ = other.limit_;
-    count_ = other.count_;
-    inserted_ = other.inserted_;
-    evicted_ = other.evicted_;
-    std::swap(histogram_, other.histogram_);
-    return *this;
-  }
 
   /// Keeps only the last `n` cycles from now on (0: every cycle).
   void keep_last(std::size_t n) {
