@@ -11,7 +11,8 @@
 #         SECONDS per target (default 60); default targets: all of them;
 #         --phase: only that step (default: configure, build, run).
 # Environment:
-#   JOBS=2               parallel build jobs (the targets run one after another)
+#   JOBS=2               parallel build jobs
+#   RUN_JOBS=JOBS        targets fuzzed at once (each is one thread)
 #   BUILD_DIR=build/fuzz where the targets, corpora and artifacts go
 #   CXX_FUZZ=clang++-14  the compiler (clang with libFuzzer)
 #   KEEP_CORPUS=1        keep each target's working corpus from earlier runs
@@ -102,23 +103,22 @@ fi
 T_BUILD=$((SECONDS - T_ALL))
 wants run || exit 0
 
-declare -a SUMMARY=() FAILED=()
-for t in "${TARGETS[@]}"; do
-  exe="$BUILD_DIR/fuzz/$t"
-  corpus="$BUILD_DIR/corpus/$t"
-  artifacts="$BUILD_DIR/artifacts/$t"
-  log="$BUILD_DIR/logs/$t.log"
+# One target's run; its summary line goes to logs/<target>.summary.
+run_target() {
+  local t=$1
+  local exe="$BUILD_DIR/fuzz/$t" corpus="$BUILD_DIR/corpus/$t" artifacts="$BUILD_DIR/artifacts/$t"
+  local log="$BUILD_DIR/logs/$t.log"
   [[ -z "${KEEP_CORPUS:-}" ]] && rm -rf "$corpus"
-  mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+  mkdir -p "$corpus" "$artifacts"
   cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null || true
   rm -f "$artifacts"/crash-* "$artifacts"/leak-* "$artifacts"/timeout-* "$artifacts"/oom-*
-  args=(-max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048
-        -max_len="$(max_len_of "$t")" -print_final_stats=1 -artifact_prefix="$artifacts/")
+  local -a args=(-max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048
+                 -max_len="$(max_len_of "$t")" -print_final_stats=1 -artifact_prefix="$artifacts/")
+  local dict
   dict=$(dict_of "$t")
   [[ -n "$dict" ]] && args+=(-dict="$dict")
-  echo
   echo "=== $t: ${SECONDS_PER_TARGET}s, corpus $corpus ==="
-  rc=0
+  local rc=0 execs final cov ft units result found
   "$exe" "${args[@]}" "$corpus" >"$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   final=$(grep -E '^#[0-9]+.*(DONE|cov:)' "$log" | tail -1 || true)
@@ -130,12 +130,26 @@ for t in "${TARGETS[@]}"; do
   else
     found=$(find "$artifacts" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | head -3 | tr '\n' ' ')
     result="FAILED (exit $rc): ${found:-no artifact, see $log}"
-    FAILED+=("$t")
     grep -E 'ERROR|fuzz: |SUMMARY|runtime error|Test unit written' "$log" | head -8 >&2 || true
   fi
-  SUMMARY+=("$(printf '%-17s %4ds  execs %9s  cov %6s  ft %7s  corpus %5s  %s' \
-    "$t" "$SECONDS_PER_TARGET" "${execs:-?}" "${cov:-?}" "${ft:-?}" "$units" "$result")")
-  echo "${SUMMARY[-1]}"
+  printf '%-17s %4ds  execs %9s  cov %6s  ft %7s  corpus %5s  %s\n' \
+    "$t" "$SECONDS_PER_TARGET" "${execs:-?}" "${cov:-?}" "${ft:-?}" "$units" "$result" >"$BUILD_DIR/logs/$t.summary"
+}
+
+# The targets run RUN_JOBS at a time (each fuzzer is one thread).
+RUN_JOBS=${RUN_JOBS:-$JOBS}
+mkdir -p "$BUILD_DIR/logs"
+for t in "${TARGETS[@]}"; do
+  rm -f "$BUILD_DIR/logs/$t.summary"
+  while [[ $(jobs -rp | wc -l) -ge $RUN_JOBS ]]; do wait -n || true; done
+  run_target "$t" &
+done
+wait
+declare -a SUMMARY=() FAILED=()
+for t in "${TARGETS[@]}"; do
+  line=$(cat "$BUILD_DIR/logs/$t.summary" 2>/dev/null || printf '%-17s no summary: the run was interrupted' "$t")
+  SUMMARY+=("$line")
+  [[ "$line" == *" ok" ]] || FAILED+=("$t")
 done
 
 echo
