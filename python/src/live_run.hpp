@@ -58,8 +58,9 @@ inline LiveSourceOptions live_source_options(const std::string& source, const st
                                              double wait, double duration, double idle_exit, std::size_t queue,
                                              std::size_t reorder) {
   LiveSourceOptions o;
+  live::LivoxConnectionOptions& c = o.connection;
   try {
-    o.source = live::parse_livox_source_url(source);
+    c.source = live::parse_livox_source_url(source);
   } catch (const std::invalid_argument& e) {
     throw py::value_error(e.what());
   }
@@ -67,13 +68,13 @@ inline LiveSourceOptions live_source_options(const std::string& source, const st
   for (const std::string& l : lidars) {
     if (l.empty()) throw py::value_error("lidar: expected a serial number or an IPv4 address");
   }
-  o.lidars = lidars;
-  o.configure = configure;
-  if (o.source.protocol == live::LivoxProtocol::sdk1 && configure)
+  c.lidars = lidars;
+  c.configure = configure;
+  if (c.source.protocol == live::LivoxProtocol::sdk1 && configure)
     throw py::value_error("configure: an SDK2 option (SDK1 always handshakes)");
   if (discovery_address) {
-    o.discovery_address = live::parse_address(*discovery_address);
-    if (!o.discovery_address)
+    c.discovery_address = live::parse_address(*discovery_address);
+    if (!c.discovery_address)
       throw py::value_error("discovery_address: expected a dotted IPv4 address (e.g. 192.168.1.50), got '" +
                             *discovery_address + "'");
   }
@@ -83,12 +84,12 @@ inline LiveSourceOptions live_source_options(const std::string& source, const st
                             std::to_string(s));
     return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
   };
-  o.wait = positive("wait", wait, false);
+  c.wait = positive("wait", wait, false);
   o.duration = positive("duration", duration, true);
   o.idle_exit = positive("idle_exit", idle_exit, true);
   if (queue < 2 || queue > (1u << 20)) throw py::value_error("queue: expected 2 to 1048576 packets, got " + std::to_string(queue));
   if (reorder > 1024) throw py::value_error("reorder: expected 0 to 1024 packets, got " + std::to_string(reorder));
-  o.queue_packets = queue;
+  c.queue_packets = queue;
   o.reorder_packets = reorder;
   return o;
 }
@@ -126,13 +127,13 @@ class LiveRun {
         py::gil_scoped_release release;
         step();
       }
-      if (!source_->started() && !done_ && source_->elapsed() > source_->options().wait) {
+      if (!source_->started() && !done_ && source_->elapsed() > source_->options().connection.wait) {
         const live::LiveCounters counters = source_->counters();
-        const bool sdk2 = source_->options().source.protocol == live::LivoxProtocol::sdk2;
+        const bool sdk2 = source_->options().connection.source.protocol == live::LivoxProtocol::sdk2;
         throw LiveTimeout("live: no " + std::string(sdk2 ? "SDK2" : "SDK1") + " point packet on UDP " +
-                          source_->endpoint() + " within " + seconds_text(source_->options().wait) + " s (" +
+                          source_->endpoint() + " within " + seconds_text(source_->options().connection.wait) + " s (" +
                           std::to_string(counters.foreign) + " datagrams from other addresses" +
-                          (sdk2 && !source_->options().configure ? "; is the LiDAR's destination this host? try configure=True" : "") +
+                          (sdk2 && !source_->options().connection.configure ? "; is the LiDAR's destination this host? try configure=True" : "") +
                           ")");
       }
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();

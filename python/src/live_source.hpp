@@ -33,16 +33,13 @@
 namespace streamclust::python {
 
 struct LiveSourceOptions {
-  live::LivoxSourceUrl source;
-  std::string source_text;                     ///< as given, for messages
-  bool configure = false;                      ///< SDK2: discovery, then point the LiDAR's streams at this host
-  std::vector<std::string> lidars;             ///< serial numbers or addresses (empty: the first heard)
-  std::optional<std::uint32_t> discovery_address;  ///< where SDK2 discovery requests go (default broadcast)
-  std::chrono::steady_clock::duration wait = std::chrono::seconds(10);  ///< for discovery, handshake, first packet
+  /// The source, the LiDAR (one at most), configure, discovery, the wait
+  /// for each connection step and for the first packet, the queue.
+  live::LivoxConnectionOptions connection;
+  std::string source_text;                          ///< as given, for messages
   std::chrono::steady_clock::duration duration{};   ///< of wall time from the connection; zero: none
   std::chrono::steady_clock::duration idle_exit{};  ///< without packets ends the stream; zero: never
-  std::size_t queue_packets = 4096;            ///< receiver-to-caller queue [packets]
-  std::size_t reorder_packets = 8;             ///< packets held to undo reordering
+  std::size_t reorder_packets = 8;                  ///< packets held to undo reordering
 };
 
 /// Why a live stream ended.
@@ -62,20 +59,13 @@ inline const char* describe(LiveSourceEnd e) {
 class LiveSource {
  public:
   /// Connects and starts receiving; live::ConnectionError when the LiDAR
-  /// does not answer within `o.wait` or a port cannot be bound.
+  /// does not answer within `o.connection.wait` or a port cannot be bound.
   explicit LiveSource(const LiveSourceOptions& o) : options_(o) {
-    if (o.lidars.size() > 1) throw std::invalid_argument("lidar: one LiDAR per live source");
-    live::LivoxConnectionOptions co;
-    co.source = o.source;
-    co.lidars = o.lidars;
-    co.configure = o.configure;
-    co.discovery_address = o.discovery_address;
-    co.wait = o.wait;
-    co.queue_packets = o.queue_packets;
-    connection_ = std::make_unique<live::LivoxConnection>(co);
+    if (o.connection.lidars.size() > 1) throw std::invalid_argument("lidar: one LiDAR per live source");
+    connection_ = std::make_unique<live::LivoxConnection>(o.connection);
     connection_->start();
     stream_ = std::make_unique<live::LivoxStream>(
-        o.source.protocol == live::LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format(),
+        o.connection.source.protocol == live::LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format(),
         live::LivoxStream::Options{o.reorder_packets, 1'000'000'000});
     start_ = last_datagram_ = std::chrono::steady_clock::now();
   }

@@ -239,9 +239,9 @@ Exit codes: 0 ok, 2 usage error, 4 input error, 5 out of memory, 6 network error
 namespace {
 
 /// One LiDAR of a run: its stream, feed, outputs, status and engine
-/// thread. Thread-safety: the engine thread owns everything but `status`
-/// (read by the main thread for the status line, under `status_mutex`) and
-/// `done`.
+/// thread. Thread-safety: the engine thread owns everything but `status`,
+/// `started`, `returns` and `lost` (its figures for the status line, read
+/// by the main thread under `status_mutex`) and `done`.
 struct LidarPipeline {
   LidarPipeline(std::size_t device_index, const live::LivoxPacketFormat& format, const LiveOptions& o)
       : device(device_index), stream(format, live::LivoxStream::Options{o.reorder_packets, 1'000'000'000}) {}
@@ -257,6 +257,8 @@ struct LidarPipeline {
   std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;  ///< live view channels
   std::mutex status_mutex;
   LiveStatus status;
+  std::optional<std::chrono::steady_clock::time_point> started;  ///< when the feed began waiting
+  std::uint64_t returns = 0, lost = 0;  ///< the stream's counters at the last cycle
   int code = kOk;
   std::exception_ptr failure;
   std::atomic<bool> done{false};
@@ -302,6 +304,10 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
   limits.idle_exit = seconds(o.idle_exit);
   p.feed = std::make_unique<LiveFeed>(run.receiver, p.device, p.stream, limits, run.stop_all, p.recorder.get());
   LiveFeed& feed = *p.feed;
+  {
+    const std::lock_guard<std::mutex> lock(p.status_mutex);
+    p.started = std::chrono::steady_clock::now();
+  }
   if (!feed.wait_for_first(seconds(o.first_packet_timeout))) {
     if (run.stop_all.load()) return kOk;
     const double waited = o.duration > 0.0 ? std::min(o.duration, o.first_packet_timeout) : o.first_packet_timeout;
@@ -375,6 +381,8 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
     const double cycle_s = static_cast<double>(c.read.time_origin->seconds) + cycle.time;
     const auto cycle_ns = static_cast<std::int64_t>(std::llround(cycle_s * 1e9));
     const std::lock_guard<std::mutex> lock(p.status_mutex);
+    p.returns = p.stream.counters().returns;
+    p.lost = p.stream.order().lost;
     // Latency counts in steady state: not the first cycle (its packets
     // waited for the first window's calibration) nor the last after the
     // stream ended (they waited for the end to be noticed).
@@ -535,10 +543,10 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     const live::ReceiverStats rs = receiver.stats();
     const std::size_t depth = receiver.queue(p.device).size();
     const std::lock_guard<std::mutex> lock(p.status_mutex);
-    const double elapsed = p.feed ? std::chrono::duration<double>(p.feed->elapsed()).count() : 0.0;
+    const double elapsed = p.started ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *p.started).count() : 0.0;
     return (p.id.empty() ? std::string() : "[" + p.id + "] ") +
-           p.status.line(elapsed, p.stream.counters().returns, p.stream.order().lost,
-                         receiver.queue_drops(p.device) + rs.kernel_drops, depth, o.queue_packets);
+           p.status.line(elapsed, p.returns, p.lost, receiver.queue_drops(p.device) + rs.kernel_drops, depth,
+                         o.queue_packets);
   };
   auto last_status = std::chrono::steady_clock::now();
   for (;;) {
@@ -578,8 +586,11 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
   if (failure) std::rethrow_exception(failure);
   if (o.status) {
     if (terminal && !several) err << "\r\033[K";
-    for (auto& p : pipelines)
+    for (auto& p : pipelines) {
+      p->returns = p->stream.counters().returns;  // the engine threads have ended
+      p->lost = p->stream.order().lost;
       err << "streamclust: live: " << (p->feed ? describe(p->feed->end()) : "not started") << "; " << status_line(*p) << "\n";
+    }
   }
   return code;
 }
