@@ -146,7 +146,8 @@ function(streamclust_add_tool target)
 
   add_library(${ARG_LIBRARY} STATIC
     "${_src}/cli/cluster.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
-    "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/replay.cpp" ${_units})
+    "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/main.cpp" "${_src}/cli/replay.cpp"
+    ${_units})
   target_include_directories(${ARG_LIBRARY} PUBLIC "${_src}")
   if(_STREAMCLUST_OWN_POLICIES)  # without policies of its own, the tool's default: registry::StockRegistry
     target_compile_definitions(${ARG_LIBRARY} PUBLIC "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")

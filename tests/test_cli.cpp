@@ -6,6 +6,7 @@
 
 #include "cli/engine_config.hpp"
 #include "cli/main.hpp"
+#include "cli/options.hpp"
 #include "cli/replay.hpp"
 
 #include <streamclust/batch_clusterer.hpp>

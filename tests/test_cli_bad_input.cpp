@@ -7,6 +7,7 @@
 
 #include "cli/main.hpp"
 #include "cli/memory_context.hpp"
+#include "cli/options.hpp"
 
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"

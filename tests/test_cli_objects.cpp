@@ -10,6 +10,8 @@
 #include <doctest/doctest.h>
 
 #include "cli/main.hpp"
+#include "cli/options.hpp"
+#include "cli/run_setup.hpp"
 
 #include <streamclust/io/reader.hpp>
 #include <streamclust/objects_presets.hpp>

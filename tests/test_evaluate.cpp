@@ -10,6 +10,7 @@
 #include "cli/main.hpp"
 
 #include <streamclust/eval/average.hpp>
+#include <streamclust/eval/labelled_subset.hpp>
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/sim/scenes.hpp>
 #include <streamclust/sim/sensors/risley_pair_model.hpp>
