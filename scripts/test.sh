@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The full test run (this is .ci/run and the README's test command):
-#   gcc    Release, g++, C++17       -> build/gcc    all tests, examples, benchmark smoke runs,
+#   gcc    Release, g++, C++17       -> build/gcc    all tests (their own files at -O1:
+#                                                   STREAMCLUST_TEST_O1), examples, benchmark smoke runs,
 #                                                   and the Python module with its pytest suite
 #                                                   (CTest python_pytest)
 #   clang  Debug (-O1, asserts on), clang++-14, C++20, ASan+UBSan
