@@ -144,10 +144,20 @@ function(streamclust_add_tool target)
     set_target_properties(streamclust_foxglove PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON)
   endif()
 
+  # The ROS 2 node and `replay --to ros2://` when the package has its ros2
+  # component (the library was built with Cyclone DDS).
+  set(_ros2_sources)
+  if(TARGET streamclust::ros2)
+    set(_ros2_sources "${_src}/cli/ros2_node.cpp" "${_src}/cli/replay_ros2.cpp")
+  endif()
   add_library(${ARG_LIBRARY} STATIC
     "${_src}/cli/cluster.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
     "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/main.cpp" "${_src}/cli/replay.cpp"
-    ${_units})
+    ${_ros2_sources} ${_units})
+  if(TARGET streamclust::ros2)
+    target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::ros2)
+    target_compile_definitions(${ARG_LIBRARY} PUBLIC STREAMCLUST_TOOL_ROS2=1)
+  endif()
   target_include_directories(${ARG_LIBRARY} PUBLIC "${_src}")
   if(_STREAMCLUST_OWN_POLICIES)  # without policies of its own, the tool's default: registry::StockRegistry
     target_compile_definitions(${ARG_LIBRARY} PUBLIC "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")

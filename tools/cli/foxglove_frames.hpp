@@ -16,7 +16,7 @@
 /// Frame id `streamclust`. Not thread-safe; reuses its buffers (no allocation
 /// in steady state once they have grown).
 
-#include "cli/structure_labels.hpp"
+#include "cli/cluster_boxes.hpp"
 
 #include <streamclust/io/foxglove_messages.hpp>
 #include <streamclust/io/stream_time.hpp>
@@ -28,7 +28,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -51,11 +50,10 @@ class FoxgloveFrames {
   void build(const std::vector<io::Record>& points, const std::vector<std::int64_t>& labels, std::uint64_t log_ns) {
     const io::foxglove::Stamp stamp = stamp_of(log_ns);
     data_.assign(points.size() * kStride, 0);
-    std::map<std::int64_t, Extent> extents;
     for (std::size_t i = 0; i < points.size(); ++i) {
       const io::Record& p = points[i];
       const std::int64_t label = i < labels.size() ? labels[i] : -1;
-      const auto c = color_of(label);
+      const auto c = label_display_color(label);
       const std::int32_t label32 =
           static_cast<std::int32_t>(std::clamp<std::int64_t>(label, std::numeric_limits<std::int32_t>::min(),
                                                              std::numeric_limits<std::int32_t>::max()));
@@ -68,7 +66,6 @@ class FoxgloveFrames {
       d[17] = c[1];
       d[18] = c[2];
       d[19] = 255;
-      if (label >= 0 && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) extents[label].add(p);
     }
     static const std::vector<io::foxglove::PackedField> fields = {
         {"x", 0, io::foxglove::FieldType::float32},    {"y", 4, io::foxglove::FieldType::float32},
@@ -77,17 +74,16 @@ class FoxgloveFrames {
         {"blue", 18, io::foxglove::FieldType::uint8},  {"alpha", 19, io::foxglove::FieldType::uint8}};
     io::foxglove::write_point_cloud(cloud_, stamp, kFrame, kStride, fields, data_);
 
+    cluster_boxes(points, labels, extents_);
     boxes_.clear();
-    for (const auto& [label, e] : extents) {
+    for (const ClusterBox& e : extents_) {
       io::foxglove::Box b;
-      b.id = std::to_string(label);
-      for (int k = 0; k < 3; ++k) {
-        b.center[k] = 0.5 * (static_cast<double>(e.lo[k]) + static_cast<double>(e.hi[k]));
-        b.size[k] = std::max(0.05, static_cast<double>(e.hi[k]) - static_cast<double>(e.lo[k]));  // [m]
-      }
-      const auto c = color_of(label);
+      b.id = std::to_string(e.label);
+      b.center = e.center;
+      b.size = e.size;
+      const auto c = label_display_color(e.label);
       b.color = io::foxglove::Color{c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, 0.35};
-      b.metadata = {{"points", std::to_string(e.n)}};
+      b.metadata = {{"points", std::to_string(e.points)}};
       boxes_.push_back(std::move(b));
     }
     io::foxglove::write_scene_update(scene_, stamp, kFrame, boxes_);
@@ -129,36 +125,14 @@ class FoxgloveFrames {
   static constexpr std::uint32_t kRawStride = 16;  // [bytes] x y z intensity
   static constexpr const char* kFrame = "streamclust";
 
-  struct Extent {
-    std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                            std::numeric_limits<float>::max()};
-    std::array<float, 3> hi{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
-                            -std::numeric_limits<float>::max()};
-    std::size_t n = 0;
-    void add(const io::Record& p) {
-      const float v[3] = {p.x, p.y, p.z};
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], v[k]);
-        hi[k] = std::max(hi[k], v[k]);
-      }
-      ++n;
-    }
-  };
-
   static io::foxglove::Stamp stamp_of(std::uint64_t log_ns) {
     return {static_cast<std::int32_t>(log_ns / 1000000000u), static_cast<std::uint32_t>(log_ns % 1000000000u)};
-  }
-
-  /// Colour of a label: the writers' label colour; ground and ceiling apart.
-  static std::array<std::uint8_t, 3> color_of(std::int64_t label) {
-    if (label == kGroundLabel) return {140, 105, 70};
-    if (label == kCeilingLabel) return {170, 190, 215};
-    return io::label_color(label);
   }
 
   io::CdrWriter cloud_, scene_, raw_;
   std::vector<std::uint8_t> data_;
   std::vector<io::foxglove::Box> boxes_;
+  std::vector<ClusterBox> extents_;
 };
 
 }  // namespace streamclust::cli

@@ -9,7 +9,9 @@
 #include "cli/json.hpp"
 #include "cli/line_stream.hpp"
 #include "cli/live_feed.hpp"
+#include "cli/live_setup.hpp"
 #include "cli/live_status.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/run_setup.hpp"
 #include "live/foxglove_server.hpp"
 
@@ -24,7 +26,6 @@
 #include <chrono>
 #include <cctype>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -41,33 +42,6 @@
 namespace streamclust::cli {
 
 namespace {
-
-std::atomic<bool> g_stop_requested{false};
-
-extern "C" void request_stop(int) { g_stop_requested.store(true); }
-
-/// SIGINT and SIGTERM end the stream cleanly while installed (the previous
-/// handlers come back after the run).
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop_requested.store(false);
-    struct sigaction a {};
-    a.sa_handler = request_stop;
-    sigemptyset(&a.sa_mask);
-    ::sigaction(SIGINT, &a, &old_int_);
-    ::sigaction(SIGTERM, &a, &old_term_);
-  }
-  ~StopSignals() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-
- private:
-  struct sigaction old_int_ {}, old_term_ {};
-};
 
 live::LivoxPacketFormat packet_format(LivoxProtocol protocol) {
   return protocol == LivoxProtocol::sdk2 ? live::sdk2_packet_format() : live::sdk1_packet_format();
@@ -180,6 +154,45 @@ LiveOptions parse_live_options(const std::vector<std::string>& args) {
   return o;
 }
 
+std::optional<ImuGravity> prepare_live_cluster(ClusterOptions& c, LiveFeed& feed, const std::string& name,
+                                               const LiveInputFields& fields, LiveTap* tap, const std::string& tag,
+                                               std::ostream& err) {
+  c.read.time_origin = io::TimeOrigin{static_cast<std::int64_t>(feed.first_time_ns() / 1'000'000'000u)};
+  c.open_input = [&feed, &c, tap, name, fields] {
+    auto reader = std::make_unique<LiveReader>(feed, name, *c.read.time_origin, fields.fields, fields.time_field);
+    if (tap != nullptr && tap->on) reader->tap(&tap->records);
+    return std::unique_ptr<io::PointReader>(std::move(reader));
+  };
+  std::optional<ImuGravity> gravity;
+  if (c.mode == Mode::continuous) {
+    std::vector<Eigen::Vector3f> first_window;
+    if (c.ground) first_window = first_window_points(c);
+    std::vector<std::array<float, 3>> accelerations;
+    for (const live::LivoxImuSample& s : feed.take_imu()) accelerations.push_back(s.acceleration);
+    if (c.ground && !c.mount_deg && c.poses_path.empty()) {
+      gravity = gravity_from_accelerometer(accelerations);
+      if (gravity) {
+        c.mount_deg = std::array<double, 3>{gravity->roll_deg, gravity->pitch_deg, 0.0};
+        if (!c.quiet) {
+          char line[200];
+          std::snprintf(line, sizeof line, ": gravity from the IMU (%zu samples): roll %.1f deg, pitch %.1f deg\n",
+                        gravity->samples, printable_deg(gravity->roll_deg), printable_deg(gravity->pitch_deg));
+          err << tag << line;
+        }
+      }
+    }
+    try {
+      c.setup = std::make_shared<const RunSetup>(make_run_setup(c, !c.report_path.empty(), err,
+                                                                c.ground ? &first_window : nullptr));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
+  feed.keep_history(false);
+  if (tap != nullptr) tap->on = true;
+  return gravity;
+}
+
 std::string live_help() {
   return R"(usage: streamclust live SOURCE [options]
 
@@ -253,6 +266,7 @@ struct LidarPipeline {
   std::string record_path;
   live::LivoxStream stream;
   std::unique_ptr<LiveRecorder> recorder;
+  std::unique_ptr<LivoxInput> input;
   std::unique_ptr<LiveFeed> feed;
   std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;  ///< live view channels
   std::mutex status_mutex;
@@ -302,7 +316,8 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
   LiveFeed::Limits limits;
   limits.duration = seconds(o.duration);
   limits.idle_exit = seconds(o.idle_exit);
-  p.feed = std::make_unique<LiveFeed>(run.receiver, p.device, p.stream, limits, run.stop_all, p.recorder.get());
+  p.input = std::make_unique<LivoxInput>(run.receiver, p.device, p.stream, p.recorder.get());
+  p.feed = std::make_unique<LiveFeed>(*p.input, limits, run.stop_all);
   LiveFeed& feed = *p.feed;
   {
     const std::lock_guard<std::mutex> lock(p.status_mutex);
@@ -322,46 +337,11 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
   }
   if (p.name.empty()) p.name = "LiDAR at " + live::format_address(run.receiver.device_address(p.device));
 
-  // The run's time base, and its setup from the first window (the IMU's
-  // gravity for the mount when the LiDAR has one and no mount is given).
   ClusterOptions& c = p.cluster;
-  c.read.time_origin = io::TimeOrigin{static_cast<std::int64_t>(feed.first_time_ns() / 1'000'000'000u)};
-  // The live view's raw points: what the driver's reader hands out between cycles.
-  std::vector<io::Record> raw_since_cycle;
-  bool tap_raw = false;  // set once the driver reads, with a live view
-  c.open_input = [&feed, &c, &raw_since_cycle, &tap_raw, name = o.source_text] {
-    auto reader = std::make_unique<LiveReader>(feed, name, *c.read.time_origin);
-    if (tap_raw) reader->tap(&raw_since_cycle);
-    return std::unique_ptr<io::PointReader>(std::move(reader));
-  };
-  std::optional<ImuGravity> gravity;
-  if (c.mode == Mode::continuous) {
-    std::vector<Eigen::Vector3f> first_window;
-    if (c.ground) first_window = first_window_points(c);
-    std::vector<std::array<float, 3>> accelerations;
-    for (const live::LivoxImuSample& s : feed.take_imu()) accelerations.push_back(s.acceleration);
-    if (c.ground && !c.mount_deg && c.poses_path.empty()) {
-      gravity = gravity_from_accelerometer(accelerations);
-      if (gravity) {
-        c.mount_deg = std::array<double, 3>{gravity->roll_deg, gravity->pitch_deg, 0.0};
-        if (!c.quiet) {
-          char line[200];
-          std::snprintf(line, sizeof line, "streamclust: live: gravity from the IMU (%zu samples): roll %.1f deg, "
-                        "pitch %.1f deg\n", gravity->samples, printable_deg(gravity->roll_deg),
-                        printable_deg(gravity->pitch_deg));
-          err << line;
-        }
-      }
-    }
-    try {
-      c.setup = std::make_shared<const RunSetup>(make_run_setup(c, !c.report_path.empty(), err,
-                                                                c.ground ? &first_window : nullptr));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
-  }
-  feed.keep_history(false);
-  tap_raw = run.view != nullptr;
+  LiveTap raw_since_cycle;  // the live view's raw points
+  const std::optional<ImuGravity> gravity =
+      prepare_live_cluster(c, feed, o.source_text, LiveInputFields{}, run.view ? &raw_since_cycle : nullptr,
+                           "streamclust: live", err);
   if (run.view) c.cycle_windows = true;
 
   // The cycles: the live view and the latency.
@@ -371,12 +351,12 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
     if (run.view) {  // never waits for a client: a slow one loses frames (live/foxglove_server.hpp)
       const std::uint64_t log_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
       frames.build(points, labels, log_ns);
-      frames.build_raw(raw_since_cycle, log_ns);
+      frames.build_raw(raw_since_cycle.records, log_ns);
       run.view->publish(p.view_points, log_ns, frames.point_cloud().data(), frames.point_cloud().size());
       run.view->publish(p.view_clusters, log_ns, frames.scene_update().data(), frames.scene_update().size());
       run.view->publish(p.view_raw, log_ns, frames.raw_cloud().data(), frames.raw_cloud().size());
     }
-    raw_since_cycle.clear();
+    raw_since_cycle.records.clear();
     const auto now = std::chrono::steady_clock::now();
     const double cycle_s = static_cast<double>(c.read.time_origin->seconds) + cycle.time;
     const auto cycle_ns = static_cast<std::int64_t>(std::llround(cycle_s * 1e9));
@@ -402,7 +382,7 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
     l["data_type"] = sc.data_type;
     l["clock_epochs"] = sc.epochs;
     l["clock_offset_ns"] = p.stream.clock().offset_ns();
-    l["end"] = feed.end() == LiveEnd::stop_requested && !g_stop_requested.load() ? "stopped: another LiDAR of the run failed"
+    l["end"] = feed.end() == LiveEnd::stop_requested && !stop_requested() ? "stopped: another LiDAR of the run failed"
                                                                                  : describe(feed.end());
     Json counts;
     live::for_each_counter(live::live_counters(run.receiver, p.device, p.stream),
@@ -553,7 +533,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     const bool all_done = std::all_of(pipelines.begin(), pipelines.end(), [](const auto& p) { return p->done.load(); });
     if (all_done) break;
     const bool failed = std::any_of(pipelines.begin(), pipelines.end(), [](const auto& p) { return p->failure != nullptr && p->done.load(); });
-    if (g_stop_requested.load() || failed) stop_all.store(true);
+    if (stop_requested() || failed) stop_all.store(true);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     const auto now = std::chrono::steady_clock::now();
     if (o.status && now - last_status >= status_every) {

@@ -17,6 +17,8 @@
 /// Memory: one message's points (about 20,000 at 200 kHz) and the MCAP
 /// writer's chunk (1 MiB) and message index. Not thread-safe.
 
+#include "cli/custom_msg.hpp"
+
 #include <streamclust/io/cdr_writer.hpp>
 #include <streamclust/io/mcap_writer.hpp>
 #include <streamclust/io/ros/known_definitions.hpp>
@@ -72,7 +74,7 @@ class LiveRecorder {
     mcap_.close();
   }
 
- private:
+  /// sensor_msgs/msg/Imu's definition (ros2msg).
   static std::string imu_definition() {
     const std::string rule = "================================================================================\n";
     return "std_msgs/Header header\n"
@@ -87,6 +89,7 @@ class LiveRecorder {
            "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n";
   }
 
+ private:
   void put_header(std::uint64_t time_ns) {
     cdr_.i32(static_cast<std::int32_t>(time_ns / 1'000'000'000u));
     cdr_.u32(static_cast<std::uint32_t>(time_ns % 1'000'000'000u));
@@ -100,24 +103,8 @@ class LiveRecorder {
 
   void flush_points() {
     if (pending_.empty()) return;
-    const std::uint64_t base = pending_.front().time_ns;
-    cdr_.clear();
-    put_header(base);
-    cdr_.u64(base);                                          // timebase
-    cdr_.u32(static_cast<std::uint32_t>(pending_.size()));  // point_num
-    cdr_.u8(0);                                              // lidar_id
-    for (int i = 0; i < 3; ++i) cdr_.u8(0);                  // rsvd
-    cdr_.count(pending_.size());
-    for (const live::LivoxReturn& r : pending_) {
-      cdr_.u32(static_cast<std::uint32_t>(r.time_ns - base));
-      cdr_.f32(r.x);
-      cdr_.f32(r.y);
-      cdr_.f32(r.z);
-      cdr_.u8(r.reflectivity);
-      cdr_.u8(r.tag);
-      cdr_.u8(0);  // line: no laser lines on a Risley-prism sensor
-    }
-    mcap_.write(points_, base, cdr_.bytes().data(), cdr_.bytes().size());
+    write_custom_msg(cdr_, "livox_frame", pending_, 0, pending_.size());
+    mcap_.write(points_, pending_.front().time_ns, cdr_.bytes().data(), cdr_.bytes().size());
     pending_.clear();
   }
 

@@ -10,6 +10,9 @@
 #include "cli/info.hpp"
 #include "cli/live.hpp"
 #include "cli/replay.hpp"
+#ifdef STREAMCLUST_TOOL_ROS2
+#include "cli/ros2_node.hpp"
+#endif
 #include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
@@ -30,7 +33,10 @@ usage: streamclust <command> [options]
 commands:
   cluster INPUT   cluster a recorded stream as the sensor delivered it
   live SOURCE     cluster a Livox LiDAR's stream live from the network (livox-sdk2://, livox-sdk1://)
-  replay INPUT --to URL   emulate a Livox LiDAR: send INPUT (or --simulate) as its packets
+  ros2            a ROS 2 node over DDS: points from a topic in, labelled clouds, boxes and
+                  detections out (built with Cyclone DDS)
+  replay INPUT --to URL   emulate a Livox LiDAR: send INPUT (or --simulate) as its packets,
+                  or as a ROS 2 driver's messages (--to ros2:///livox/lidar)
   info INPUT      format, fields, point count, time span and bounds of an input
   simulate        write a simulated stream with its ground truth
   evaluate        simulate a scenario, cluster it (C-ARC and/or the frame baseline)
@@ -40,7 +46,7 @@ commands:
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error,
-5 out of memory, 6 network error (live).
+5 out of memory, 6 network error (live, ros2, replay).
 )";
 }
 
@@ -288,6 +294,18 @@ int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostre
       }
       return run_live(parse_live_options(rest), out, err);
     }
+    if (command == "ros2") {
+#ifdef STREAMCLUST_TOOL_ROS2
+      if (help) {
+        out << ros2_help();
+        return kOk;
+      }
+      return run_ros2(parse_ros2_options(rest), out, err);
+#else
+      throw UsageError("ros2: this streamclust was built without ROS 2 support (it needs Cyclone DDS: "
+                       "apt-get install cyclonedds-dev, then build again)");
+#endif
+    }
     if (command == "replay") {
       if (help) {
         out << replay_help();
@@ -326,7 +344,7 @@ int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostre
       }
       return run_evaluate(parse_evaluate_options(rest), out);
     }
-    throw UsageError("unknown command '" + command + "' (expected cluster, live, replay, info, simulate or evaluate)");
+    throw UsageError("unknown command '" + command + "' (expected cluster, live, ros2, replay, info, simulate or evaluate)");
   } catch (...) {
     return report_exception(command, err);
   }

@@ -11,6 +11,13 @@
 
 namespace streamclust::cli {
 
+#ifndef STREAMCLUST_TOOL_ROS2
+int run_replay_ros2(const ReplayOptions&, std::ostream&, std::ostream&) {
+  throw UsageError("--to ros2://: this streamclust was built without ROS 2 support (it needs Cyclone DDS: "
+                   "apt-get install cyclonedds-dev, then build again)");
+}
+#endif
+
 namespace {
 
 double parse_probability(const std::string& option, const std::string& value) {
@@ -24,6 +31,7 @@ double parse_probability(const std::string& option, const std::string& value) {
 ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
   ReplayOptions o;
   bool to_given = false, ego_speed_given = false, first_counter_given = false;
+  std::vector<std::string> ros2_only, livox_only;  // options of one kind of target
   for (ArgCursor c(args); !c.done(); c.next()) {
     const std::string& a = c.option();
     if (parse_input_option(c, o.read)) continue;
@@ -36,18 +44,54 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       o.simulation.speed = static_cast<float>(parse_number(a, c.value()));
       ego_speed_given = true;
     } else if (a == "--to") {
-      o.emulator.target = parse_livox_url(c.value());
+      const std::string v = c.value();
+      if (v.rfind("ros2://", 0) == 0) {
+        o.ros2.topic = v.substr(7);
+        if (o.ros2.topic.empty()) throw UsageError("--to ros2:///TOPIC: expected a topic (e.g. ros2:///livox/lidar)");
+      } else {
+        o.emulator.target = parse_livox_url(v);
+      }
       to_given = true;
+    } else if (a == "--imu-topic") {
+      o.ros2.imu_topic = c.value();
+      ros2_only.push_back(a);
+    } else if (a == "--message") {
+      o.ros2.point_cloud2 = c.choice({"custom", "pointcloud2"}) == "pointcloud2";
+      ros2_only.push_back(a);
+    } else if (a == "--qos") {
+      o.ros2.best_effort = c.choice({"reliable", "best-effort"}) == "best-effort";
+      ros2_only.push_back(a);
+    } else if (a == "--subscribers") {
+      const std::string v = c.value();
+      std::int64_t n = 0;
+      if (!io::detail::parse_int64(v, n) || n < 0 || n > 1000) throw UsageError("--subscribers: expected 0 to 1000, got '" + v + "'");
+      o.ros2.subscribers = static_cast<std::size_t>(n);
+      ros2_only.push_back(a);
+    } else if (a == "--domain") {
+      const std::size_t d = parse_count(a, c.value());
+      if (d > 232) throw UsageError("--domain: expected 0 to 232");
+      o.ros2.domain = static_cast<std::uint32_t>(d);
+      ros2_only.push_back(a);
+    } else if (a == "--dds-loopback") {
+      o.ros2.loopback = true;
+      ros2_only.push_back(a);
+    } else if (a == "--message-seconds") {
+      o.ros2.message_seconds = parse_positive(a, c.value());
+      if (o.ros2.message_seconds > 4.0) throw UsageError("--message-seconds: expected at most 4 s (CustomMsg offsets are 32-bit ns)");
+      ros2_only.push_back(a);
     } else if (a == "--device-address") {
+      livox_only.push_back(a);
       const std::string v = c.value();
       const auto address = live::parse_address(v);
       if (!address) throw UsageError("--device-address: expected a dotted IPv4 address, got '" + v + "'");
       o.emulator.device_address = *address;
     } else if (a == "--serial") {
+      livox_only.push_back(a);
       o.emulator.serial = c.value();
       if (o.emulator.serial.empty() || o.emulator.serial.size() > 16)
         throw UsageError("--serial: expected 1 to 16 characters");
     } else if (a == "--data-type") {
+      livox_only.push_back(a);
       const std::string v = c.value();
       std::int64_t n = 0;
       if (!io::detail::parse_int64(v, n) || n < 0 || n > 17) throw UsageError("--data-type: expected a Livox point data type, got '" + v + "'");
@@ -57,16 +101,22 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       if (!(o.emulator.speed >= 0.0 && o.emulator.speed <= 1000.0))
         throw UsageError("--speed: expected a factor in [0, 1000] (0: as fast as possible)");
     } else if (a == "--wait-configure") {
+      livox_only.push_back(a);
       o.emulator.wait_for_configure = true;
     } else if (a == "--drop") {
+      livox_only.push_back(a);
       o.emulator.drop = parse_probability(a, c.value());
     } else if (a == "--duplicate") {
+      livox_only.push_back(a);
       o.emulator.duplicate = parse_probability(a, c.value());
     } else if (a == "--swap") {
+      livox_only.push_back(a);
       o.emulator.swap = parse_probability(a, c.value());
     } else if (a == "--corrupt") {
+      livox_only.push_back(a);
       o.emulator.corrupt = parse_probability(a, c.value());
     } else if (a == "--first-counter") {
+      livox_only.push_back(a);
       const std::string v = c.value();
       std::int64_t n = 0;
       if (!io::detail::parse_int64(v, n) || n < 0 || n > 65535) throw UsageError("--first-counter: expected 0 to 65535, got '" + v + "'");
@@ -75,9 +125,11 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
     } else if (a == "--fault-seed") {
       o.emulator.seed = parse_count(a, c.value());
     } else if (a == "--reboot-at") {
+      livox_only.push_back(a);
       o.emulator.reboot_at = parse_number(a, c.value());
       if (!(*o.emulator.reboot_at > 0.0)) throw UsageError("--reboot-at: expected seconds > 0 of the stream");
     } else if (a == "--clock-jump") {
+      livox_only.push_back(a);
       const std::string v = c.value();
       const auto colon = v.find(':');
       if (colon == std::string::npos) throw UsageError("--clock-jump: expected AT:SECONDS (e.g. 1.5:3600), got '" + v + "'");
@@ -85,6 +137,7 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       if (!(o.emulator.clock_jump->first > 0.0) || !(std::abs(o.emulator.clock_jump->second) < 1e9))
         throw UsageError("--clock-jump: expected AT > 0 and |SECONDS| < 1e9");
     } else if (a == "--time-sync") {
+      livox_only.push_back(a);
       const std::string v = c.choice({"none", "ptp", "gps"});
       o.emulator.sync = v == "ptp"   ? live::LivoxTimeSync::ptp
                         : v == "gps" ? live::LivoxTimeSync::gps
@@ -105,10 +158,15 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       throw UsageError("more than one INPUT: '" + o.input + "' and '" + a + "'");
     }
   }
-  if (!to_given) throw UsageError("missing --to livox-sdk2://HOST[:PORT] or livox-sdk1://HOST[:PORT]");
+  if (!to_given) throw UsageError("missing --to livox-sdk2://HOST[:PORT], livox-sdk1://HOST[:PORT] or ros2:///TOPIC");
   if (o.simulate == !o.input.empty()) throw UsageError("expected either INPUT or --simulate (see streamclust replay --help)");
   if (ego_speed_given && !o.simulate) throw UsageError("--ego-speed: only with --simulate (the simulated sensor's motion)");
   if (o.simulate) validate_simulation_options(o.simulation);
+  if (!o.ros2.topic.empty()) {
+    if (!livox_only.empty()) throw UsageError(livox_only.front() + ": an option of Livox targets (livox-sdk2://, livox-sdk1://)");
+    return o;
+  }
+  if (!ros2_only.empty()) throw UsageError(ros2_only.front() + ": an option of --to ros2:///TOPIC");
   const bool sdk2 = o.emulator.target.protocol == LivoxProtocol::sdk2;
   const int t = o.emulator.data_type.value_or(sdk2 ? 1 : 2);
   if (sdk2 ? !(t >= 1 && t <= 3) : !(t <= 5 || t == 7 || t == 8))
@@ -125,13 +183,18 @@ std::string replay_help() {
 
 Emulates a Livox LiDAR on the network: sends INPUT (a point file or recording
 that cluster reads) or a simulated scene as the device's UDP packets at the
-device's rate, for `streamclust live` and for anyone without the hardware.
+device's rate, or as a ROS 2 driver's messages, for `streamclust live`,
+`streamclust ros2` and anyone without the hardware.
 
   --to livox-sdk2://HOST[:PORT]   a Mid-360: point packets to HOST:PORT (default 56301) from
                                   port 56300, IMU to PORT+100 from 56400
   --to livox-sdk1://HOST[:PORT]   an Avia: broadcasts to HOST:PORT (default 55000) from its
                                   command port 65000, answers the handshake, streams to the
                                   host's data port, stops when the heartbeats stop
+  --to ros2:///TOPIC              a ROS 2 driver over DDS (Cyclone DDS): a recording's messages
+                                  of its point topic as recorded (CDR), anything else as
+                                  livox_ros_driver2/msg/CustomMsg messages; IMU messages on
+                                  --imu-topic
   --device-address IP             the LiDAR's address (on loopback e.g. 127.0.0.2; default: any)
   --serial SN                     its serial number / broadcast code
   --data-type N                   SDK2: 1 (int32 mm, default), 2 (int16 cm), 3 (spherical);
@@ -140,8 +203,20 @@ device's rate, for `streamclust live` and for anyone without the hardware.
   --speed X                       x the recorded rate (default 1; 0: as fast as possible)
   --imu ROLL,PITCH                send a resting IMU's samples (200 Hz) for this mount [deg]
   --time-sync none|ptp|gps        the clock's sync type (ptp, gps: Unix time; SDK1 GPS as UTC fields)
-  --wait S                        seconds to wait for a host (default 10)
-faults:
+  --wait S                        seconds to wait for a host or subscribers (default 10)
+ros2 targets:
+  --message custom|pointcloud2    what non-ROS 2 input becomes: CustomMsg (default) or the Livox
+                                  driver's sensor_msgs/msg/PointCloud2 (x y z intensity tag line
+                                  timestamp)
+  --message-seconds S             seconds of points per message (default 0.1: the driver's 10 Hz)
+  --imu-topic TOPIC               the IMU messages' topic (default /livox/imu)
+  --qos reliable|best-effort      the publishers' reliability (default reliable, keep last 256,
+                                  as livox_ros_driver2 publishes)
+  --subscribers N                 wait for N subscribers of the point topic before sending
+                                  (default 1, at most --wait seconds; 0: send at once)
+  --domain N                      the DDS domain (default: ROS_DOMAIN_ID, else 0)
+  --dds-loopback                  discovery on 127.0.0.1 only, by unicast
+faults (Livox targets):
   --drop P  --duplicate P  --swap P   per point packet (swap: sent after the next one)
   --corrupt P                     per point packet: a damaged datagram instead (in turn truncated,
                                   too long, unknown data type, wrong CRC (SDK1: bad time type),
@@ -158,11 +233,13 @@ with the sensor's ego-motion as --ego-speed M/S (here --speed is the replay's ra
 examples:
   streamclust replay --simulate --sensor mid360 --scene office --seconds 10 --to livox-sdk2://127.0.0.1
   streamclust replay run.mcap --to livox-sdk2://192.168.1.50 --device-address 192.168.1.150
+  streamclust replay run.mcap --to ros2:///livox/lidar
 Exit codes: 0 ok, 2 usage error, 4 input error, 6 network error.
 )";
 }
 
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
+  if (!o.ros2.topic.empty()) return run_replay_ros2(o, out, err);
   LivoxEmulator emulator(o.emulator);
   // A simulated stream is made before the host connects: a configured or
   // handshaken device streams at once.

@@ -6,32 +6,28 @@
 /// MCAP files the Foxglove 3D panel shows: `foxglove_msgs/msg/PointCloud`
 /// (points with packed fields) and `foxglove_msgs/msg/SceneUpdate` (boxes
 /// and labels). The definitions list the fields of the foxglove_msgs and
-/// common ROS 2 types (https://github.com/foxglove/schemas, ros2/); the
-/// serializers write exactly those fields (tests decode them back through
-/// ros/message_decoder.hpp from the same definitions).
+/// common ROS 2 types (https://github.com/foxglove/schemas, ros2/; the
+/// common ones from ros2_definitions.hpp); the serializers write exactly
+/// those fields (tests decode them back through ros/message_decoder.hpp
+/// from the same definitions).
 
 #include <streamclust/io/cdr_writer.hpp>
+#include <streamclust/io/ros2_definitions.hpp>
 
 #include <array>
 #include <cstdint>
-#include <map>
-#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace streamclust::io::foxglove {
 
 namespace detail {
 
-/// Fields of each type used, as .msg lines ("pkg/Type" -> text).
-inline const std::map<std::string, std::string>& types() {
-  static const std::map<std::string, std::string> t = {
-      {"builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n"},
-      {"builtin_interfaces/Duration", "int32 sec\nuint32 nanosec\n"},
-      {"geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n"},
-      {"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n"},
-      {"geometry_msgs/Quaternion", "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n"},
-      {"geometry_msgs/Pose", "geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"},
+/// Fields of each foxglove_msgs type, as .msg lines ("pkg/Type" -> text);
+/// the builtin_interfaces and geometry_msgs types come from ros2_common_types().
+inline const Ros2TypeTable& types() {
+  static const Ros2TypeTable t = {
       {"foxglove_msgs/Color", "float64 r\nfloat64 g\nfloat64 b\nfloat64 a\n"},
       {"foxglove_msgs/KeyValuePair", "string key\nstring value\n"},
       {"foxglove_msgs/PackedElementField",
@@ -76,34 +72,14 @@ inline const std::map<std::string, std::string>& types() {
   return t;
 }
 
-inline void add_dependencies(const std::string& type, std::vector<std::string>& order, std::set<std::string>& seen) {
-  const std::string& text = types().at(type);
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const std::size_t end = text.find('\n', pos);
-    std::string field_type = text.substr(pos, text.find(' ', pos) - pos);
-    pos = end + 1;
-    if (const std::size_t bracket = field_type.find('['); bracket != std::string::npos) field_type.resize(bracket);
-    if (field_type.find('/') == std::string::npos || !seen.insert(field_type).second) continue;
-    order.push_back(field_type);
-    add_dependencies(field_type, order, seen);
-  }
-}
-
 }  // namespace detail
 
 /// The ROS 2 definition text of `type` ("foxglove_msgs/PointCloud") as an
 /// MCAP `ros2msg` schema holds it: its fields, then each type it uses after a
 /// line of `=` and `MSG: pkg/Type`.
+/// Throws std::invalid_argument for a type it does not know.
 inline std::string ros2_definition(const std::string& type) {
-  std::vector<std::string> order;
-  std::set<std::string> seen{type};
-  detail::add_dependencies(type, order, seen);
-  std::string text = detail::types().at(type);
-  for (const std::string& dep : order) {
-    text += std::string(80, '=') + "\nMSG: " + dep + "\n" + detail::types().at(dep);
-  }
-  return text;
+  return ros2_definition_text(type, {&detail::types(), &ros2_common_types()});
 }
 
 /// A time as ROS 2 `builtin_interfaces/Time`: whole seconds and nanoseconds.

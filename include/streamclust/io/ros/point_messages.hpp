@@ -75,6 +75,11 @@ class PointMessageDecoder {
   const std::vector<std::string>& fields() const noexcept { return fields_; }
   /// The time field used by the last message ("" when timed by the point rate).
   const std::string& time_field() const noexcept { return time_field_; }
+  /// The header's frame id of the last message decoded ("" without one).
+  std::string frame_id() const {
+    const Leaf* l = message_.find("header.frame_id");
+    return l != nullptr ? l->text : std::string();
+  }
 
   /// Appends the points of the message in `payload` to `out` (every point,
   /// NaN ones included, in message order). `origin` locates the message in
