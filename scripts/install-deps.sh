@@ -18,7 +18,16 @@ PACKAGES=(
   libclang-rt-14-dev
   # the Python module (-DSTREAMCLUST_PYTHON=ON, docs/python.md), its tests and example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-setuptools
+  # the ROS 2 node over DDS (`streamclust ros2`, docs/ros2.md): Cyclone DDS
+  cyclonedds-dev
 )
+# The reference implementations the tests check outputs against (the MCAP
+# reader, the ROS 2 serializer, the Foxglove WebSocket client) run on node
+# and install with npm (scripts/install-npm-tools.sh): Debian's, unless a
+# node with npm is already on the PATH.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  PACKAGES+=(nodejs npm)
+fi
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do

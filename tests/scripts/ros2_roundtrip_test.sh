@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# CTest ros2_roundtrip: every message type `streamclust ros2` publishes, and
+# every one `replay --to ros2://` sends, has the bytes the reference ROS 2
+# serializer writes for the same message. A simulated Mid-360 is replayed
+# (the driver's PointCloud2 and IMU) to the node over DDS on loopback; the
+# node records its input (--record) and what it published (--record-out);
+# tests/scripts/check_ros2_roundtrip.mjs decodes each message of both files
+# with @foxglove/rosmsg2-serialization and re-encodes it, byte for byte.
+# Skipped (exit 77) without node or the npm packages (scripts/install-npm-tools.sh).
+# Usage: ros2_roundtrip_test.sh TOOL SOURCE_DIR WORK_DIR
+set -euo pipefail
+tool=$1 src=$2 work=$3
+prefix=${STREAMCLUST_NPM_PREFIX:-$src/build/npm}
+if ! command -v node >/dev/null || [[ ! -d "$prefix/node_modules/@foxglove/rosmsg2-serialization" ]]; then
+  echo "skipped: needs node and @foxglove/rosmsg2-serialization in $prefix (scripts/install-npm-tools.sh)"
+  exit 77
+fi
+rm -rf "$work" && mkdir -p "$work"
+domain=71
+"$tool" ros2 --dds-loopback --domain $domain --input /points --imu /livox/imu --preset objects-mid360 \
+  --idle-exit 1.5 --wait 60 --record "$work/in.mcap" --record-out "$work/out.mcap" --report "$work/node.json" -q &
+node_pid=$!
+"$tool" replay --simulate --sensor mid360 --seconds 1.5 --imu 0,0 --message pointcloud2 \
+  --to ros2:///points --dds-loopback --domain $domain --wait 60 -q
+wait $node_pid
+for f in in out; do
+  json=$(node "$src/tests/scripts/check_ros2_roundtrip.mjs" "$prefix" "$work/$f.mcap")
+  echo "$f.mcap: $json"
+  python3 - "$f" "$json" <<'PY'
+import json, sys
+which, r = sys.argv[1], json.loads(sys.argv[2])
+want = {"in": {"/points": "sensor_msgs/msg/PointCloud2", "/livox/imu": "sensor_msgs/msg/Imu"},
+        "out": {"/streamclust/points": "sensor_msgs/msg/PointCloud2",
+                "/streamclust/clusters": "visualization_msgs/msg/MarkerArray",
+                "/streamclust/detections": "vision_msgs/msg/Detection3DArray"}}[which]
+for topic, schema in want.items():
+    t = r["topics"].get(topic)
+    if not t or t["schema"] != schema or t["messages"] < 10:
+        sys.exit("ros2_roundtrip: %s.mcap: expected messages of %s on %s, got %s" % (which, schema, topic, t))
+print("ros2_roundtrip: %s.mcap ok, %d messages byte-identical" % (which, r["messages"]))
+PY
+done
