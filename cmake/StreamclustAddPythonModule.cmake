@@ -77,7 +77,15 @@ function(streamclust_add_python_module target)
     PROJECTIONS ${ARG_PROJECTIONS} LINKAGES ${ARG_LINKAGES} BODY _engines)
 
   set(_package "${ARG_OUTPUT_DIRECTORY}/streamclust")
-  pybind11_add_module(${target} MODULE "${_src}/src/module.cpp" "${_src}/src/erased_clusterer.cpp" ${_units})
+  # NO_EXTRAS: without pybind11's link-time optimisation, whose serial link
+  # of every unit cost about a minute; the engine's hot loops live inside
+  # single units, where LTO has nothing to inline across. Stripped as
+  # pybind11 would (optimised builds).
+  pybind11_add_module(${target} MODULE NO_EXTRAS "${_src}/src/module.cpp" "${_src}/src/erased_clusterer.cpp" ${_units})
+  string(TOUPPER "${CMAKE_BUILD_TYPE}" _build_type)
+  if(NOT MSVC AND NOT _build_type MATCHES "DEBUG|RELWITHDEBINFO")
+    pybind11_strip(${target})
+  endif()
   target_include_directories(${target} PRIVATE "${_src}/src" "${STREAMCLUST_TOOL_SOURCE_DIR}")
   if(_STREAMCLUST_OWN_POLICIES)  # without policies of its own, the stock registry (cli/tool_policies.hpp)
     target_compile_definitions(${target} PRIVATE "STREAMCLUST_TOOL_POLICIES_HEADER=\"${_dir}/tool_policies.hpp\"")

@@ -171,6 +171,7 @@ TEST_CASE("ros2: CustomMsg from a simulated Mid-360; labels equal cluster on the
   CHECK(report["ros2"]["type"] == "livox_ros_driver2/msg/CustomMsg");
   CHECK(report["ros2"]["reliability"] == "reliable");  // as the replay (the driver) offers
   CHECK(report["ros2"]["frame_id"] == "livox_frame");
+  CHECK(report["ros2"]["output_frame"] == "livox_frame");  // no mount: the input's frame
   CHECK(report["ros2"]["messages"]["received"] == 15);  // 1.5 s in 100 ms messages
   CHECK(report["ros2"]["messages"]["dropped"] == 0);
   CHECK(report["ros2"]["messages"]["malformed"] == 0);
@@ -213,6 +214,9 @@ TEST_CASE("ros2: the Livox driver's PointCloud2, type learnt from the publisher;
   CHECK(report["ros2"]["messages"]["imu"].get<int>() >= 90);
   CHECK(report["ros2"]["messages"]["malformed"] == 0);
   CHECK(got.err.find("gravity from the IMU") != std::string::npos);
+  CHECK(report["ros2"]["imu_units"] == "g");  // as livox_ros_driver2 (and so replay) sends them
+  // Placed by the IMU's mount: the outputs are in the level frame.
+  CHECK(report["ros2"]["output_frame"] == "livox_frame_level");
   // cluster does not read the recording's IMU topic: it takes the mount the node's IMU gave.
   const auto& gravity = report["ros2"]["imu_gravity"];
   REQUIRE(gravity.is_object());

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # CTest ros2_roundtrip: every message type `streamclust ros2` publishes, and
-# every one `replay --to ros2://` sends, has the bytes the reference ROS 2
+# every one `replay --to ros2://` sends (with the static transform of the
+# objects preset's level frame), has the bytes the reference ROS 2
 # serializer writes for the same message. A simulated Mid-360 is replayed
-# (the driver's PointCloud2 and IMU) to the node over DDS on loopback; the
+# (the driver's PointCloud2 and IMU, then its CustomMsg) to the node over DDS on loopback; the
 # node records its input (--record) and what it published (--record-out);
 # tests/scripts/check_ros2_roundtrip.mjs decodes each message of both files
 # with @foxglove/rosmsg2-serialization and re-encodes it, byte for byte.
@@ -24,19 +25,28 @@ node_pid=$!
 "$tool" replay --simulate --sensor mid360 --seconds 1.5 --imu 0,0 --message pointcloud2 \
   --to ros2:///points --dds-loopback --domain $domain --wait 60 -q
 wait $node_pid
-for f in in out; do
+# The driver's CustomMsg, on a domain of its own.
+"$tool" ros2 --dds-loopback --domain $((domain + 1)) --preset carc-mid360 --idle-exit 1.5 --wait 60 \
+  --record "$work/custom.mcap" -q &
+node_pid=$!
+"$tool" replay --simulate --sensor mid360 --seconds 1.5 --to ros2:///livox/lidar --dds-loopback \
+  --domain $((domain + 1)) --wait 60 -q
+wait $node_pid
+for f in in out custom; do
   json=$(node "$src/tests/scripts/check_ros2_roundtrip.mjs" "$prefix" "$work/$f.mcap")
   echo "$f.mcap: $json"
   python3 - "$f" "$json" <<'PY'
 import json, sys
 which, r = sys.argv[1], json.loads(sys.argv[2])
 want = {"in": {"/points": "sensor_msgs/msg/PointCloud2", "/livox/imu": "sensor_msgs/msg/Imu"},
+        "custom": {"/livox/lidar": "livox_ros_driver2/msg/CustomMsg"},
         "out": {"/streamclust/points": "sensor_msgs/msg/PointCloud2",
                 "/streamclust/clusters": "visualization_msgs/msg/MarkerArray",
-                "/streamclust/detections": "vision_msgs/msg/Detection3DArray"}}[which]
+                "/streamclust/detections": "vision_msgs/msg/Detection3DArray",
+                "/tf_static": "tf2_msgs/msg/TFMessage"}}[which]
 for topic, schema in want.items():
     t = r["topics"].get(topic)
-    if not t or t["schema"] != schema or t["messages"] < 10:
+    if not t or t["schema"] != schema or t["messages"] < (1 if topic == "/tf_static" else 10):
         sys.exit("ros2_roundtrip: %s.mcap: expected messages of %s on %s, got %s" % (which, schema, topic, t))
 print("ros2_roundtrip: %s.mcap ok, %d messages byte-identical" % (which, r["messages"]))
 PY

@@ -197,6 +197,9 @@ class LiveFeed {
   std::deque<live::PacketArrival>& arrivals() { return arrivals_; }
 
   LiveEnd end() const { return end_; }
+  /// When the driver, set up, first waited for input (the backlog of the
+  /// setup cleared): the start of the steady state. Nothing before.
+  std::optional<std::chrono::steady_clock::time_point> caught_up() const { return caught_up_; }
   std::size_t queue_depth() { return input_.queue_depth(); }
   /// Wall time since the feed started.
   std::chrono::steady_clock::duration elapsed() const { return std::chrono::steady_clock::now() - start_; }
@@ -239,6 +242,8 @@ class LiveFeed {
       }
       if (end_ != LiveEnd::running) return history_.size() > before;
       if (now >= deadline) return false;
+      // The driver waits for input: the run has caught up with the stream.
+      if (!keep_history_ && !caught_up_) caught_up_ = now;
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
@@ -274,6 +279,7 @@ class LiveFeed {
   bool received_ = false;  // a first datagram came (idle time counts from then on)
   LiveEnd end_ = LiveEnd::running;
   bool keep_history_ = true;
+  std::optional<std::chrono::steady_clock::time_point> caught_up_;
   std::deque<LivePoint> history_;
   std::uint64_t history_base_ = 0;
   std::vector<LivePoint> scratch_;

@@ -12,7 +12,7 @@
 namespace streamclust::cli {
 
 #ifndef STREAMCLUST_TOOL_ROS2
-int run_replay_ros2(const ReplayOptions&, std::ostream&, std::ostream&) {
+int run_replay_ros2(const ReplayOptions&, std::vector<io::Record>, std::ostream&, std::ostream&) {
   throw UsageError("--to ros2://: this streamclust was built without ROS 2 support (it needs Cyclone DDS: "
                    "apt-get install cyclonedds-dev, then build again)");
 }
@@ -239,7 +239,7 @@ Exit codes: 0 ok, 2 usage error, 4 input error, 6 network error.
 }
 
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
-  if (!o.ros2.topic.empty()) return run_replay_ros2(o, out, err);
+  if (!o.ros2.topic.empty()) return run_replay_ros2(o, o.simulate ? simulate_records(o.simulation) : std::vector<io::Record>{}, out, err);
   LivoxEmulator emulator(o.emulator);
   // A simulated stream is made before the host connects: a configured or
   // handshaken device streams at once.

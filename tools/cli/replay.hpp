@@ -49,7 +49,8 @@ std::string replay_help();
 /// Runs `streamclust replay`; returns the exit code. Throws UsageError (2),
 /// io::InputError (4), NetworkError (6).
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err);
-/// The `--to ros2://` part (built with Cyclone DDS: cli/replay_ros2.cpp).
-int run_replay_ros2(const ReplayOptions& o, std::ostream& out, std::ostream& err);
+/// The `--to ros2://` part (built with Cyclone DDS: cli/replay_ros2.cpp);
+/// `simulated` holds the --simulate stream (empty otherwise).
+int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, std::ostream& out, std::ostream& err);
 
 }  // namespace streamclust::cli

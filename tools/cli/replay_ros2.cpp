@@ -9,6 +9,7 @@
 #include "cli/custom_msg.hpp"
 #include "cli/live.hpp"
 #include "cli/replay.hpp"
+#include "cli/ros2_participant.hpp"
 #include "cli/stop_signals.hpp"
 
 #include <streamclust/io/cdr_writer.hpp>
@@ -115,7 +116,7 @@ bool wait_for_subscribers(const ros2::CdrPublisher& p, std::size_t n, std::chron
 
 }  // namespace
 
-int run_replay_ros2(const ReplayOptions& o, std::ostream& out, std::ostream&) {
+int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, std::ostream& out, std::ostream&) {
   StopSignals signals;
   const Ros2ReplayOptions& r = o.ros2;
   std::string topic, imu_topic;
@@ -125,17 +126,7 @@ int run_replay_ros2(const ReplayOptions& o, std::ostream& out, std::ostream&) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--to ros2://: ") + e.what());
   }
-  std::unique_ptr<ros2::DdsParticipant> participant;
-  try {
-    ros2::DomainOptions d;
-    d.domain_id = r.domain;
-    d.loopback = r.loopback;
-    participant = std::make_unique<ros2::DdsParticipant>(d);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  } catch (const ros2::DdsError& e) {
-    throw NetworkError(std::string("replay: ") + e.what());
-  }
+  const std::unique_ptr<ros2::DdsParticipant> participant = open_participant(r.domain, r.loopback, "replay");
   const ros2::TopicQos qos{r.best_effort ? ros2::Reliability::best_effort : ros2::Reliability::reliable,
                            ros2::Durability::volatile_, 256};
   const auto wait = std::chrono::duration_cast<std::chrono::steady_clock::duration>(o.emulator.connect_timeout);
@@ -196,7 +187,7 @@ int run_replay_ros2(const ReplayOptions& o, std::ostream& out, std::ostream&) {
     std::vector<io::Record> records;
     std::int64_t origin_s = 0;
     if (o.simulate) {
-      records = simulate_records(o.simulation);
+      records = std::move(simulated);
       origin_s = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
                      .count();
     } else {
@@ -207,12 +198,13 @@ int run_replay_ros2(const ReplayOptions& o, std::ostream& out, std::ostream&) {
     std::uint64_t next_imu_ns = 0;
     auto send_imu_until = [&](std::uint64_t until_ns) {
       if (!o.emulator.imu_mount) return;
-      constexpr double deg = 3.14159265358979323846 / 180.0, g = 9.80665;
+      // As livox_ros_driver2 publishes a Livox IMU: acceleration in g (the
+      // device's unit, copied unchanged), angular rate in rad/s.
+      constexpr double deg = 3.14159265358979323846 / 180.0;
       const double roll = (*o.emulator.imu_mount)[0] * deg, pitch = (*o.emulator.imu_mount)[1] * deg;
       io::ros2msg::Imu imu;
       imu.orientation_covariance[0] = -1.0;  // orientation unknown
-      imu.linear_acceleration = {-std::sin(pitch) * g, std::sin(roll) * std::cos(pitch) * g,
-                                 std::cos(roll) * std::cos(pitch) * g};
+      imu.linear_acceleration = {-std::sin(pitch), std::sin(roll) * std::cos(pitch), std::cos(roll) * std::cos(pitch)};
       if (next_imu_ns == 0) next_imu_ns = until_ns;
       for (; next_imu_ns <= until_ns; next_imu_ns += 5'000'000) {  // 200 Hz
         io::ros2msg::Header h;

@@ -23,6 +23,7 @@
 #include <streamclust/ros2/cdr_subscription.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -109,6 +110,8 @@ class Ros2Input final : public LiveInput {
   /// Arrivals of the messages decoded, by their last point's time, oldest
   /// first; the caller pops what it has accounted for.
   std::deque<live::PacketArrival>& completions() { return completions_; }
+  /// The IMU's acceleration unit as found from its first sample ("" before one came).
+  std::string imu_units() const { return imu_in_g_ ? (*imu_in_g_ ? "g" : "m/s^2") : ""; }
   /// The frame of the last point message ("" before one came).
   const std::string& frame_id() const noexcept { return frame_id_; }
   /// The point fields of the last message, and its time field.
@@ -163,15 +166,25 @@ class Ros2Input final : public LiveInput {
       const io::ros::Leaf* l = imu_message_.find(path);
       return l != nullptr ? imu_message_.real(l->primitive, l->offset) : 0.0;
     };
-    constexpr double kStandardGravity = 9.80665;  // [m/s^2]: ROS reports m/s^2, the gravity estimate takes g
+    // The gravity estimate takes g. sensor_msgs/Imu says m/s^2, but
+    // livox_ros_driver2 copies the Livox IMU's g unchanged: the first
+    // sample's magnitude tells which (at rest 1 or 9.8; anything below
+    // 4.9 is read as g).
+    constexpr double kStandardGravity = 9.80665;  // [m/s^2]
+    if (!imu_in_g_) {
+      const double a = std::hypot(value("linear_acceleration.x"), value("linear_acceleration.y"),
+                                  value("linear_acceleration.z"));
+      imu_in_g_ = a < kStandardGravity / 2;
+    }
+    const double scale = *imu_in_g_ ? 1.0 : 1.0 / kStandardGravity;
     live::LivoxImuSample s;
     s.time_ns = static_cast<std::uint64_t>(value("header.stamp.sec")) * 1'000'000'000u +
                 static_cast<std::uint64_t>(value("header.stamp.nanosec"));
     s.gyro = {static_cast<float>(value("angular_velocity.x")), static_cast<float>(value("angular_velocity.y")),
               static_cast<float>(value("angular_velocity.z"))};
-    s.acceleration = {static_cast<float>(value("linear_acceleration.x") / kStandardGravity),
-                      static_cast<float>(value("linear_acceleration.y") / kStandardGravity),
-                      static_cast<float>(value("linear_acceleration.z") / kStandardGravity)};
+    s.acceleration = {static_cast<float>(value("linear_acceleration.x") * scale),
+                      static_cast<float>(value("linear_acceleration.y") * scale),
+                      static_cast<float>(value("linear_acceleration.z") * scale)};
     imu.push_back(s);
     ++counters_.imu;
     if (recorder_ != nullptr) recorder_->add(imu_channel_, s.time_ns, m.data(), m.size());
@@ -189,6 +202,7 @@ class Ros2Input final : public LiveInput {
   io::detail::BufferOrigin origin_, imu_origin_;
   std::uint16_t points_channel_ = 0, imu_channel_ = 0;
   std::uint64_t imu_seen_ = 0;
+  std::optional<bool> imu_in_g_;  // decided by the first IMU sample
   Ros2InputCounters counters_;
   std::string frame_id_;
   std::deque<live::PacketArrival> completions_;

@@ -13,6 +13,8 @@
 #include "cli/live_status.hpp"
 #include "cli/ros2_input.hpp"
 #include "cli/ros2_outputs.hpp"
+#include "cli/ros2_participant.hpp"
+#include "cli/run_setup.hpp"
 #include "cli/stop_signals.hpp"
 
 #include <streamclust/io/ros/point_messages.hpp>
@@ -27,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -76,6 +79,9 @@ Ros2Options parse_ros2_options(const std::vector<std::string>& args) {
       } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--namespace: ") + e.what());
       }
+    } else if (a == "--level-frame") {
+      o.level_frame = c.value();
+      if (o.level_frame.empty()) throw UsageError("--level-frame: expected a frame name");
     } else if (a == "--depth") {
       const std::size_t d = parse_count(a, c.value());
       if (d < 1 || d > 1000) throw UsageError("--depth: expected 1 to 1000 messages");
@@ -150,6 +156,11 @@ outputs (besides those of cluster: --labels, --report, --mcap, --png, ...):
                                   (visualization_msgs/msg/MarkerArray), NS/detections
                                   (vision_msgs/msg/Detection3DArray); default /streamclust
   --depth N                       output history depth (reliable, keep last; default 5)
+  --level-frame NAME              the outputs' frame when the points are placed by a mount (--mount,
+                                  the objects presets' ground estimate, --imu gravity): level, z up;
+                                  its static transform from the input's frame goes to /tf_static
+                                  (default: the input's frame + "_level"); otherwise the outputs
+                                  are in the input's frame
   --record FILE.mcap              the input messages as received, with their definitions;
                                   `streamclust cluster FILE.mcap` with the same options gives
                                   the same cycles and labels
@@ -203,17 +214,7 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
   const bool quiet = o.cluster.quiet;
   const std::string tag = "streamclust: ros2: ";
 
-  std::unique_ptr<ros2::DdsParticipant> participant;
-  try {
-    ros2::DomainOptions d;
-    d.domain_id = o.domain;
-    d.loopback = o.loopback;
-    participant = std::make_unique<ros2::DdsParticipant>(d);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  } catch (const ros2::DdsError& e) {
-    throw NetworkError(std::string("ros2: ") + e.what());
-  }
+  const std::unique_ptr<ros2::DdsParticipant> participant = open_participant(o.domain, o.loopback, "ros2");
 
   // The input's type: given, or learnt from the first publisher of the topic.
   const std::string dds_topic = ros2::dds_topic_name(o.input);
@@ -298,6 +299,7 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
   c.report_cycles_kept = 1200;  // the last minute at 20 Hz; totals count every cycle
   c.cycle_windows = true;
 
+  std::string output_frame;  // the level frame when the engine places points by a mount
   std::thread engine([&] {
     try {
       {
@@ -318,23 +320,46 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
       }
       const std::optional<ImuGravity> gravity =
           prepare_live_cluster(c, feed, "ros2:" + o.input, input->fields(), nullptr, "streamclust: ros2", err);
-      c.on_cycle = [&](const CycleReport& cycle, const std::vector<io::Record>& points,
-                       const std::vector<std::int64_t>& labels) {
+      // Placed by a mount, the window is in a level frame: its transform
+      // from the input's frame goes to /tf_static.
+      const bool level = c.setup && c.setup->motion.enabled;
+      if (level) {
+        const Pose& mount = c.setup->motion.posed.mount;
+        io::ros2msg::Transform t;
+        t.child = input->frame_id();
+        t.parent = o.level_frame.empty() ? t.child + "_level" : o.level_frame;
+        t.translation = {mount.translation.x(), mount.translation.y(), mount.translation.z()};
+        t.rotation = {mount.rotation.x(), mount.rotation.y(), mount.rotation.z(), mount.rotation.w()};
+        outputs->publish_static_transform(t, feed.first_time_ns(), *participant);
+        output_frame = t.parent;
+      }
+      c.on_cycle = [&, level](const CycleReport& cycle, const std::vector<io::Record>& points,
+                              const std::vector<std::int64_t>& labels) {
         const std::uint64_t stamp_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
-        outputs->publish(stamp_ns, input->frame_id(), points, labels);
+        outputs->publish(stamp_ns, level ? output_frame : input->frame_id(), points, labels);
         const auto now = std::chrono::steady_clock::now();
         const std::lock_guard<std::mutex> lock(run.mutex);
         run.points = input->counters().points;
-        const bool steady = run.status.cycles() > 0 && feed.end() == LiveEnd::running;
+        // Latency counts in steady state: messages that arrived once the
+        // engine had cleared the setup's backlog (it first waited for
+        // input), and not after the stream ended.
         const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
+        const auto caught_up = feed.caught_up();
+        const std::int64_t steady_from =
+            caught_up && feed.end() == LiveEnd::running
+                ? std::chrono::duration_cast<std::chrono::nanoseconds>(caught_up->time_since_epoch()).count()
+                : std::numeric_limits<std::int64_t>::max();
         auto& done = input->completions();
         while (!done.empty() && done.front().last_time_ns <= static_cast<std::int64_t>(stamp_ns)) {
-          if (steady) run.complete.add(static_cast<double>(now_ns - done.front().arrival_steady_ns) * 1e-6);
+          if (done.front().arrival_steady_ns >= steady_from)
+            run.complete.add(static_cast<double>(now_ns - done.front().arrival_steady_ns) * 1e-6);
           done.pop_front();
         }
-        run.status.on_cycle(cycle, static_cast<std::int64_t>(stamp_ns), feed.arrivals(),
-                            std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count(),
-                            steady);
+        auto& arrivals = feed.arrivals();
+        while (!arrivals.empty() && arrivals.front().arrival_steady_ns < steady_from &&
+               arrivals.front().last_time_ns <= static_cast<std::int64_t>(stamp_ns))
+          arrivals.pop_front();  // before the steady state: not measured
+        run.status.on_cycle(cycle, static_cast<std::int64_t>(stamp_ns), arrivals, now_ns, steady_from < now_ns);
       };
       c.report_extra = [&](Json& doc) {
         const ros2::SubscriptionCounters sc = points_sub->counters();
@@ -345,6 +370,8 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
         r["domain"] = participant->domain();
         r["reliability"] = ros2::describe(qos.reliability);
         r["frame_id"] = input->frame_id();
+        r["output_frame"] = output_frame.empty() ? input->frame_id() : output_frame;
+        if (!input->imu_units().empty()) r["imu_units"] = input->imu_units();
         r["end"] = describe(feed.end());
         r["messages"] = {{"received", sc.received}, {"dropped", sc.dropped}, {"lost", sc.lost},
                          {"decoded", ic.messages}, {"malformed", ic.malformed}, {"points", ic.points},

@@ -30,6 +30,7 @@ struct Ros2Options {
   std::string imu;                     ///< sensor_msgs/msg/Imu topic; empty: none
   std::string ns = "/streamclust";     ///< the outputs' namespace
   std::int32_t depth = 5;              ///< output history depth (reliable, keep last)
+  std::string level_frame;             ///< the outputs' frame when placed by a mount; empty: input frame + "_level"
   std::size_t queue_messages = 64;     ///< DDS-to-engine queue [messages]
   std::optional<std::uint32_t> domain; ///< default: ROS_DOMAIN_ID, else 0
   bool loopback = false;               ///< discovery on 127.0.0.1 by unicast only

@@ -11,7 +11,10 @@
 /// | `NS/clusters` | `visualization_msgs/msg/MarkerArray` | a DELETEALL, then per component a cube (its axis-aligned box, the label's colour) and its id above it |
 /// | `NS/detections` | `vision_msgs/msg/Detection3DArray` | per component its box, class "object", score 1, id = the label |
 ///
-/// Every message is published reliably with a history of `depth`, and
+/// When the engine places points by a mount (given, estimated from the
+/// first window or from the IMU), the window is in a level frame
+/// (`--level-frame`), linked to the input's by a static transform on
+/// /tf_static. Every message is published reliably with a history of `depth`, and
 /// written to the --record-out MCAP with the payload sent and its type's
 /// definition. Not thread-safe: the engine thread owns it.
 
@@ -74,10 +77,7 @@ class Ros2Outputs {
   /// 1970] in `frame_id`. O(n log components).
   void publish(std::uint64_t stamp_ns, const std::string& frame_id, const std::vector<io::Record>& points,
                const std::vector<std::int64_t>& labels) {
-    io::ros2msg::Header h;
-    h.sec = static_cast<std::int32_t>(stamp_ns / 1'000'000'000u);
-    h.nanosec = static_cast<std::uint32_t>(stamp_ns % 1'000'000'000u);
-    h.frame_id = frame_id;
+    const io::ros2msg::Header h = header_of(stamp_ns, frame_id);
 
     // The window.
     data_.assign(points.size() * kStride, 0);
@@ -128,6 +128,28 @@ class Ros2Outputs {
     send(2, stamp_ns);
   }
 
+  /// Publishes, once, the static transform from `t.parent` (the frame the
+  /// outputs are in) to `t.child` (the input's) on /tf_static (reliable,
+  /// transient local, keep last 1, as tf2's static broadcaster), so that
+  /// viewers place the outputs and the driver's cloud together.
+  void publish_static_transform(const io::ros2msg::Transform& t, std::uint64_t stamp_ns,
+                                const ros2::DdsParticipant& participant) {
+    if (!tf_static_) {
+      tf_static_.topic = "/tf_static";
+      tf_static_.publisher = std::make_unique<ros2::CdrPublisher>(
+          participant, ros2::dds_topic_name("/tf_static"), ros2::dds_type_name("tf2_msgs/msg/TFMessage"),
+          ros2::TopicQos{ros2::Reliability::reliable, ros2::Durability::transient_local, 1});
+      if (mcap_) {
+        const auto schema = mcap_->add_schema("tf2_msgs/msg/TFMessage", "ros2msg",
+                                              io::ros2msg::ros2_definition("tf2_msgs/TFMessage"));
+        tf_static_.channel = mcap_->add_channel(schema, "/tf_static", "cdr");
+      }
+    }
+    io::ros2msg::write_tf_message(cdr_, header_of(stamp_ns, t.parent), {t});
+    tf_static_.publisher->publish(cdr_.bytes());
+    if (mcap_) mcap_->write(tf_static_.channel, stamp_ns, cdr_.bytes().data(), cdr_.bytes().size());
+  }
+
   /// Closes the --record-out file (throws std::runtime_error when it cannot be completed).
   void close() {
     if (mcap_) mcap_->close();
@@ -145,7 +167,16 @@ class Ros2Outputs {
     std::string topic;
     std::unique_ptr<ros2::CdrPublisher> publisher;
     std::uint16_t channel = 0;
+    explicit operator bool() const { return publisher != nullptr; }
   };
+
+  static io::ros2msg::Header header_of(std::uint64_t stamp_ns, const std::string& frame_id) {
+    io::ros2msg::Header h;
+    h.sec = static_cast<std::int32_t>(stamp_ns / 1'000'000'000u);
+    h.nanosec = static_cast<std::uint32_t>(stamp_ns % 1'000'000'000u);
+    h.frame_id = frame_id;
+    return h;
+  }
 
   void send(std::size_t i, std::uint64_t stamp_ns) {
     outputs_[i].publisher->publish(cdr_.bytes());
@@ -153,6 +184,7 @@ class Ros2Outputs {
   }
 
   std::vector<Output> outputs_;
+  Output tf_static_;
   std::optional<io::McapWriter> mcap_;
   io::CdrWriter cdr_;
   std::vector<std::uint8_t> data_;

@@ -13,6 +13,7 @@
 /// | `vision_msgs/Detection3DArray`   | write_detection3d_array() |
 /// | `sensor_msgs/Imu`                | write_imu()               |
 /// | `nav_msgs/Odometry`              | write_odometry()          |
+/// | `tf2_msgs/TFMessage`             | write_tf_message()        |
 ///
 /// ros2_definition() gives each one's definition text (an MCAP `ros2msg`
 /// schema), with the fields of the ROS 2 Humble/Jazzy .msg files
@@ -85,6 +86,10 @@ inline const Ros2TypeTable& types() {
        "std_msgs/Header header\nvision_msgs/ObjectHypothesisWithPose[] results\nvision_msgs/BoundingBox3D bbox\n"
        "string id\n"},
       {"vision_msgs/Detection3DArray", "std_msgs/Header header\nvision_msgs/Detection3D[] detections\n"},
+      {"geometry_msgs/Transform", "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
+      {"geometry_msgs/TransformStamped",
+       "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
+      {"tf2_msgs/TFMessage", "geometry_msgs/TransformStamped[] transforms\n"},
   };
   return t;
 }
@@ -94,7 +99,7 @@ inline const Ros2TypeTable& types() {
 /// The definition text of `type` ("sensor_msgs/PointCloud2" or
 /// "sensor_msgs/msg/PointCloud2") as an MCAP `ros2msg` schema holds it: its
 /// fields, then each type it uses after a line of 80 `=` and `MSG: pkg/Type`.
-/// Knows the five published types and every type they use; throws
+/// Knows the six published types and every type they use; throws
 /// std::invalid_argument for another.
 inline std::string ros2_definition(const std::string& type) {
   return ros2_definition_text(type, {&detail::types(), &ros2_common_types()});
@@ -347,6 +352,27 @@ inline void write_odometry(CdrWriter& w, const Header& h, const Odometry& odom) 
   detail::put_xyz(w, odom.linear_velocity);
   detail::put_xyz(w, odom.angular_velocity);
   detail::put_fixed(w, odom.twist_covariance);
+}
+
+/// One transform of a TFMessage: frame `child` placed in the header's
+/// frame (the pose of child in parent).
+struct Transform {
+  std::string parent, child;
+  std::array<double, 3> translation{};            ///< [m]
+  std::array<double, 4> rotation{0, 0, 0, 1};     ///< unit quaternion x, y, z, w
+};
+
+/// Writes a `tf2_msgs/TFMessage` of `transforms`, each stamped `stamp`
+/// (header.frame_id its parent).
+inline void write_tf_message(CdrWriter& w, const Header& stamp, const std::vector<Transform>& transforms) {
+  w.clear();
+  w.count(transforms.size());
+  for (const Transform& t : transforms) {
+    detail::put_header(w, Header{stamp.sec, stamp.nanosec, t.parent});
+    w.string(t.child);
+    detail::put_xyz(w, t.translation);
+    for (const double q : t.rotation) w.f64(q);
+  }
 }
 
 }  // namespace streamclust::io::ros2msg
