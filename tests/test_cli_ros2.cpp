@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fcntl.h>
 #include <fstream>
 #include <map>
@@ -226,6 +227,38 @@ TEST_CASE("ros2: the Livox driver's PointCloud2, type learnt from the publisher;
   std::snprintf(mount, sizeof mount, "%.17g,%.17g,0", gravity["roll_deg"].get<double>(),
                 gravity["pitch_deg"].get<double>());
   check_offline_equal(dir, dir.path("node.csv"), dir.path("in.mcap"), {"--preset", "objects-mid360", "--mount", mount});
+}
+
+TEST_CASE("ros2 --odom: a moving sensor's odometry places the points as cluster --poses does from the recording") {
+  TempDir dir("cli_ros2", "odom");
+  constexpr unsigned kDomain = 73;
+  NodeThread node(node_args(dir, kDomain, {"--odom", "/odom"}));
+  replay_to(dir, kDomain, "/livox/lidar",
+            {"--simulate", "--sensor", "mid360", "--scene", "street", "--seconds", "1.5", "--ego-speed", "1.5",
+             "--odom-topic", "/odom"});
+  const RunResult got = node.join();
+  REQUIRE_MESSAGE(got.code == 0, got.err);
+  const auto report = read_json(dir.path("node.json"));
+  INFO("ros2: ", report["ros2"].dump());
+  CHECK(report["ros2"]["odometry"]["poses"].get<int>() >= 290);  // 200 Hz over 1.5 s
+  CHECK(report["ros2"]["odometry"]["rejected"] == 0);
+  CHECK(report["ros2"]["output_frame"] == "odom");
+  CHECK(report["totals"]["rejected"]["no_pose"] == 0);  // every point waited for its pose
+  // The recording holds the odometry: `cluster --poses` reads it from there.
+  std::vector<std::string> posed = kPreset;
+  posed.insert(posed.end(), {"--poses", dir.path("in.mcap")});
+  check_offline_equal(dir, dir.path("node.csv"), dir.path("in.mcap"), posed);
+  // Without the poses the same points cluster differently (the sensor moved 2 m).
+  const RunResult unposed = run_cli({"cluster", dir.path("in.mcap"), "--labels", dir.path("unposed.csv"), "--cycles",
+                                     "all", "-q", "--preset", "carc-mid360", "--window-time", "0.2"});
+  REQUIRE(unposed.code == 0);
+  CHECK(slurp(dir.path("unposed.csv")) != slurp(dir.path("node.csv")));
+  // A recording without odometry: the error names the file and lists its topics.
+  const RunResult none = run_cli({"cluster", dir.path("in.mcap"), "--poses",
+                                  (std::filesystem::path(__FILE__).parent_path() / "data/recordings/ros2_custom_lz4.mcap").string(),
+                                  "-q"});
+  CHECK(none.code == 4);
+  CHECK(none.err.find("no nav_msgs/Odometry topic; topics: /livox/lidar") != std::string::npos);
 }
 
 TEST_CASE("ros2: malformed CDR from a publisher is counted and skipped; the stream goes on") {

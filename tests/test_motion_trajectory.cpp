@@ -130,3 +130,33 @@ TEST_CASE("PoseTrajectory: bad poses are rejected naming the index and the value
   const sc::PoseTrajectory ok(poses);
   CHECK(ok.poses()[0].pose.rotation.norm() == doctest::Approx(1.0));
 }
+
+TEST_CASE("PoseTrajectory::append: a growing trajectory equals one built at once; a bad pose leaves it unchanged") {
+  std::vector<sc::StampedPose> poses;
+  for (int i = 0; i < 20; ++i) poses.push_back(stamped(0.01 * i, 0.015 * i, 0.002 * i * i, 0.0, 3.0 * i, 0.5 * i));
+  poses[7].pose.rotation.coeffs() *= 2.5;  // not normalised: both normalise it alike
+  const sc::PoseTrajectory whole(poses);
+  sc::PoseTrajectory grown(std::vector<sc::StampedPose>{poses.front()});
+  sc::PoseTrajectory::Cursor cursor;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    grown.append(poses[i]);
+    CHECK(grown.time_end() == poses[i].time);
+    // A reader between appends (the motion policy on the same thread) sees the new span.
+    const auto p = grown.at(poses[i].time - 0.004, cursor);
+    REQUIRE(p.has_value());
+  }
+  REQUIRE(grown.size() == whole.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    CHECK(grown.poses()[i].time == whole.poses()[i].time);
+    CHECK(grown.poses()[i].pose.rotation.coeffs() == whole.poses()[i].pose.rotation.coeffs());  // bit for bit
+    CHECK(grown.poses()[i].pose.translation == whole.poses()[i].pose.translation);
+  }
+  // Not later than the last, or not a rotation: refused, the trajectory as it was.
+  const std::string m = invalid_argument_message([&] { grown.append(stamped(0.19, 0, 0, 0, 0)); });
+  CHECK(m.find("poses[20].time = 0.19") != std::string::npos);
+  sc::StampedPose zero = stamped(0.5, 0, 0, 0, 0);
+  zero.pose.rotation.coeffs() << 0.0, 0.0, 0.0, 0.0;
+  CHECK(invalid_argument_message([&] { grown.append(zero); }).find("rotation norm") != std::string::npos);
+  CHECK(grown.size() == poses.size());
+  CHECK(grown.time_end() == poses.back().time);
+}

@@ -34,6 +34,7 @@ POLICY_KEYWORDS = {
     "time_origin": ("--time-origin", "number"),
     # motion and structure removal (the objects presets)
     "poses": ("--poses", "path"),
+    "poses_topic": ("--poses-topic", "choice"),
     "mount": ("--mount", "angles"),
     "ground": ("--ground", "flag"),
     "sensor_height": ("--sensor-height", "number"),

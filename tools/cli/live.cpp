@@ -169,7 +169,7 @@ std::optional<ImuGravity> prepare_live_cluster(ClusterOptions& c, LiveFeed& feed
     if (c.ground) first_window = first_window_points(c);
     std::vector<std::array<float, 3>> accelerations;
     for (const live::LivoxImuSample& s : feed.take_imu()) accelerations.push_back(s.acceleration);
-    if (c.ground && !c.mount_deg && c.poses_path.empty()) {
+    if (c.ground && !c.mount_deg && c.poses_path.empty() && !c.trajectory) {
       gravity = gravity_from_accelerometer(accelerations);
       if (gravity) {
         c.mount_deg = std::array<double, 3>{gravity->roll_deg, gravity->pitch_deg, 0.0};

@@ -87,8 +87,10 @@ policies (a preset first, then every option below overrides it):
   --mode continuous|frame           frame: each retrieval clusters its window from scratch
 motion and structure removal (continuous mode; the objects presets turn --ground on):
   --poses FILE                      the sensor's poses, a TUM trajectory (t tx ty tz qx qy qz qw,
-                                    world from vehicle, on the points' clock): each point placed
-                                    in the world at its capture time
+                                    world from vehicle, on the points' clock), or a recording
+                                    (.mcap, .db3, .bag, a rosbag2 folder) with a nav_msgs/Odometry
+                                    topic: each point placed in the world at its capture time
+  --poses-topic NAME                the recording's odometry topic (default: its only one)
   --mount ROLL,PITCH,YAW            the sensor's rotation [deg] (0,30,0: pitched 30 down; 180,0,0:
                                     upside down); with --poses, on the vehicle
   --ground | --no-ground            class ground and ceiling points out of the clustering

@@ -44,6 +44,14 @@ using registry::Slot;
 
 enum class Mode { continuous, frame };
 
+}  // namespace streamclust::cli
+
+namespace streamclust {
+class PoseTrajectory;  // motion/trajectory.hpp: poses given by a live source
+}  // namespace streamclust
+
+namespace streamclust::cli {
+
 struct RunSetup;     // cli/run_setup.hpp: what the options resolve to before a run
 struct CycleReport;  // cli/report.hpp: one retrieval cycle as reported
 
@@ -77,7 +85,11 @@ struct ClusterOptions {
   float z_min = -3.0f, z_max = 3.0f;
   float min_range = 0.1f;
   // sensor poses (motion compensation) and mount: tools/cli/poses.hpp loads them
-  std::string poses_path;                         ///< --poses FILE: TUM trajectory; empty: none
+  std::string poses_path;                         ///< --poses FILE: TUM trajectory or a recording's odometry; empty: none
+  std::optional<std::string> poses_topic;         ///< --poses-topic NAME: the recording's odometry topic
+  /// Poses given by the caller instead of --poses (a live source's odometry,
+  /// growing as it arrives); null: none.
+  std::shared_ptr<const PoseTrajectory> trajectory;
   std::optional<std::array<double, 3>> mount_deg;  ///< --mount ROLL,PITCH,YAW [deg]; empty: none given
   // structure removal (HeightMapGround)
   bool ground = false;                 ///< --ground: class ground and ceiling points out of the clustering
@@ -304,6 +316,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.mode = c.choice({"continuous", "frame"}) == "continuous" ? Mode::continuous : Mode::frame;
     } else if (a == "--poses") {
       o.poses_path = c.value();
+    } else if (a == "--poses-topic") {
+      o.poses_topic = c.value();
     } else if (a == "--mount") {
       o.mount_deg = parse_mount(c.value());
     } else if (a == "--ground") {
@@ -382,6 +396,7 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   if (o.verify && o.mode == Mode::frame) throw UsageError("--verify compares the continuous engine: use --mode continuous");
   if (o.connectivity_given && o.mode == Mode::frame)
     throw UsageError("--connectivity chooses the continuous engine's strategy: use --mode continuous");
+  if (o.poses_topic && o.poses_path.empty()) throw UsageError("--poses-topic: names the odometry topic of --poses FILE");
   if (o.mode == Mode::frame && (o.ground || !o.poses_path.empty() || o.mount_deg)) {
     throw UsageError("--ground, --poses and --mount are stages of the continuous engine: use --mode continuous");
   }

@@ -7,6 +7,7 @@
 
 #include "cli/options.hpp"
 
+#include <streamclust/io/odometry_reader.hpp>
 #include <streamclust/io/tum.hpp>
 #include <streamclust/motion/pose.hpp>
 #include <streamclust/motion/posed_motion.hpp>
@@ -20,11 +21,14 @@ namespace streamclust::cli {
 
 /// True when the options give poses or a mount (else the stream is in a
 /// level sensor frame, or its mount is to be estimated).
-inline bool has_motion_options(const ClusterOptions& o) { return !o.poses_path.empty() || o.mount_deg.has_value(); }
+inline bool has_motion_options(const ClusterOptions& o) {
+  return !o.poses_path.empty() || o.trajectory != nullptr || o.mount_deg.has_value();
+}
 
 /// PosedMotion::Params of the options: the mount from `--mount` (identity
-/// without it) and the trajectory read from the `--poses` TUM file (none
-/// without it), its times counted from the input's time origin
+/// without it) and the trajectory (the caller's `trajectory`, else read
+/// from `--poses`: a TUM file, or the odometry topic of a recording; none
+/// without either), its times counted from the input's time origin
 /// (`o.read.time_origin`, zero when unset). A malformed file throws
 /// io::InputError naming the file and the line (the tool's exit code 4).
 /// O(poses).
@@ -35,8 +39,14 @@ inline PosedMotion::Params load_motion_params(const ClusterOptions& o) {
     params.mount = mount_from_roll_pitch_yaw_deg(deg[0], deg[1], deg[2]);
   }
   // read_tum checks all PoseTrajectory checks (finite, strictly increasing times, quaternion norm >= 1e-6).
-  if (!o.poses_path.empty()) {
-    params.trajectory = std::make_shared<const PoseTrajectory>(to_stamped_poses(io::read_tum(o.poses_path, o.read.time_origin.value_or(io::TimeOrigin{}))));
+  const io::TimeOrigin origin = o.read.time_origin.value_or(io::TimeOrigin{});
+  if (o.trajectory) {
+    params.trajectory = o.trajectory;
+  } else if (!o.poses_path.empty()) {
+    const std::vector<io::TumRecord> records = io::is_odometry_recording(o.poses_path)
+                                                   ? io::read_odometry(o.poses_path, origin, o.poses_topic)
+                                                   : io::read_tum(o.poses_path, origin);
+    params.trajectory = std::make_shared<const PoseTrajectory>(to_stamped_poses(records));
   }
   return params;
 }

@@ -12,7 +12,7 @@
 namespace streamclust::cli {
 
 #ifndef STREAMCLUST_TOOL_ROS2
-int run_replay_ros2(const ReplayOptions&, std::vector<io::Record>, std::ostream&, std::ostream&) {
+int run_replay_ros2(const ReplayOptions&, SimulatedStream, std::ostream&, std::ostream&) {
   throw UsageError("--to ros2://: this streamclust was built without ROS 2 support (it needs Cyclone DDS: "
                    "apt-get install cyclonedds-dev, then build again)");
 }
@@ -54,6 +54,9 @@ ReplayOptions parse_replay_options(const std::vector<std::string>& args) {
       to_given = true;
     } else if (a == "--imu-topic") {
       o.ros2.imu_topic = c.value();
+      ros2_only.push_back(a);
+    } else if (a == "--odom-topic") {
+      o.ros2.odom_topic = c.value();
       ros2_only.push_back(a);
     } else if (a == "--message") {
       o.ros2.point_cloud2 = c.choice({"custom", "pointcloud2"}) == "pointcloud2";
@@ -210,6 +213,9 @@ ros2 targets:
                                   timestamp)
   --message-seconds S             seconds of points per message (default 0.1: the driver's 10 Hz)
   --imu-topic TOPIC               the IMU messages' topic (default /livox/imu)
+  --odom-topic TOPIC              also the sensor's poses as nav_msgs/msg/Odometry (frame odom,
+                                  child livox_frame): --simulate's trajectory (200 Hz), or a
+                                  recording's odometry topic as recorded
   --qos reliable|best-effort      the publishers' reliability (default reliable, keep last 256,
                                   as livox_ros_driver2 publishes)
   --subscribers N                 wait for N subscribers of the point topic before sending
@@ -239,7 +245,7 @@ Exit codes: 0 ok, 2 usage error, 4 input error, 6 network error.
 }
 
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err) {
-  if (!o.ros2.topic.empty()) return run_replay_ros2(o, o.simulate ? simulate_records(o.simulation) : std::vector<io::Record>{}, out, err);
+  if (!o.ros2.topic.empty()) return run_replay_ros2(o, o.simulate ? simulate_stream(o.simulation) : SimulatedStream{}, out, err);
   LivoxEmulator emulator(o.emulator);
   // A simulated stream is made before the host connects: a configured or
   // handshaken device streams at once.

@@ -26,6 +26,7 @@ namespace streamclust::cli {
 struct Ros2ReplayOptions {
   std::string topic;                    ///< the point topic ("/livox/lidar"); empty: a Livox target
   std::string imu_topic = "/livox/imu"; ///< where IMU messages go (recorded ones, or --imu's)
+  std::string odom_topic;               ///< --odom-topic: the poses as nav_msgs/msg/Odometry; empty: none
   bool point_cloud2 = false;            ///< --message pointcloud2: the driver's PointCloud2 instead of CustomMsg
   bool best_effort = false;             ///< --qos best-effort (default reliable, keep last 256: livox_ros_driver2's)
   std::size_t subscribers = 1;          ///< wait for this many subscribers before sending (at most --wait)
@@ -51,6 +52,6 @@ std::string replay_help();
 int run_replay(const ReplayOptions& o, std::ostream& out, std::ostream& err);
 /// The `--to ros2://` part (built with Cyclone DDS: cli/replay_ros2.cpp);
 /// `simulated` holds the --simulate stream (empty otherwise).
-int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, std::ostream& out, std::ostream& err);
+int run_replay_ros2(const ReplayOptions& o, SimulatedStream simulated, std::ostream& out, std::ostream& err);
 
 }  // namespace streamclust::cli

@@ -16,6 +16,7 @@
 #include <streamclust/io/reader.hpp>
 #include <streamclust/io/recording_reader.hpp>
 #include <streamclust/io/ros/message_definition.hpp>
+#include <streamclust/io/ros/odometry.hpp>
 #include <streamclust/io/ros/point_messages.hpp>
 #include <streamclust/io/ros2_messages.hpp>
 #include <streamclust/ros2/cdr_publisher.hpp>
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -100,8 +102,8 @@ void write_driver_point_cloud2(io::CdrWriter& w, const std::string& frame_id,
 
 /// The publishers of a replay and what they sent.
 struct Senders {
-  std::unique_ptr<ros2::CdrPublisher> points, imu;
-  std::uint64_t point_messages = 0, points_sent = 0, imu_messages = 0;
+  std::unique_ptr<ros2::CdrPublisher> points, imu, odom;
+  std::uint64_t point_messages = 0, points_sent = 0, imu_messages = 0, odom_messages = 0;
 };
 
 /// Waits for `n` subscribers of `p` at most `timeout`; false if they did not come.
@@ -116,13 +118,14 @@ bool wait_for_subscribers(const ros2::CdrPublisher& p, std::size_t n, std::chron
 
 }  // namespace
 
-int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, std::ostream& out, std::ostream&) {
+int run_replay_ros2(const ReplayOptions& o, SimulatedStream simulated, std::ostream& out, std::ostream&) {
   StopSignals signals;
   const Ros2ReplayOptions& r = o.ros2;
-  std::string topic, imu_topic;
+  std::string topic, imu_topic, odom_topic;
   try {
     topic = ros2::resolve_topic(r.topic);
     imu_topic = ros2::resolve_topic(r.imu_topic);
+    if (!r.odom_topic.empty()) odom_topic = ros2::resolve_topic(r.odom_topic);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--to ros2://: ") + e.what());
   }
@@ -137,6 +140,9 @@ int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, s
                                                       ros2::dds_type_name(type), qos);
       s.imu = std::make_unique<ros2::CdrPublisher>(*participant, ros2::dds_topic_name(imu_topic),
                                                    ros2::dds_type_name("sensor_msgs/msg/Imu"), qos);
+      if (!odom_topic.empty())
+        s.odom = std::make_unique<ros2::CdrPublisher>(*participant, ros2::dds_topic_name(odom_topic),
+                                                      ros2::dds_type_name("nav_msgs/msg/Odometry"), qos);
     } catch (const ros2::DdsError& e) {
       throw NetworkError(std::string("replay: ") + e.what());
     }
@@ -164,20 +170,25 @@ int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, s
     // A ROS 2 recording: its messages as recorded.
     const io::RecordingTopic& pt = source->topics()[point_topic];
     open_points(full_type_name(pt.type));
-    std::vector<bool> imu_topics;
-    for (const io::RecordingTopic& t : source->topics())
-      imu_topics.push_back(t.message_encoding == "cdr" &&
-                           io::ros::MessageDefinitions::normalize(t.type) == "sensor_msgs/Imu");
+    std::vector<bool> imu_topics, odom_topics;
+    for (const io::RecordingTopic& t : source->topics()) {
+      const bool cdr = t.message_encoding == "cdr";
+      imu_topics.push_back(cdr && io::ros::MessageDefinitions::normalize(t.type) == "sensor_msgs/Imu");
+      odom_topics.push_back(cdr && s.odom && io::ros::is_odometry_type(t.type));
+    }
     io::RecordingMessage m;
     while (!stop_requested() && source->next(m)) {
-      if (m.topic != point_topic && !imu_topics[m.topic]) continue;
+      if (m.topic != point_topic && !imu_topics[m.topic] && !odom_topics[m.topic]) continue;
       pacer.wait_until(m.log_time_ns);
       if (m.topic == point_topic) {
         s.points->publish(m.data, m.size);
         ++s.point_messages;
-      } else {
+      } else if (imu_topics[m.topic]) {
         s.imu->publish(m.data, m.size);
         ++s.imu_messages;
+      } else {
+        s.odom->publish(m.data, m.size);
+        ++s.odom_messages;
       }
     }
   } else {
@@ -187,7 +198,7 @@ int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, s
     std::vector<io::Record> records;
     std::int64_t origin_s = 0;
     if (o.simulate) {
-      records = std::move(simulated);
+      records = std::move(simulated.records);
       origin_s = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
                      .count();
     } else {
@@ -216,11 +227,38 @@ int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, s
         ++s.imu_messages;
       }
     };
+    // --odom-topic with --simulate: the sensor's trajectory, each pose sent
+    // before the points it covers.
+    std::size_t next_pose = 0;
+    auto send_odom_until = [&](std::uint64_t until_ns) {
+      if (!s.odom) return;
+      const std::vector<StampedPose>& poses = simulated.trajectory;
+      for (; next_pose < poses.size(); ++next_pose) {
+        const StampedPose& p = poses[next_pose];
+        const auto t_ns = static_cast<std::uint64_t>(origin_s * 1'000'000'000 + std::llround(p.time * 1e9));
+        io::ros2msg::Header h;
+        h.sec = static_cast<std::int32_t>(t_ns / 1'000'000'000u);
+        h.nanosec = static_cast<std::uint32_t>(t_ns % 1'000'000'000u);
+        h.frame_id = "odom";
+        io::ros2msg::Odometry odom;
+        odom.child_frame_id = "livox_frame";
+        odom.position = {p.pose.translation.x(), p.pose.translation.y(), p.pose.translation.z()};
+        odom.orientation = {p.pose.rotation.x(), p.pose.rotation.y(), p.pose.rotation.z(), p.pose.rotation.w()};
+        io::ros2msg::write_odometry(w, h, odom);
+        s.odom->publish(w.bytes());
+        ++s.odom_messages;
+        if (t_ns >= until_ns) {
+          ++next_pose;
+          break;  // the first pose at or after the points' end covers them
+        }
+      }
+    };
     auto flush = [&] {
       if (pending.empty()) return;
       const std::uint64_t last = pending.back().time_ns;
       pacer.wait_until(last);
       send_imu_until(last);
+      send_odom_until(last);
       if (r.point_cloud2) {
         write_driver_point_cloud2(w, "livox_frame", pending, 0, pending.size());
       } else {
@@ -255,15 +293,20 @@ int run_replay_ros2(const ReplayOptions& o, std::vector<io::Record> simulated, s
         pending.push_back(ret);
       }
     }
-    if (!stop_requested()) flush();
+    if (!stop_requested()) {
+      flush();
+      send_odom_until(std::numeric_limits<std::uint64_t>::max());  // the rest of the trajectory
+    }
   }
 
   // Reliable delivery: what is still unacknowledged gets up to --wait.
-  const bool acked = s.points->wait_for_acks(wait) && s.imu->wait_for_acks(wait);
+  const bool acked = s.points->wait_for_acks(wait) && s.imu->wait_for_acks(wait) && (!s.odom || s.odom->wait_for_acks(wait));
   if (!o.quiet) {
     out << "streamclust: replay: " << s.point_messages << " point messages";
     if (s.points_sent > 0) out << " (" << s.points_sent << " points)";
-    out << " on " << topic << ", " << s.imu_messages << " IMU messages on " << imu_topic << "; "
+    out << " on " << topic << ", " << s.imu_messages << " IMU messages on " << imu_topic;
+    if (s.odom) out << ", " << s.odom_messages << " odometry messages on " << odom_topic;
+    out << "; "
         << s.points->counters().subscribers << " subscribers"
         << (acked ? "" : "; not every message was acknowledged") << (stop_requested() ? "; stopped by a signal" : "")
         << "\n";

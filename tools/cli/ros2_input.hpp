@@ -14,9 +14,10 @@
 /// only fills the subscriptions' queues.
 
 #include "cli/live_feed.hpp"
+#include "cli/ros2_input_recorder.hpp"
+#include "cli/ros2_odometry.hpp"
 
 #include <streamclust/io/error.hpp>
-#include <streamclust/io/mcap_writer.hpp>
 #include <streamclust/io/ros/known_definitions.hpp>
 #include <streamclust/io/ros/message_decoder.hpp>
 #include <streamclust/io/ros/point_messages.hpp>
@@ -26,32 +27,13 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace streamclust::cli {
-
-/// The messages of a run as received, in an MCAP file (ROS 2 profile, the
-/// types' definitions as ros2msg schemas), which `cluster` reads as it
-/// reads any recording. Not thread-safe.
-class Ros2InputRecorder {
- public:
-  explicit Ros2InputRecorder(const std::string& path) : mcap_(path, io::McapWriter::Options{}) {}
-
-  /// Adds a topic; returns its channel for add().
-  std::uint16_t add_topic(const std::string& topic, const std::string& type, const std::string& definition) {
-    return mcap_.add_channel(mcap_.add_schema(type, "ros2msg", definition), topic, "cdr");
-  }
-  void add(std::uint16_t channel, std::uint64_t log_time_ns, const std::uint8_t* payload, std::size_t size) {
-    mcap_.write(channel, log_time_ns, payload, size);
-  }
-  void close() { mcap_.close(); }
-
- private:
-  io::McapWriter mcap_;
-};
 
 /// Counts of what the input decoded.
 struct Ros2InputCounters {
@@ -65,10 +47,13 @@ struct Ros2InputCounters {
 class Ros2Input final : public LiveInput {
  public:
   /// `type` is the point topic's ROS 2 type ("sensor_msgs/msg/PointCloud2");
-  /// `imu` may be null; `recorder` (may be null) receives every message.
+  /// `imu` and `odometry` may be null; `recorder` (may be null) receives
+  /// every message.
   Ros2Input(ros2::CdrSubscription& points, const std::string& topic, const std::string& type,
-            ros2::CdrSubscription* imu, const std::string& imu_topic, Ros2InputRecorder* recorder)
+            ros2::CdrSubscription* imu, const std::string& imu_topic, ros2::CdrSubscription* odometry,
+            const std::string& odometry_topic, Ros2InputRecorder* recorder)
       : points_(points), imu_(imu), recorder_(recorder) {
+    if (odometry != nullptr) odometry_.emplace(*odometry, odometry_topic, recorder);
     const auto definition = io::ros::known_definition(type, io::ros::Encoding::cdr);
     if (!definition) throw std::invalid_argument("topic " + topic + ": type " + type + " holds no points this tool reads");
     decoder_.emplace(type, *definition, io::ros::Encoding::cdr);
@@ -95,18 +80,27 @@ class Ros2Input final : public LiveInput {
         any = true;
       }
     }
+    if (odometry_ && odometry_->poll()) any = true;
     for (int burst = 0; burst < 16; ++burst) {
       ros2::CdrMessage m = points_.pop();
       if (!m) break;
-      take_points(m, points, arrivals);
+      take_points(m, odometry_ ? held_ : points, arrivals);
       any = true;
     }
+    if (odometry_) release(points, odometry_->covered_until_ns());
     return any;
+  }
+  /// At the end: the points the odometry never covered go too (the engine
+  /// rejects them, as `cluster --poses` does).
+  void flush(std::vector<LivePoint>& points, std::vector<live::PacketArrival>&) override {
+    release(points, std::numeric_limits<std::uint64_t>::max());
   }
   std::string error() const override { return {}; }
   std::size_t queue_depth() const override { return points_.size(); }
 
   const Ros2InputCounters& counters() const noexcept { return counters_; }
+  /// The odometry (--odom), or null.
+  OdometryGate* odometry() { return odometry_ ? &*odometry_ : nullptr; }
   /// Arrivals of the messages decoded, by their last point's time, oldest
   /// first; the caller pops what it has accounted for.
   std::deque<live::PacketArrival>& completions() { return completions_; }
@@ -151,6 +145,14 @@ class Ros2Input final : public LiveInput {
       if (completions_.size() > 20000) completions_.pop_front();
       if (recorder_ != nullptr) recorder_->add(points_channel_, points[before].t_ns, m.data(), m.size());
     }
+  }
+
+  /// Moves the held points up to `until_ns` into `points`, in order.
+  void release(std::vector<LivePoint>& points, std::uint64_t until_ns) {
+    std::size_t n = 0;
+    while (n < held_.size() && held_[n].t_ns <= until_ns) ++n;
+    points.insert(points.end(), held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(n));
+    held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(n));
   }
 
   void take_imu(const ros2::CdrMessage& m, std::vector<live::LivoxImuSample>& imu) {
@@ -206,6 +208,8 @@ class Ros2Input final : public LiveInput {
   Ros2InputCounters counters_;
   std::string frame_id_;
   std::deque<live::PacketArrival> completions_;
+  std::optional<OdometryGate> odometry_;
+  std::vector<LivePoint> held_;  // decoded points waiting for the odometry to cover them
 };
 
 }  // namespace streamclust::cli

@@ -72,6 +72,8 @@ Ros2Options parse_ros2_options(const std::vector<std::string>& args) {
       o.input_qos = v == "reliable" ? InputQos::reliable : v == "best-effort" ? InputQos::best_effort : InputQos::automatic;
     } else if (a == "--imu") {
       o.imu = topic_option(a, c.value());
+    } else if (a == "--odom") {
+      o.odom = topic_option(a, c.value());
     } else if (a == "--namespace") {
       o.ns = c.value();
       try {
@@ -121,6 +123,10 @@ Ros2Options parse_ros2_options(const std::vector<std::string>& args) {
   cluster_args.push_back("ros2:" + o.input);  // cluster's INPUT: names the source in messages and the report
   o.cluster = parse_cluster_options(cluster_args);
   if (o.cluster.quiet) o.status = false;
+  if (!o.odom.empty() && !o.cluster.poses_path.empty())
+    throw UsageError("--odom and --poses: the poses come from one of them");
+  if (!o.odom.empty() && o.cluster.mode == Mode::frame)
+    throw UsageError("--odom: poses are a stage of the continuous engine: use --mode continuous");
   if (!o.record_path.empty() && o.record_path == o.record_out_path)
     throw UsageError("--record and --record-out: expected two different files");
   return o;
@@ -148,6 +154,10 @@ input:
   --imu TOPIC                     sensor_msgs/msg/Imu: with --ground (the objects presets) and no
                                   --mount or --poses, the mount's roll and pitch from the first
                                   window's accelerometer
+  --odom TOPIC                    nav_msgs/msg/Odometry: the sensor's poses, as --poses gives them
+                                  offline (world from the odometry's child frame: the LiDAR, or the
+                                  vehicle with --mount); points wait for the pose at their time;
+                                  the outputs are in the odometry's frame (header.frame_id)
   --queue N                       messages queued between DDS and the engine (default 64); when
                                   full, whole messages are dropped and counted
 outputs (besides those of cluster: --labels, --report, --mcap, --png, ...):
@@ -242,7 +252,7 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
   // The subscriptions, the input, the outputs.
   ros2::TopicQos qos = ros2::sensor_data_qos();
   qos.reliability = reliability_for(o.input_qos, discovered);
-  std::unique_ptr<ros2::CdrSubscription> points_sub, imu_sub;
+  std::unique_ptr<ros2::CdrSubscription> points_sub, imu_sub, odom_sub;
   std::unique_ptr<Ros2InputRecorder> recorder;
   std::unique_ptr<Ros2Input> input;
   std::unique_ptr<Ros2Outputs> outputs;
@@ -261,6 +271,14 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
       io_.queue_messages = 4096;  // 20 s of a 200 Hz IMU
       imu_sub = std::make_unique<ros2::CdrSubscription>(*participant, io_);
     }
+    if (!o.odom.empty()) {
+      ros2::CdrSubscription::Options oo;
+      oo.dds_topic = ros2::dds_topic_name(o.odom);
+      oo.dds_type = ros2::dds_type_name("nav_msgs/msg/Odometry");
+      oo.qos = ros2::TopicQos{qos.reliability, ros2::Durability::volatile_, 50};
+      oo.queue_messages = 4096;  // 20 s of 200 Hz odometry
+      odom_sub = std::make_unique<ros2::CdrSubscription>(*participant, oo);
+    }
     if (!o.record_path.empty()) {
       try {
         recorder = std::make_unique<Ros2InputRecorder>(o.record_path);
@@ -268,7 +286,8 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
         throw UsageError("--record: cannot write '" + o.record_path + "'");
       }
     }
-    input = std::make_unique<Ros2Input>(*points_sub, o.input, full_type, imu_sub.get(), o.imu, recorder.get());
+    input = std::make_unique<Ros2Input>(*points_sub, o.input, full_type, imu_sub.get(), o.imu, odom_sub.get(), o.odom,
+                                        recorder.get());
     try {
       outputs = std::make_unique<Ros2Outputs>(*participant, o.ns, o.depth, o.record_out_path);
     } catch (const std::invalid_argument& e) {
@@ -318,12 +337,20 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
         run.done.store(true);
         return;
       }
+      // --odom: the poses so far become the run's trajectory, which grows
+      // as odometry arrives (the first point waited for a pose).
+      if (OdometryGate* odometry = input->odometry()) {
+        c.trajectory = odometry->start(io::TimeOrigin{static_cast<std::int64_t>(feed.first_time_ns() / 1'000'000'000u)});
+      }
       const std::optional<ImuGravity> gravity =
           prepare_live_cluster(c, feed, "ros2:" + o.input, input->fields(), nullptr, "streamclust: ros2", err);
-      // Placed by a mount, the window is in a level frame: its transform
-      // from the input's frame goes to /tf_static.
+      // With --odom the window is in the odometry's frame (the robot's TF
+      // tree links it); placed by a mount alone, in a level frame whose
+      // transform from the input's frame goes to /tf_static.
       const bool level = c.setup && c.setup->motion.enabled;
-      if (level) {
+      if (OdometryGate* odometry = input->odometry()) {
+        output_frame = odometry->frame_id();
+      } else if (level) {
         const Pose& mount = c.setup->motion.posed.mount;
         io::ros2msg::Transform t;
         t.child = input->frame_id();
@@ -372,6 +399,11 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
         r["frame_id"] = input->frame_id();
         r["output_frame"] = output_frame.empty() ? input->frame_id() : output_frame;
         if (!input->imu_units().empty()) r["imu_units"] = input->imu_units();
+        if (OdometryGate* odometry = input->odometry()) {
+          r["odometry"] = {{"topic", o.odom}, {"frame_id", odometry->frame_id()},
+                           {"poses", odometry->counters().poses}, {"rejected", odometry->counters().rejected}};
+          if (!odometry->counters().last_error.empty()) r["odometry"]["last_rejected"] = odometry->counters().last_error;
+        }
         r["end"] = describe(feed.end());
         r["messages"] = {{"received", sc.received}, {"dropped", sc.dropped}, {"lost", sc.lost},
                          {"decoded", ic.messages}, {"malformed", ic.malformed}, {"points", ic.points},

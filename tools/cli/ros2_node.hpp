@@ -28,6 +28,7 @@ struct Ros2Options {
   std::string input_type;              ///< ROS 2 type; empty: learnt from the first publisher discovered
   InputQos input_qos = InputQos::automatic;
   std::string imu;                     ///< sensor_msgs/msg/Imu topic; empty: none
+  std::string odom;                    ///< nav_msgs/msg/Odometry topic: the poses (as --poses); empty: none
   std::string ns = "/streamclust";     ///< the outputs' namespace
   std::int32_t depth = 5;              ///< output history depth (reliable, keep last)
   std::string level_frame;             ///< the outputs' frame when placed by a mount; empty: input frame + "_level"

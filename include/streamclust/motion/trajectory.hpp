@@ -56,21 +56,22 @@ class PoseTrajectory {
   /// below kMinQuaternionNorm. O(n).
   explicit PoseTrajectory(std::vector<StampedPose> poses) : poses_(std::move(poses)) {
     if (poses_.empty()) throw std::invalid_argument("PoseTrajectory: poses is empty; allowed: at least one pose");
-    for (std::size_t i = 0; i < poses_.size(); ++i) {
-      StampedPose& s = poses_[i];
-      const Eigen::Vector4d q = s.pose.rotation.coeffs();
-      if (!std::isfinite(s.time)) fail(i, "time", s.time, "finite");
-      for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(s.pose.translation[k])) fail(i, "translation", s.pose.translation[k], "finite");
-      }
-      for (int k = 0; k < 4; ++k) {
-        if (!std::isfinite(q[k])) fail(i, "rotation", q[k], "finite quaternion components");
-      }
-      if (q.norm() < kMinQuaternionNorm) fail(i, "rotation norm", q.norm(), "a quaternion norm >= 1e-6");
-      s.pose.rotation.normalize();
-      if (i > 0 && !(s.time > poses_[i - 1].time)) {
-        fail(i, "time", s.time, "times strictly increasing (previous " + number(poses_[i - 1].time) + ")");
-      }
+    for (std::size_t i = 0; i < poses_.size(); ++i) check(i);
+  }
+
+  /// Appends a pose later than the last (a trajectory that grows as
+  /// odometry arrives), validated and normalised as the constructor's;
+  /// throws std::invalid_argument (and keeps the trajectory) otherwise.
+  /// O(1) amortised. Not thread-safe: no reader may use the trajectory
+  /// meanwhile (PosedMotion on the same thread may: it looks the segment up
+  /// again once a time leaves its cached one).
+  void append(const StampedPose& pose) {
+    poses_.push_back(pose);
+    try {
+      check(poses_.size() - 1);
+    } catch (...) {
+      poses_.pop_back();
+      throw;
     }
   }
 
@@ -116,6 +117,24 @@ class PoseTrajectory {
   const std::vector<StampedPose>& poses() const { return poses_; }
 
  private:
+  /// Validates and normalises poses_[i] against poses_[i - 1].
+  void check(std::size_t i) {
+    StampedPose& s = poses_[i];
+    const Eigen::Vector4d q = s.pose.rotation.coeffs();
+    if (!std::isfinite(s.time)) fail(i, "time", s.time, "finite");
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(s.pose.translation[k])) fail(i, "translation", s.pose.translation[k], "finite");
+    }
+    for (int k = 0; k < 4; ++k) {
+      if (!std::isfinite(q[k])) fail(i, "rotation", q[k], "finite quaternion components");
+    }
+    if (q.norm() < kMinQuaternionNorm) fail(i, "rotation norm", q.norm(), "a quaternion norm >= 1e-6");
+    s.pose.rotation.normalize();
+    if (i > 0 && !(s.time > poses_[i - 1].time)) {
+      fail(i, "time", s.time, "times strictly increasing (previous " + number(poses_[i - 1].time) + ")");
+    }
+  }
+
   static std::string number(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.17g", v);
