@@ -324,6 +324,11 @@ TEST_CASE("ros2: a publisher that leaves and comes back; a late subscriber of th
   so.qos = r2::default_qos(5);
   so.queue_messages = 1000;
   r2::CdrSubscription late(participant, so);
+  // And one that asks for transient-local durability, which volatile writers do not offer.
+  so.dds_topic = r2::dds_topic_name("/streamclust/clusters");
+  so.dds_type = r2::dds_type_name("visualization_msgs/msg/MarkerArray");
+  so.qos.durability = r2::Durability::transient_local;
+  r2::CdrSubscription durable(participant, so);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   replay_to(dir, kDomain, "/livox/lidar", {"--simulate", "--sensor", "mid360", "--seconds", "1.0", "--seed", "2",
                                            "-q"}, "second.log");
@@ -333,7 +338,12 @@ TEST_CASE("ros2: a publisher that leaves and comes back; a late subscriber of th
   INFO("ros2: ", report["ros2"].dump());
   CHECK(report["ros2"]["publishers"]["seen"] == 2);
   CHECK(report["ros2"]["messages"]["received"] == 20);
+  CHECK(report["ros2"]["latency"]["steady_state"] == true);
   check_offline_equal(dir, dir.path("node.csv"), dir.path("in.mcap"), kPreset);
+  // The durable subscriber was refused and counted, and got nothing.
+  CHECK(report["ros2"]["published"]["/streamclust/clusters"]["incompatible_qos"] == 1);
+  CHECK(durable.counters().received == 0);
+  CHECK(durable.counters().incompatible_qos == 1);  // and the subscriber hears why, as DDS reports it on both sides
   // The late subscriber: the second publisher's cycles, each a PointCloud2 with the node's fields.
   const auto counters = late.counters();
   CHECK(counters.received >= 15);

@@ -425,6 +425,9 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
           latency["median_ms"] = run.status.latency().percentile(50.0);
           latency["p99_ms"] = run.status.latency().percentile(99.0);
           latency["max_ms"] = run.status.latency().max();
+          // False: the engine never waited for input (it ran behind the
+          // stream throughout), so nothing was measured.
+          latency["steady_state"] = feed.caught_up().has_value();
           latency["complete_median_ms"] = run.complete.percentile(50.0);
           latency["complete_p99_ms"] = run.complete.percentile(99.0);
         }
