@@ -423,6 +423,8 @@ inline std::pair<PlaneContacts, PlaneContacts> plane_contacts(const std::vector<
       flags = static_cast<std::uint16_t>(flags | (f << (8 * k)));
     }
     if (flags == 0) continue;
+    // A cell index must fit int64: points beyond 1e9 m (no scan's) have none.
+    if (!(std::abs(x) < 1e9 && std::abs(y) < 1e9)) continue;
     const auto i = static_cast<std::int64_t>(std::floor(x / kCell)), j = static_cast<std::int64_t>(std::floor(y / kCell));
     cells[(static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffu)] |= flags;
   }
