@@ -38,13 +38,6 @@ namespace streamclust::cli {
 
 namespace {
 
-/// "pkg/Type" or "pkg/msg/Type" -> "pkg/msg/Type".
-std::string full_type_name(const std::string& type) {
-  const std::string t = io::ros::MessageDefinitions::normalize(type);
-  const std::size_t slash = t.find('/');
-  return t.substr(0, slash) + "/msg/" + t.substr(slash + 1);
-}
-
 /// Sends at the recorded rate x speed: sleeps until stream time `t_ns` is
 /// due (the first call's time is due at once).
 class Pacer {
@@ -169,7 +162,7 @@ int run_replay_ros2(const ReplayOptions& o, SimulatedStream simulated, std::ostr
   if (source) {
     // A ROS 2 recording: its messages as recorded.
     const io::RecordingTopic& pt = source->topics()[point_topic];
-    open_points(full_type_name(pt.type));
+    open_points(io::ros2_schema_name(pt.type));
     std::vector<bool> imu_topics, odom_topics;
     for (const io::RecordingTopic& t : source->topics()) {
       const bool cdr = t.message_encoding == "cdr";

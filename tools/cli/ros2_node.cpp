@@ -245,9 +245,7 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
                        "; expected a Livox CustomMsg or sensor_msgs/msg/PointCloud2");
     type = *ros_type;
   }
-  const std::string canonical_type = io::ros::MessageDefinitions::normalize(type);
-  const std::string full_type = canonical_type.substr(0, canonical_type.find('/')) + "/msg/" +
-                                canonical_type.substr(canonical_type.find('/') + 1);
+  const std::string full_type = io::ros2_schema_name(type);
 
   // The subscriptions, the input, the outputs.
   ros2::TopicQos qos = ros2::sensor_data_qos();
