@@ -215,6 +215,7 @@ TEST_CASE("estimate_ground: deterministic for a seed; non-finite points skipped;
   // 10,501 points, 10,500 finite, an even stride of 3: 3,500 used.
   CHECK(a->points_used == 3500);
 
+
   // Each bad parameter is named with its value.
   const auto message = [&](void (*spoil)(sc::MountEstimateParams&)) {
     sc::MountEstimateParams p;
@@ -392,4 +393,16 @@ TEST_CASE("gravity_from_accelerometer: the mount of a resting IMU levels gravity
   CHECK_FALSE(streamclust::gravity_from_accelerometer(shaken));
   CHECK_FALSE(streamclust::gravity_from_accelerometer(pushed));
   CHECK_FALSE(streamclust::gravity_from_accelerometer(few));
+}
+
+TEST_CASE("estimate_ground: a finite point far beyond any scan is no plane's contact cell (no index overflow)") {
+  // The engine fuzz target's case: a point 2e30 m out on the ground plane.
+  // Its cell index does not fit an int64 (UBSan: float-cast-overflow); it
+  // is left out, and the points of the scan still count.
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < 40; ++i) points.emplace_back(0.25f * static_cast<float>(i), 0.1f, -1.0f);  // the floor
+  points.emplace_back(2e30f, -3e30f, -1.0f);
+  points.emplace_back(-2e30f, 0.0f, -1.0f);
+  const auto contacts = sc::detail::plane_contacts(points, Eigen::Vector3d::UnitZ(), 1.0, 0.0, 0.05, 0.3);
+  CHECK(contacts.first.shows == 20);  // the floor's 10 m in 0.5 m cells
 }
