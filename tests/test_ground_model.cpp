@@ -12,6 +12,7 @@
 
 #include "support/invalid_argument.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -389,6 +390,7 @@ TEST_CASE("HeightMapGround decides as its rule computed from the live points (a 
     p.lowest_ray_elevation_deg = round % 4 == 1 ? -7.0f : -90.0f;
     p.step_height = round % 4 == 3 ? 0.0f : 0.2f;
     p.step_peak_ratio = round % 3 == 1 ? 0.5f : 2.0f;
+    p.detect_walls = false;  // the ground rule alone (walls: the test cases below)
     // Even rounds: the floor has a kerb 0.12 m high at x = 0.3.
     const float kerb = round % 2 == 0 ? 0.12f : 0.0f;
     sc::HeightMapGround model(p);
@@ -582,6 +584,7 @@ TEST_CASE("HeightMapGround forgets every point: after the window passes no cell 
   CHECK(model.heap_bytes() > 0);
   for (std::size_t i = 0; i < points.size(); ++i) model.forget(points[i], classes[i]);
   CHECK(model.live_cells() == 0);
+  CHECK(model.live_wall_voxels() == 0);
 }
 
 TEST_CASE("HeightMapGround rejects parameters outside their ranges, naming them") {
@@ -599,6 +602,85 @@ TEST_CASE("HeightMapGround rejects parameters outside their ranges, naming them"
   CHECK(message(bad([](auto& p) { p.support = 0; })).find("support") != std::string::npos);
   CHECK(message(bad([](auto& p) { p.ceiling_min_agreement = 0.0f; })).find("ceiling_min_agreement") !=
         std::string::npos);
+  CHECK(message(bad([](auto& p) { p.walls.max_rms = 0.0f; })).find("WallModel: max_rms = 0") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.walls.voxel_size = 8.0f; })).find("voxel_size = 8") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.walls.min_points = 1; })).find("min_points = 1") != std::string::npos);
   CHECK(message(sc::HeightMapGround::Params{}).empty());
   CHECK(sc::NoGround{}.classify(Eigen::Vector3f(0, 0, -5), Eigen::Vector3f(0, 0, -5)) == sc::SurfaceClass::object);
+}
+
+namespace {
+
+/// What a surface point belongs to, in the walls test below.
+enum class Part { floor, wall, cabinet_front, cabinet_side, pillar, car_side, trunk };
+
+/// Random points on a room's floor (z = -1, the sensor at the origin), a
+/// wall 3 m tall at x = 6, a cabinet 2 m tall 2 cm in front of it, a
+/// pillar, a car's side and a trunk; the faces the sensor sees, shuffled.
+std::vector<std::pair<Eigen::Vector3f, Part>> wall_room(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  std::vector<std::pair<Eigen::Vector3f, Part>> out;
+  const auto add = [&](Part part, int n, auto&& make) {
+    for (int i = 0; i < n; ++i) out.emplace_back(make() + Eigen::Vector3f(noise(rng), noise(rng), noise(rng)), part);
+  };
+  add(Part::floor, 40000, [&] { return Eigen::Vector3f(-8.0f + 14.0f * u(rng), -8.0f + 16.0f * u(rng), -1.0f); });
+  add(Part::wall, 30000, [&] {
+    Eigen::Vector3f p(6.0f, -7.0f + 14.0f * u(rng), -1.0f + 3.0f * u(rng));
+    while (p.y() > 0.98f && p.y() < 2.02f && p.z() < 1.0f) p = Eigen::Vector3f(6.0f, -7.0f + 14.0f * u(rng), -1.0f + 3.0f * u(rng));
+    return p;
+  });
+  add(Part::cabinet_front, 3000, [&] { return Eigen::Vector3f(5.43f, 1.0f + u(rng), -1.0f + 2.0f * u(rng)); });
+  add(Part::cabinet_side, 1500, [&] { return Eigen::Vector3f(5.43f + 0.55f * u(rng), 1.0f, -1.0f + 2.0f * u(rng)); });
+  add(Part::pillar, 3000, [&] {
+    const float a = 1.5f + 1.6f * u(rng);  // the half that faces the sensor
+    return Eigen::Vector3f(2.0f + 0.3f * std::cos(a), -3.0f + 0.3f * std::sin(a), -1.0f + 3.0f * u(rng));
+  });
+  add(Part::car_side, 4000, [&] { return Eigen::Vector3f(-3.0f + 4.5f * u(rng), -4.1f, -0.7f + 1.2f * u(rng)); });
+  add(Part::trunk, 2000, [&] {
+    const float a = -0.4f + 1.6f * u(rng);
+    return Eigen::Vector3f(-4.0f + 0.2f * std::cos(a), 3.0f + 0.2f * std::sin(a), -1.0f + 4.0f * u(rng));
+  });
+  std::shuffle(out.begin(), out.end(), rng);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("HeightMapGround walls: a wall is wall; a cabinet against it, a pillar, a car's side and a trunk are not") {
+  const auto points = wall_room(3);
+  sc::HeightMapGround model;
+  std::map<Part, std::pair<std::size_t, std::size_t>> wall_rate;  // part -> (points, classed wall)
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3f& p = points[i].first;
+    const sc::SurfaceClass c = model.classify(p, p);
+    if (i < points.size() / 3) continue;  // the model warms up on the first third
+    auto& r = wall_rate[points[i].second];
+    ++r.first;
+    r.second += c == sc::SurfaceClass::wall;
+  }
+  const auto rate = [&](Part part) {
+    const auto& r = wall_rate[part];
+    return static_cast<double>(r.second) / static_cast<double>(r.first);
+  };
+  INFO("classed wall: wall " << rate(Part::wall) << ", floor " << rate(Part::floor) << ", cabinet front "
+                             << rate(Part::cabinet_front) << ", side " << rate(Part::cabinet_side) << ", pillar "
+                             << rate(Part::pillar) << ", car side " << rate(Part::car_side) << ", trunk "
+                             << rate(Part::trunk));
+  CHECK(rate(Part::wall) > 0.95);
+  CHECK(rate(Part::floor) < 0.02);          // a strip along the wall's foot
+  CHECK(rate(Part::cabinet_front) < 0.01);  // 0.55 m in front of the wall
+  CHECK(rate(Part::cabinet_side) < 0.25);   // the back 10 cm of its 55
+  CHECK(rate(Part::pillar) == 0.0);
+  CHECK(rate(Part::car_side) == 0.0);       // long, but 1.2 m tall
+  CHECK(rate(Part::trunk) == 0.0);
+
+  // Without the wall stage nothing is wall.
+  sc::HeightMapGround::Params off;
+  off.detect_walls = false;
+  sc::HeightMapGround no_walls(off);
+  std::size_t walls = 0;
+  for (const auto& [p, part] : points) walls += no_walls.classify(p, p) == sc::SurfaceClass::wall;
+  CHECK(walls == 0);
 }

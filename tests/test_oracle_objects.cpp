@@ -87,7 +87,7 @@ std::shared_ptr<const sc::PoseTrajectory> random_trajectory(std::mt19937_64& rng
 }
 
 /// Ground parameters drawn per seed: small and large cells, tight and loose
-/// tolerances, single-point layers, the ceiling on and off.
+/// tolerances, single-point layers, the ceiling and the walls on and off.
 sc::HeightMapGround::Params random_ground(std::mt19937_64& rng) {
   sc::HeightMapGround::Params g;
   const float cells[] = {0.2f, 0.5f, 1.0f};
@@ -97,6 +97,7 @@ sc::HeightMapGround::Params random_ground(std::mt19937_64& rng) {
   g.search_radius = static_cast<float>(rng() % 4);
   g.detect_ceiling = rng() % 2 == 0;
   g.ceiling_clearance = 0.2f * static_cast<float>(rng() % 4);
+  g.detect_walls = rng() % 4 != 0;
   return g;
 }
 

@@ -23,10 +23,11 @@ struct PointLabel {
   ComponentId label = kNoComponent;  ///< stable id of the point's component
 };
 
-/// A window point the ground policy classed as structure (ground or ceiling).
+/// A window point the ground policy classed as structure (ground, wall or
+/// ceiling).
 struct StructurePoint {
   std::uint64_t stream_index = 0;              ///< position of the point in the input stream
-  SurfaceClass surface = SurfaceClass::ground;  ///< ground or ceiling
+  SurfaceClass surface = SurfaceClass::ground;  ///< ground, wall or ceiling
 };
 
 /// Summary of one connected component.
@@ -42,7 +43,7 @@ struct ComponentSummary {
 
 /// A labelled window. Every window point is in exactly one of `points` (an
 /// object point, labelled with its component) and `structure` (classed
-/// ground or ceiling by the engine's ground policy; empty without one);
+/// ground, wall or ceiling by the engine's ground policy; empty without one);
 /// rejected points are in neither (the engine's RejectionCounts). Both are
 /// in window order (oldest first); `components` is sorted by id. Filled by
 /// `StreamClusterer::retrieve()`; the engine reuses the storage on the next

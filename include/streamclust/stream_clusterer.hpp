@@ -73,7 +73,7 @@ namespace streamclust {
 ///
 /// Structure (the optional `ground` slot, concepts/ground.hpp): each
 /// accepted point is classed at insertion, from the window before it, as an
-/// object point (clustered as above) or structure (ground or ceiling: kept
+/// object point (clustered as above) or structure (ground, wall or ceiling: kept
 /// in the window, in the result's `structure`, never linked). Points leave
 /// the ground model with the window. The decisions are causal, so the
 /// batch oracle replays them: it clusters the window's object points.
@@ -300,7 +300,7 @@ class StreamClusterer {
   const connectivity_type& connectivity() const { return connectivity_; }
   const motion_type& motion() const { return motion_; }
   const ground_type& ground() const { return ground_; }
-  /// Structure points (ground, ceiling) in the window.
+  /// Structure points (ground, wall, ceiling) in the window.
   std::size_t structure_size() const { return structure_.size(); }
 
   /// Heap footprint by part [bytes], as capacities (MemoryUsage). The index
@@ -527,7 +527,7 @@ class StreamClusterer {
     Clock::add_since(stats_.phase_us.ground, t0);
     if (surface == SurfaceClass::object) return false;
     structure_.push(StructureEntry{stream_index, a.time, a.world, surface});
-    ++(surface == SurfaceClass::ceiling ? stats_.ceiling : stats_.ground);
+    ++(surface == SurfaceClass::ceiling ? stats_.ceiling : surface == SurfaceClass::wall ? stats_.wall : stats_.ground);
     return true;
   }
 

@@ -26,6 +26,7 @@ namespace streamclust::python {
 inline constexpr std::int32_t kUnlabelled = -1;
 inline constexpr std::int32_t kGroundRow = -2;
 inline constexpr std::int32_t kCeilingRow = -3;
+inline constexpr std::int32_t kWallRow = -4;
 
 /// One retrieval as rows, in ascending stream index. Scratch reused by the
 /// next retrieval.
@@ -86,7 +87,9 @@ class StreamSession {
     for (const StructurePoint& s : result.structure) {
       take_objects_before(s.stream_index);
       rows.index.push_back(static_cast<std::int64_t>(s.stream_index));
-      rows.label.push_back(s.surface == SurfaceClass::ceiling ? kCeilingRow : kGroundRow);
+      rows.label.push_back(s.surface == SurfaceClass::ceiling ? kCeilingRow
+                           : s.surface == SurfaceClass::wall  ? kWallRow
+                                                               : kGroundRow);
     }
     take_objects_before(std::numeric_limits<std::uint64_t>::max());
     // Rejected records inside the window's span: merged in as -1 (the CLI's rule).

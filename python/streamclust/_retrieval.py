@@ -36,7 +36,7 @@ class Retrieval:
         the rows of ``streamclust cluster --labels``.
     labels : numpy.ndarray, int32 (M,)
         Stable component id (>= 0), -1 unlabelled (rejected), -2 ground,
-        -3 ceiling (with ``ground=True``).
+        -3 ceiling, -4 wall (with ``ground=True``).
     components : numpy.ndarray, structured (K,), :data:`COMPONENT_DTYPE`
         id, size, centroid, min, max, t_min, t_max per component, by id.
 

@@ -151,7 +151,8 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   // The paper's preset, sensor frame.
   std::optional<EngineRun<CArcFastConfig>> carc;
   try {
-    const ClustererParams<ObjectsConfig> objects_parameters = objects_params(*sensor.facts, setup);
+    ClustererParams<ObjectsConfig> objects_parameters = objects_params(*sensor.facts, setup);
+    objects_parameters.ground.detect_walls = o.walls;
     if (o.run_objects) objects = make_objects_engine(o.linkage, o.linkage_params, objects_parameters, o.verify);
     CArcParams paper;
     paper.theta_deg = sensor.carc_theta_deg;

@@ -55,6 +55,7 @@ struct EvaluateObjectsOptions {
   std::size_t ransac_iterations = 100;  ///< frame
   std::size_t min_points = 10;      ///< eval::MetricOptions::min_points
   bool verify = false;              ///< objects: every retrieval against the batch partition
+  bool walls = true;                ///< objects: walls classed as structure (false: --no-walls)
   std::string json_path;
   bool quiet = false;
 };
@@ -162,6 +163,7 @@ methods:
   --distance M (default 0.3)        euclidean and frame linkage radius
   --plane-distance M (default 0.2)  --ransac-iterations N (default 100)
   --min-points N (default 10)       objects smaller than N points are not rated
+  --no-walls                        objects: no wall detection (walls clustered like objects)
 the objects engine's linkage (every other slot and parameter stays the objects preset's;
 --distance also sets the radius of a linkage with a --distance option):
 )") + ToolRegistry::help(Slot::linkage, objects_preset_linkage()) +

@@ -91,6 +91,8 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
       o.min_points = static_cast<std::size_t>(parse_count(a, c.value()));
     } else if (a == "--verify") {
       o.verify = true;
+    } else if (a == "--no-walls") {
+      o.walls = false;
     } else if (a == "--json") {
       o.json_path = c.value();
     } else if (a == "--quiet" || a == "-q") {

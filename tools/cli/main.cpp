@@ -93,7 +93,7 @@ motion and structure removal (continuous mode; the objects presets turn --ground
   --poses-topic NAME                the recording's odometry topic (default: its only one)
   --mount ROLL,PITCH,YAW            the sensor's rotation [deg] (0,30,0: pitched 30 down; 180,0,0:
                                     upside down); with --poses, on the vehicle
-  --ground | --no-ground            class ground and ceiling points out of the clustering
+  --ground | --no-ground            class ground, wall and ceiling points out of the clustering
                                     (HeightMapGround); without --mount/--poses and --sensor-height,
                                     the first window's ground plane gives the mount and height
   --sensor-height M                 the sensor's height above the ground under it, (0, 100]
@@ -101,6 +101,7 @@ motion and structure removal (continuous mode; the objects presets turn --ground
   --ground-cell M (default 0.5)     cell edge of the ground model, (0.05, 10]
   --max-slope DEG (default 15)      steepest ground, [0, 60]
   --no-ceiling                      no ceiling detection
+  --no-walls                        no wall detection (walls are then clustered as objects)
 )";
   text += R"(outputs:
   --labels FILE     CSV cycle,time,index,label (-1: in the window but unlabelled)

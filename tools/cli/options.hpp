@@ -92,12 +92,13 @@ struct ClusterOptions {
   std::shared_ptr<const PoseTrajectory> trajectory;
   std::optional<std::array<double, 3>> mount_deg;  ///< --mount ROLL,PITCH,YAW [deg]; empty: none given
   // structure removal (HeightMapGround)
-  bool ground = false;                 ///< --ground: class ground and ceiling points out of the clustering
+  bool ground = false;                 ///< --ground: class ground, wall and ceiling points out of the clustering
   std::optional<float> sensor_height;  ///< --sensor-height [m]; empty: estimated from the first window
   float ground_tolerance = 0.03f;      ///< --ground-tolerance [m]
   float ground_cell = 0.5f;            ///< --ground-cell [m]
   float max_slope_deg = 15.0f;         ///< --max-slope [deg]
   bool ceiling = true;                 ///< false: --no-ceiling
+  bool walls = true;                   ///< false: --no-walls
   /// Filled by make_run_setup before a run: the poses, the mount (given or
   /// estimated), the ground model's parameters and the projection bounds in
   /// world orientation. Null: none resolved (a level sensor, no ground).
@@ -340,6 +341,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       if (!(o.max_slope_deg >= 0.0f && o.max_slope_deg <= 60.0f)) throw UsageError("--max-slope: expected degrees in [0, 60]");
     } else if (a == "--no-ceiling") {
       o.ceiling = false;
+    } else if (a == "--no-walls") {
+      o.walls = false;
     } else if (a == "--labels") {
       o.labels_path = c.value();
     } else if (a == "--report") {

@@ -106,6 +106,7 @@ inline void apply_objects_params(const SphericalProjection::Params& sensor_fov, 
   o.ground_cell = p.ground.cell_size;
   o.max_slope_deg = p.ground.max_slope_deg;
   o.ceiling = p.ground.detect_ceiling;
+  o.walls = p.ground.detect_walls;
 }
 
 }  // namespace detail

@@ -91,7 +91,7 @@ class Ros2Outputs {
       std::uint8_t* d = data_.data() + i * kStride;
       std::memcpy(d, v, 16);
       std::memcpy(d + 16, &label32, 4);
-      d[20] = label >= 0 ? 1 : label == kGroundLabel ? 2 : label == kCeilingLabel ? 3 : 0;
+      d[20] = label >= 0 ? 1 : label == kGroundLabel ? 2 : label == kCeilingLabel ? 3 : label == kWallLabel ? 4 : 0;
       dense = dense && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
     }
     using F = io::ros2msg::PointField;

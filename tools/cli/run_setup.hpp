@@ -89,6 +89,7 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
   g.cell_size = o.ground_cell;
   g.max_slope_deg = o.max_slope_deg;
   g.detect_ceiling = o.ceiling;
+  g.detect_walls = o.walls;
   if (o.sensor_height) g.sensor_height = *o.sensor_height;
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
     s.estimate = estimate_ground(first_window ? *first_window : first_window_points(o));

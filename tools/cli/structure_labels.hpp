@@ -5,11 +5,23 @@
 /// The labels the tool's outputs give structure points (docs/cli.md); -1 is
 /// an unlabelled (rejected) record, components are 0 and up.
 
+#include <streamclust/surface_class.hpp>
+
 #include <cstdint>
 
 namespace streamclust::cli {
 
 inline constexpr std::int64_t kGroundLabel = -2;
 inline constexpr std::int64_t kCeilingLabel = -3;
+inline constexpr std::int64_t kWallLabel = -4;
+
+/// The label of a structure point classed `surface` (ground, wall or ceiling).
+inline std::int64_t structure_label(SurfaceClass surface) {
+  switch (surface) {
+    case SurfaceClass::ceiling: return kCeilingLabel;
+    case SurfaceClass::wall: return kWallLabel;
+    default: return kGroundLabel;
+  }
+}
 
 }  // namespace streamclust::cli

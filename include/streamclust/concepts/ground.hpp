@@ -4,15 +4,15 @@
 /// \file
 /// The Ground policy concept: structure removal at insertion. Each accepted
 /// point is classed, causally, from what the window held before it: an
-/// object (clustered) or structure (ground or ceiling: kept in the window,
-/// never linked).
+/// object (clustered) or structure (ground, wall or ceiling: kept in the
+/// window, never linked).
 ///
 /// | expression                | type                     | meaning                                                        | complexity |
 /// |---------------------------|--------------------------|----------------------------------------------------------------|------------|
 /// | `typename G::Params`      | aggregate                | parameters with defaults                                       |            |
 /// | `G g{params}`             |                          | construct; throws std::invalid_argument if bad                 |            |
 /// | `G::enabled`              | `static constexpr bool`  | false: the engine skips the stage (NoGround)                   |            |
-/// | `g.classify(world, ray)`  | `SurfaceClass`           | counts the point in the model, then classes it: `object`, `ground` or `ceiling` | amortised O(1) |
+/// | `g.classify(world, ray)`  | `SurfaceClass`           | counts the point in the model, then classes it: `object`, `ground`, `wall` or `ceiling` | amortised O(1) |
 /// | `g.forget(world, class)`  | void                     | uncounts a point `classify` counted and classed `class` (it left the window) | O(1) |
 /// | `g.heap_bytes()`          | `std::size_t`            | heap held by the model [bytes]                                 | O(1)       |
 ///

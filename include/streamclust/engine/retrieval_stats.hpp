@@ -28,6 +28,7 @@ struct RetrievalStats {
   std::uint64_t evicted = 0;            ///< points that left the window
   std::uint64_t ground = 0;             ///< accepted points classed ground (ground policy)
   std::uint64_t ceiling = 0;            ///< accepted points classed ceiling (ground policy)
+  std::uint64_t wall = 0;               ///< accepted points classed wall (ground policy)
   std::uint64_t clusters_validated = 0; ///< pending clusters checked by BFS
   std::uint64_t points_validated = 0;   ///< points of the clusters checked (validation work)
   std::uint64_t clusters_split = 0;     ///< new clusters created by splits

@@ -26,9 +26,11 @@ class CellTable {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
   /// The pool index of cell (ix, iy)'s column, or kNone. O(1) expected.
-  std::uint32_t find(std::int32_t ix, std::int32_t iy) const {
+  std::uint32_t find(std::int32_t ix, std::int32_t iy) const { return find_packed(pack(ix, iy)); }
+  /// As find(ix, iy), by any 64-bit key the caller packs its coordinates
+  /// into (a voxel's three, say); one table takes one kind of key.
+  std::uint32_t find_packed(std::uint64_t key) const {
     if (slots_.empty()) return kNone;
-    const std::uint64_t key = pack(ix, iy);
     for (std::size_t i = home(key);; i = (i + 1) & mask()) {
       const Slot& s = slots_[i];
       if (s.column == kNone) return kNone;
@@ -38,9 +40,10 @@ class CellTable {
 
   /// The pool index of cell (ix, iy)'s column, created (value-initialised)
   /// when absent. O(1) expected, amortised.
-  std::uint32_t find_or_create(std::int32_t ix, std::int32_t iy) {
+  std::uint32_t find_or_create(std::int32_t ix, std::int32_t iy) { return find_or_create_packed(pack(ix, iy)); }
+  /// As find_or_create(ix, iy), by a packed key.
+  std::uint32_t find_or_create_packed(std::uint64_t key) {
     if (2 * (live_ + 1) > slots_.size()) grow();
-    const std::uint64_t key = pack(ix, iy);
     std::size_t i = home(key);
     for (; slots_[i].column != kNone; i = (i + 1) & mask()) {
       if (slots_[i].key == key) return slots_[i].column;
@@ -65,8 +68,9 @@ class CellTable {
 
   /// Releases cell (ix, iy)'s column (it must exist). O(1) expected; never
   /// allocates.
-  void release(std::int32_t ix, std::int32_t iy) {
-    const std::uint64_t key = pack(ix, iy);
+  void release(std::int32_t ix, std::int32_t iy) { release_packed(pack(ix, iy)); }
+  /// As release(ix, iy), by a packed key.
+  void release_packed(std::uint64_t key) {
     std::size_t i = home(key);
     while (slots_[i].key != key || slots_[i].column == kNone) i = (i + 1) & mask();
     free_.push_back(slots_[i].column);

@@ -2,13 +2,15 @@
 #pragma once
 
 /// \file
-/// HeightMapGround: continuous ground and ceiling removal from a height map
-/// of the sliding window; no scan lines, no per-frame refit.
+/// HeightMapGround: continuous ground, wall and ceiling removal from a
+/// height map and a voxel map of the sliding window; no scan lines, no
+/// per-frame refit.
 
 #include <streamclust/concepts/ground.hpp>
 #include <streamclust/detail/parameter_check.hpp>
 #include <streamclust/ground/cell_table.hpp>
 #include <streamclust/ground/height_column.hpp>
+#include <streamclust/ground/wall_model.hpp>
 #include <streamclust/surface_class.hpp>
 
 #include <Eigen/Core>
@@ -68,6 +70,11 @@ namespace streamclust {
 /// the height noise of ground 2 cm noisy along the ray and seen at up to 45
 /// degrees of incidence; rough ground (grass, gravel) wants 5-10 cm.
 ///
+/// Walls (`detect_walls`, decided after the ceiling and before the ground:
+/// a wall's foot would pass for ground where the floor is out of view):
+/// WallModel (wall_model.hpp) with `walls`, large vertical planes; a point
+/// within its tolerance of one is wall.
+///
 /// Ceiling (`detect_ceiling`, decided before the ground: near a sensor that
 /// sees the ceiling but not the floor, the ceiling is a cell's only layer).
 /// A point at least `ceiling_clearance` above the sensor, within
@@ -81,8 +88,10 @@ namespace streamclust {
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
 /// ceiling candidate, at most 2 for a ground candidate out of view of level
-/// ground), a ring search only in cells without a neighbouring layer.
-/// Memory: about 1 KiB per live cell plus the table. Thread safety: none.
+/// ground), a ring search only in cells without a neighbouring layer; with
+/// walls, the wall model's voxel update and its refreshes. Memory: about
+/// 1 KiB per live cell plus the table, and the wall model's voxels (104
+/// bytes each). Thread safety: none.
 ///
 /// \code
 /// struct ObjectsConfig : streamclust::CArcFastConfig {
@@ -114,13 +123,15 @@ class HeightMapGround {
     float ceiling_flatness = 0.1f;     ///< [m] a neighbour's highest layer this close agrees, [0, 2]
     float ceiling_min_agreement = 0.75f;  ///< fraction of the cells within two rings that agree, (0, 1]
     float ceiling_peak_ratio = 3.0f;   ///< points per bin of the layer over those of the 0.5 m below it, [0, 100]
+    bool detect_walls = true;          ///< class points on large vertical planes as wall
+    WallModel::Params walls;           ///< the wall model's (wall_model.hpp)
   };
 
   static constexpr bool enabled = true;
 
   HeightMapGround() : HeightMapGround(Params{}) {}
   /// Throws std::invalid_argument naming a parameter outside its range.
-  explicit HeightMapGround(const Params& params) : params_(params) {
+  explicit HeightMapGround(const Params& params) : params_(params), walls_(params.walls) {
     check(params.cell_size > 0.05f && params.cell_size <= 10.0f, "cell_size", params.cell_size, "(0.05, 10] m");
     check(params.bin_height > 0.005f && params.bin_height <= 1.0f, "bin_height", params.bin_height, "(0.005, 1] m");
     check(params.ground_tolerance >= 0.0f && params.ground_tolerance <= 2.0f, "ground_tolerance",
@@ -169,8 +180,10 @@ class HeightMapGround {
     const Height h = height_of(world.z());
     const std::uint32_t c = cells_.find_or_create(k.ix, k.iy);
     cells_[c].heights.add(h.bin, h.fraction);
-    const SurfaceClass surface = decide(k, world, ray);
+    const WallModel::Entry wall = params_.detect_walls ? walls_.enter(world) : WallModel::Entry{};
+    const SurfaceClass surface = decide(k, world, ray, wall.on_wall);
     if (surface == SurfaceClass::ground) ++cells_[c].ground_points;
+    if (params_.detect_walls && in_wall_lines(surface)) walls_.add_to_line(wall, world);
     return surface;
   }
 
@@ -183,11 +196,14 @@ class HeightMapGround {
     cell.heights.remove(h.bin, h.fraction);
     if (surface == SurfaceClass::ground) --cell.ground_points;
     if (cell.heights.points() == 0) cells_.release(k.ix, k.iy);
+    if (params_.detect_walls) walls_.forget(world, in_wall_lines(surface));
   }
 
-  std::size_t heap_bytes() const { return cells_.heap_bytes(); }
+  std::size_t heap_bytes() const { return cells_.heap_bytes() + walls_.heap_bytes(); }
   /// Cells holding window points.
   std::size_t live_cells() const { return cells_.size(); }
+  /// Wall model voxels holding window points (0 without walls).
+  std::size_t live_wall_voxels() const { return walls_.live_voxels(); }
   const Params& params() const { return params_; }
 
  private:
@@ -214,11 +230,19 @@ class HeightMapGround {
     return Height{static_cast<std::int32_t>(bin), std::clamp(fraction, 0, HeightColumn::kFractionUnits - 1)};
   }
 
-  /// The class of a point already counted in cell k.
-  SurfaceClass decide(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray) const {
+  /// The points a wall's line is fitted to: objects and walls (a floor or
+  /// a ceiling fills a voxel's footprint).
+  static bool in_wall_lines(SurfaceClass surface) {
+    return surface == SurfaceClass::object || surface == SurfaceClass::wall;
+  }
+
+  /// The class of a point already counted in cell k; `on_wall`: the wall
+  /// model's decision.
+  SurfaceClass decide(Key k, const Eigen::Vector3f& world, const Eigen::Vector3f& ray, bool on_wall) const {
     if (params_.detect_ceiling && ray.z() >= params_.ceiling_clearance && is_ceiling(k, world.z())) {
       return SurfaceClass::ceiling;
     }
+    if (on_wall) return SurfaceClass::wall;
     // The bound is at most the cell's own layer and the top at most
     // max(rise_per_cell_, step_height) above it: a point well above its
     // cell's layer is an object without looking at the neighbours (most
@@ -433,6 +457,7 @@ class HeightMapGround {
 
   Params params_;
   CellTable<Cell> cells_;
+  WallModel walls_;
   float inverse_cell_ = 2.0f;
   float inverse_bin_ = 20.0f;
   float slope_ = 0.27f;
