@@ -70,6 +70,7 @@ inline void cluster_boxes(const std::vector<io::Record>& points, const std::vect
 inline std::array<std::uint8_t, 3> label_display_color(std::int64_t label) {
   if (label == kGroundLabel) return {140, 105, 70};
   if (label == kCeilingLabel) return {170, 190, 215};
+  if (label == kWallLabel) return {200, 200, 185};
   return io::label_color(label);
 }
 

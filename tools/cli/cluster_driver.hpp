@@ -309,7 +309,9 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
       };
       if constexpr (!Frame) {
         engine->for_each_structure_point([&](const StructureEntry& e) {
-          const std::int64_t code = e.surface == SurfaceClass::ceiling ? kCeilingLabel : kGroundLabel;
+          const std::int64_t code = e.surface == SurfaceClass::ceiling ? kCeilingLabel
+                                    : e.surface == SurfaceClass::wall  ? kWallLabel
+                                                                       : kGroundLabel;
           take_objects_before(e.stream_index);
           rows_index.push_back(e.stream_index);
           rows_label.push_back(code);

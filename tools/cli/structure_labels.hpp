@@ -11,5 +11,6 @@ namespace streamclust::cli {
 
 inline constexpr std::int64_t kGroundLabel = -2;
 inline constexpr std::int64_t kCeilingLabel = -3;
+inline constexpr std::int64_t kWallLabel = -4;
 
 }  // namespace streamclust::cli
