@@ -4,8 +4,8 @@
 # command: builds the streamclust tool (Release, g++), then
 #   1. SWEEP: the peers' settings. `streamclust evaluate --objects --method
 #      euclidean,frame` over the matrix at rest and moving with poses (5 Hz
-#      retrievals), Euclidean radii 0.2-0.5 m and, for the frame pipeline,
-#      every (inlier tolerance 0.1-0.3 m, radius 0.2-0.5 m) pair; each peer's
+#      retrievals), Euclidean radii 0.3-0.7 m and, for the frame pipeline,
+#      every (inlier tolerance 0.05-0.2 m, radius 0.3-0.7 m) pair; each peer's
 #      setting with the best mean strict objects correct over those cells
 #      is chosen (file chosen.txt);
 #   2. MATRIX: `streamclust evaluate --objects --verify` with every method
@@ -50,9 +50,9 @@ SENSORS="mid360 avia"
 SCENES="office forest street hills"
 MOUNTS="level p15 p30 up"
 DURATION=3
-EUCLIDEAN_SWEEP="0.2,0.3,0.4,0.5"
-FRAME_RADII_SWEEP="0.2,0.3,0.4,0.5"
-PLANE_SWEEP="0.1,0.15,0.2,0.3"
+EUCLIDEAN_SWEEP="0.3,0.4,0.5,0.6,0.7"
+FRAME_RADII_SWEEP="0.3,0.4,0.5,0.6,0.7"
+PLANE_SWEEP="0.05,0.1,0.15,0.2"
 if [[ -n "$QUICK" ]]; then
   SENSORS="mid360"
   SCENES="office hills"
