@@ -286,6 +286,12 @@ TEST_CASE("evaluate --objects: option errors and help") {
   CHECK(code({"--mount", "0,30"}) == 2);
   CHECK(code({"--burst", "1:0.3"}) == 2);
   CHECK(code({"--distance", "0"}) == 2);
+  CHECK(code({"--euclidean-distances", "0.3,0"}) == 2);
+  CHECK(code({"--frame-distances", ""}) == 2);
+  CHECK(code({"--plane-distance", "0.1,20"}) == 2);
+  CHECK(code({"--frame-ceiling", "maybe"}) == 2);
+  CHECK(code({"--frame-max-tilt", "90"}) == 2);
+  CHECK(code({"--frame-height-tolerance", "-0.1"}) == 2);
   CHECK(code({"--no-such-option"}) == 2);
   const RunResult bad = run_cli({"evaluate", "--objects", "--scene", "moon"});
   CHECK(bad.code == 2);
@@ -313,12 +319,12 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
   const streamclust::test::TempDir dir("evaluate_objects", "runs");
   struct Case {
     std::vector<std::string> args;
-    bool ceiling;
+    bool ceiling, wall;
   };
   const Case cases[] = {
-      {{"--sensor", "mid360", "--scene", "office", "--mount", "180,0,0"}, true},
-      {{"--sensor", "avia", "--scene", "street", "--mount", "0,15,0", "--speed", "1.5", "--yaw-rate", "0.3"}, false},
-      {{"--sensor", "mid360", "--scene", "hills", "--speed", "1.5", "--yaw-rate", "0.3", "--poses", "off"}, false}};
+      {{"--sensor", "mid360", "--scene", "office", "--mount", "180,0,0"}, true, true},
+      {{"--sensor", "avia", "--scene", "street", "--mount", "0,15,0", "--speed", "1.5", "--yaw-rate", "0.3"}, false, true},
+      {{"--sensor", "mid360", "--scene", "hills", "--speed", "1.5", "--yaw-rate", "0.3", "--poses", "off"}, false, false}};
   int k = 0;
   for (const Case& c : cases) {
     const std::string json = dir.path("run" + std::to_string(k++) + ".json");
@@ -330,23 +336,39 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
     REQUIRE(r.code == 0);
     CHECK(r.out.find("equals the batch partition") != std::string::npos);
     CHECK((r.out.find("ceiling F1") != std::string::npos) == c.ceiling);
+    CHECK((r.out.find("wall recall") != std::string::npos) == c.wall);
+    CHECK(r.out.find("coverage >= 30 m") != std::string::npos);
     std::ifstream f(json);
     const nlohmann::json doc = nlohmann::json::parse(f);
     CHECK(doc["verify"]["mismatches"].empty());
     CHECK(doc["verify"]["retrievals"].get<int>() == doc["retrievals"].get<int>());
     CHECK(doc["retrievals"].get<int>() >= 6);  // of the 10 at 20 Hz after the first window (engines calibrate first)
     CHECK(doc["scene_has_ceiling"].get<bool>() == c.ceiling);
+    CHECK(doc["scene_has_wall"].get<bool>() == c.wall);
     REQUIRE(doc["methods"].size() == 4);
     for (const auto& m : doc["methods"]) {
       INFO(m["name"].get<std::string>());
       const auto& mean = m["mean"];
       CHECK(mean["objects"].get<double>() > 0.0);
       for (const char* key : {"ari", "correct", "over_segmented", "under_segmented", "missed", "object_point_coverage",
-                              "ground_f1", "ceiling_f1"}) {
+                              "ground_f1", "ceiling_f1", "wall_precision", "wall_recall", "wall_f1"}) {
         INFO(key);
         CHECK(mean[key].get<double>() >= 0.0);
         CHECK(mean[key].get<double>() <= 1.0);
       }
+      // Coverage per range band: three bands whose points add up, each kept share in [0, 1].
+      const auto& bands = m["object_point_coverage_by_range"];
+      REQUIRE(bands.size() == 3);
+      CHECK(bands[0]["from_m"].get<double>() == 0.0);
+      CHECK(bands[2]["to_m"].is_null());
+      double points = 0.0;
+      for (const auto& band : bands) {
+        CHECK(band["kept"].get<double>() <= band["object_points"].get<double>());
+        CHECK(band["coverage"].get<double>() >= 0.0);
+        CHECK(band["coverage"].get<double>() <= 1.0);
+        points += band["object_points"].get<double>();
+      }
+      CHECK(points > 0.0);
       CHECK(m["cost_median_ms"].get<double>() > 0.0);
       CHECK(m["cost_p99_ms"].get<double>() >= m["cost_median_ms"].get<double>());
       const std::string name = m["name"].get<std::string>();
@@ -354,11 +376,34 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
         // No structure removal: every object point is left to clustering, no point is ground.
         CHECK(mean["object_point_coverage"].get<double>() == 1.0);
         CHECK(mean["ground_f1"].get<double>() == 0.0);
+        for (const auto& band : bands) CHECK(band["coverage"].get<double>() == 1.0);
       } else {
         CHECK(mean["ground_f1"].get<double>() > 0.5);
       }
     }
   }
+}
+
+TEST_CASE("evaluate --objects: swept peer settings run as one method each, in one run") {
+  const streamclust::test::TempDir dir("evaluate_objects", "sweep");
+  const std::string json = dir.path("sweep.json");
+  const RunResult r =
+      run_cli({"evaluate", "--objects", "--scene", "office", "--mount", "0,30,0", "--duration", "0.5",
+               "--window-time", "0.2", "--rate", "10", "--method", "euclidean,frame", "--euclidean-distances",
+               "0.3,0.5", "--frame-distances", "0.4", "--plane-distance", "0.1,0.2", "--json", json, "-q"});
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  std::ifstream f(json);
+  const nlohmann::json doc = nlohmann::json::parse(f);
+  std::vector<std::string> names;
+  for (const auto& m : doc["methods"]) names.push_back(m["name"].get<std::string>());
+  CHECK(names == std::vector<std::string>{"euclidean@0.3", "euclidean@0.5", "frame@0.1/0.4", "frame@0.2/0.4"});
+  CHECK(doc["methods"][1]["settings"]["distance"].get<double>() == doctest::Approx(0.5));
+  CHECK(doc["methods"][3]["settings"]["plane_distance"].get<double>() == doctest::Approx(0.2));
+  // Another radius, another partition; another tolerance, another ground.
+  CHECK(doc["methods"][0]["mean"]["ari"] != doc["methods"][1]["mean"]["ari"]);
+  CHECK(doc["methods"][2]["mean"]["ground_f1"] != doc["methods"][3]["mean"]["ground_f1"]);
+  CHECK(doc["settings"]["plane_distances"].size() == 2);
 }
 
 TEST_CASE("evaluate --objects --linkage: the objects preset with another registered linkage") {

@@ -26,6 +26,7 @@
 #include "cli/objects_engine.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
+#include "cli/structure_planes.hpp"
 
 #include <streamclust/eval/object_average.hpp>
 #include <streamclust/eval/range_coverage.hpp>
@@ -63,8 +64,10 @@ struct EvaluateObjectsOptions {
   /// frame: remove a ceiling plane too: "on", "off", or "auto" (indoor scenes: the office).
   std::string frame_ceiling = "auto";
   std::size_t ransac_iterations = 100;  ///< frame: accepted RANSAC candidates per plane
-  float frame_max_tilt_deg = 10.0f;     ///< frame: a plane's normal within this of gravity [deg]
-  float frame_height_tolerance = 0.25f;  ///< frame: the ground plane the sensor height +- this below the sensor [m]
+  /// frame: a plane's normal within this of gravity [deg]
+  float frame_max_tilt_deg = StructurePlaneChecks{}.max_tilt_deg;
+  /// frame: the ground plane the sensor height +- this below the sensor [m]
+  float frame_height_tolerance = StructurePlaneChecks{}.height_tolerance;
   std::size_t min_points = 10;      ///< eval::MetricOptions::min_points
   bool verify = false;              ///< objects: every retrieval against the batch partition
   std::string json_path;

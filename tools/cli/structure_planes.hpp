@@ -31,8 +31,8 @@ namespace streamclust::cli {
 struct StructurePlaneChecks {
   Eigen::Vector3f up = Eigen::Vector3f::UnitZ();  ///< world up in the sensor frame (unit)
   float sensor_height = 1.0f;                     ///< [m] sensor above the ground
-  float max_tilt_deg = 15.0f;                     ///< a plane's normal within this angle of `up`
-  float height_tolerance = 0.4f;  ///< [m] the ground plane's distance below the sensor: sensor_height +- this
+  float max_tilt_deg = 10.0f;                     ///< a plane's normal within this angle of `up`
+  float height_tolerance = 0.25f;  ///< [m] the ground plane's distance below the sensor: sensor_height +- this
   float min_ceiling_clearance = 0.3f;   ///< [m] a ceiling at least this far above the sensor ...
   float max_ceiling_clearance = 10.0f;  ///< [m] ... and at most this far
   std::size_t min_ceiling_points = 200;  ///< a ceiling plane needs this many inliers
