@@ -9,7 +9,6 @@
 #include <streamclust/eval/options.hpp>
 
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
