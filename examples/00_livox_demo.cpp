@@ -190,7 +190,9 @@ int run(Sensor sensor, const std::string& sensor_label, const Options& o) {
     for (const sc::StructurePoint& sp : result.structure) {
       truth.push_back(log.at(sp.stream_index).instance);
       truth_class.push_back(log.at(sp.stream_index).surface);
-      predicted.push_back(sp.surface == sc::SurfaceClass::ceiling ? sc::eval::kClassedCeiling : sc::eval::kClassedGround);
+      predicted.push_back(sp.surface == sc::SurfaceClass::ceiling ? sc::eval::kClassedCeiling
+                          : sp.surface == sc::SurfaceClass::wall  ? sc::eval::kClassedWall
+                                                                  : sc::eval::kClassedGround);
     }
     sc::eval::MetricOptions metric;
     metric.min_points = kMinObjectPoints;

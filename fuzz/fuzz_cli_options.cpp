@@ -112,8 +112,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(finite_positive(objects.window_seconds) && objects.window_seconds <= 60.0, "--window-time: (0, 60] s");
     require(finite_positive(objects.rate_hz) && objects.rate_hz <= 10000.0, "--rate: (0, 10000] Hz");
     require(objects.height >= 0.0f && objects.height <= 100.0f, "--height: (0, 100] m, or 0 for the default");
-    require(finite_positive(objects.euclidean_distance) && finite_positive(objects.plane_distance),
-            "--distance, --plane-distance: finite and > 0");
+    for (const auto* list : {&objects.euclidean_distances, &objects.frame_distances, &objects.plane_distances}) {
+      require(!list->empty(), "--distance, --*-distances, --plane-distance: one value or more");
+      for (const float v : *list) {
+        require(finite_positive(v), "--distance, --*-distances, --plane-distance: finite and > 0");
+      }
+    }
     require(cli::ToolRegistry::choose(streamclust::registry::Slot::linkage, objects.linkage) == objects.linkage,
             "--linkage: a registered linkage");
   }

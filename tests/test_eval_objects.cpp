@@ -38,6 +38,7 @@ constexpr SurfaceClass kWall = SurfaceClass::wall;
 constexpr SurfaceClass kCeiling = SurfaceClass::ceiling;
 constexpr std::int64_t kG = ev::kClassedGround;    // -2
 constexpr std::int64_t kC = ev::kClassedCeiling;  // -3
+constexpr std::int64_t kW = ev::kClassedWall;     // -4
 constexpr std::int64_t kU = ev::kUnlabelled;       // -1
 
 doctest::Approx near(double v) { return doctest::Approx(v).epsilon(1e-12); }
@@ -423,6 +424,68 @@ TEST_CASE("object_metrics: ceiling and ground scores with confusions") {
   // A frame with no ceiling where 5 points are classed ceiling: precision 0, recall 1, F1 0.
   const auto no_ceiling = Frame{}.add(0, kWall, kC, 5).add(0, kWall, 2, 5).metrics();
   check_scores(no_ceiling.ceiling, 0, 5, 0, 0, 1, 0);
+}
+
+TEST_CASE("object_metrics: walls in their own class: wall precision / recall, ground with walls apart") {
+  // Wall 50: 30 classed wall, 10 classed ground, 10 in a cluster. Ground 60:
+  // 50 classed ground, 5 classed wall, 5 unlabelled. Object 40: 36 in its
+  // own cluster, 4 classed wall.
+  // wall:   TP 30, FP 5 + 4, FN 10 + 10 -> precision 30/39, recall 0.6, F1 60/89
+  // ground: TP 50, FP 10 (the wall called ground), FN 5 (the ground called wall) + 5 -> 5/6, 5/6, 5/6
+  Frame f;
+  f.add(0, kWall, kW, 30).add(0, kWall, kG, 10).add(0, kWall, 7, 10);
+  f.add(0, kGround, kG, 50).add(0, kGround, kW, 5).add(0, kGround, kU, 5);
+  f.add(1, kObject, 9, 36).add(1, kObject, kW, 4);
+  const auto m = f.metrics();
+  check_scores(m.wall, 30, 9, 20, 30.0 / 39.0, 0.6, 60.0 / 89.0);
+  check_scores(m.ground, 50, 10, 10, 5.0 / 6.0, 5.0 / 6.0, 5.0 / 6.0);
+  check_scores(m.ceiling, 0, 0, 0, 1, 1, 1);
+  CHECK(m.object_points_classed_structure == 4);
+  CHECK(m.object_point_coverage == near(0.9));
+  CHECK(outcomes(m.objects) == Outcomes{1, 1, 0, 0, 0, 0});  // 36 of 40 in a pure cluster
+  CHECK(ev::is_classed_structure(kW));
+  CHECK_FALSE(ev::is_classed_structure(-5));
+  CHECK_FALSE(ev::is_classed_structure(kU));
+
+  // Averaged: per-frame means and pooled counts of the wall scores.
+  ev::ObjectMetricsAverage average;
+  average.add(m);
+  average.add(Frame{}.add(0, kWall, kW, 10).add(0, kGround, kG, 10).metrics());  // a perfect frame
+  check_scores(average.pooled_wall(), 40, 9, 20, 40.0 / 49.0, 40.0 / 60.0, 80.0 / 109.0);
+  CHECK(average.mean().wall_f1 == near(0.5 * (60.0 / 89.0 + 1.0)));
+  CHECK(average.mean().wall_precision == near(0.5 * (30.0 / 39.0 + 1.0)));
+  CHECK(average.mean().wall_recall == near(0.5 * (0.6 + 1.0)));
+}
+
+TEST_CASE("RangeCoverage: object points kept per range band, pooled over frames") {
+  using ev::RangeCoverage;
+  CHECK(RangeCoverage::band_of(0.0) == 0);
+  CHECK(RangeCoverage::band_of(9.999) == 0);
+  CHECK(RangeCoverage::band_of(10.0) == 1);  // a band's lower edge belongs to it
+  CHECK(RangeCoverage::band_of(29.99) == 1);
+  CHECK(RangeCoverage::band_of(30.0) == 2);
+  CHECK(RangeCoverage::band_of(400.0) == 2);
+  RangeCoverage bands;
+  for (std::size_t b = 0; b < RangeCoverage::kBands; ++b) CHECK(bands.coverage(b) == 1.0);  // nothing seen
+  // Near: 4 object points, one classed ground. Middle: 2, one classed wall,
+  // one unlabelled (still kept). Far: 2, one classed ceiling. Structure
+  // and ignored points count nowhere.
+  const Labels instance{1, 1, 1, 1, 2, 2, 3, 3, 0, 0, -1};
+  const Labels predicted{5, 5, 5, kG, kW, kU, 8, kC, kG, 5, kG};
+  const std::vector<float> range{2.0f, 3.0f, 9.0f, 1.0f, 12.0f, 29.0f, 31.0f, 35.0f, 15.0f, 40.0f, 50.0f};
+  bands.add(instance, predicted, range);
+  CHECK(bands.object_points(0) == 4);
+  CHECK(bands.kept(0) == 3);
+  CHECK(bands.coverage(0) == near(0.75));
+  CHECK(bands.coverage(1) == near(0.5));
+  CHECK(bands.coverage(2) == near(0.5));
+  // A second frame, all kept: the counts pool.
+  bands.add({4, 4}, {1, 1}, {45.0f, 50.0f});
+  CHECK(bands.object_points(2) == 4);
+  CHECK(bands.coverage(2) == near(0.75));
+  CHECK(bands.coverage(0) == near(0.75));
+  CHECK_THROWS_AS(bands.add({1}, {1, 2}, {1.0f, 2.0f}), std::invalid_argument);
+  CHECK_THROWS_AS(bands.add({1, 2}, {1, 2}, {1.0f}), std::invalid_argument);
 }
 
 TEST_CASE("object_metrics: min_points leaves small objects unrated") {

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // `streamclust evaluate --objects` and its peers: the hash-grid Euclidean
 // clustering against brute-force single linkage, RANSAC's removal of a
-// synthetic plane, the option errors, and short end-to-end runs whose
-// metrics are in range and whose objects method passes --verify.
+// synthetic plane, the frame pipeline's checked ground and ceiling planes
+// (a bigger plane at the wrong height or facing sideways rejected, a ceiling
+// removed, in any sensor attitude), the option errors, and short end-to-end
+// runs whose metrics are in range and whose objects method passes --verify.
 
 #include <doctest/doctest.h>
 
 #include "cli/euclidean_clusters.hpp"
 #include "cli/evaluate_objects.hpp"
+#include "cli/structure_planes.hpp"
 
 #include "support/cli_run.hpp"
 #include "support/partition.hpp"
@@ -15,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -163,6 +167,110 @@ TEST_CASE("ransac_dominant_plane removes a synthetic plane") {
   CHECK_THROWS_AS(cli::ransac_dominant_plane(points, 0.1f, 0, 1), std::invalid_argument);
 }
 
+TEST_CASE("classify_structure_planes: the ground at the sensor height, not a bigger plane; a ceiling above") {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, 0.02f);
+  // Level sensor frame: ground 1 m below (4000 points), a platform 0.6 m
+  // above the ground (2500), a ceiling 2 m above the sensor (1500) and a
+  // box on the ground (500).
+  enum Kind { kGroundPoint, kPlatform, kCeilingPoint, kBox };
+  std::vector<Eigen::Vector3f> level;
+  std::vector<Kind> kind;
+  const auto add = [&](int n, Kind k, auto&& point) {
+    for (int i = 0; i < n; ++i) {
+      level.push_back(point());
+      kind.push_back(k);
+    }
+  };
+  add(4000, kGroundPoint, [&] { return Eigen::Vector3f(10.0f * u(rng), 10.0f * u(rng), -1.0f + noise(rng)); });
+  add(2500, kPlatform, [&] { return Eigen::Vector3f(13.5f + 1.5f * u(rng), 3.0f * u(rng), -0.4f + noise(rng)); });
+  add(1500, kCeilingPoint, [&] { return Eigen::Vector3f(8.0f * u(rng), 8.0f * u(rng), 2.0f + noise(rng)); });
+  add(500, kBox, [&] { return Eigen::Vector3f(3.0f + 0.3f * u(rng), 2.0f + 0.3f * u(rng), -0.5f + 0.3f * u(rng)); });
+
+  for (const double pitch_deg : {0.0, 30.0, 180.0}) {
+    CAPTURE(pitch_deg);
+    // The same scene seen by a sensor pitched (or upside down): points and
+    // up in its frame.
+    const Eigen::Matrix3f sensor_from_level =
+        Eigen::AngleAxisf(static_cast<float>(pitch_deg * 3.14159265358979 / 180.0), Eigen::Vector3f::UnitY())
+            .toRotationMatrix();
+    std::vector<Eigen::Vector3f> points;
+    for (const Eigen::Vector3f& p : level) points.push_back(sensor_from_level * p);
+    cli::StructurePlaneChecks checks;
+    checks.up = sensor_from_level * Eigen::Vector3f::UnitZ();
+    checks.sensor_height = 1.0f;
+    std::vector<std::int64_t> labels;
+    const cli::StructurePlanes planes = cli::classify_structure_planes(points, 0.1f, 100, 7, checks, true, labels);
+    REQUIRE(planes.ground.found);
+    CHECK(planes.ground.offset == doctest::Approx(1.0f).epsilon(0.02));
+    CHECK(planes.ground.normal.dot(checks.up) > 0.999f);
+    REQUIRE(planes.ceiling.found);
+    CHECK(-planes.ceiling.offset == doctest::Approx(2.0f).epsilon(0.02));
+    std::size_t wrong = 0, ground = 0, ceiling = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const std::int64_t expected = kind[i] == kGroundPoint ? cli::kGroundLabel : kind[i] == kCeilingPoint ? cli::kCeilingLabel : -1;
+      wrong += labels[i] != expected ? 1u : 0u;
+      ground += labels[i] == cli::kGroundLabel ? 1u : 0u;
+      ceiling += labels[i] == cli::kCeilingLabel ? 1u : 0u;
+    }
+    CHECK(wrong < 5);  // 5 sigma of the noise is 0.1 m
+    CHECK(ground >= 3995);
+    CHECK(ceiling >= 1495);
+    // Deterministic for a seed.
+    std::vector<std::int64_t> again;
+    cli::classify_structure_planes(points, 0.1f, 100, 7, checks, true, again);
+    CHECK(again == labels);
+    // Outdoors: no ceiling stage, the ceiling points are left to clustering.
+    cli::classify_structure_planes(points, 0.1f, 100, 7, checks, false, labels);
+    CHECK(std::count(labels.begin(), labels.end(), cli::kCeilingLabel) == 0);
+    CHECK(std::count(labels.begin(), labels.end(), cli::kGroundLabel) >= 3995);
+  }
+
+  // A sensor height no plane matches (2 m; the ground is 1 m, the platform
+  // 0.4 m below the sensor): no ground removed. Candidates that cross the
+  // ground at a slant pass the height check but refit onto the ground.
+  cli::StructurePlaneChecks wrong_height;
+  wrong_height.sensor_height = 2.0f;
+  wrong_height.height_tolerance = 0.3f;
+  std::vector<std::int64_t> labels;
+  const cli::StructurePlanes none = cli::classify_structure_planes(level, 0.1f, 100, 7, wrong_height, false, labels);
+  CHECK_FALSE(none.ground.found);
+  CHECK(std::count(labels.begin(), labels.end(), cli::kGroundLabel) == 0);
+  // The platform's height (0.4 m below the sensor) finds the platform, not
+  // the bigger ground.
+  wrong_height.sensor_height = 0.4f;
+  wrong_height.height_tolerance = 0.1f;
+  const cli::StructurePlanes platform = cli::classify_structure_planes(level, 0.1f, 100, 7, wrong_height, false, labels);
+  REQUIRE(platform.ground.found);
+  CHECK(platform.ground.offset == doctest::Approx(0.4f).epsilon(0.05));
+  CHECK(std::count(labels.begin(), labels.end(), cli::kGroundLabel) >= 2495);
+  // A ceiling needs min_ceiling_points inliers.
+  cli::StructurePlaneChecks strict;
+  strict.min_ceiling_points = 1600;
+  CHECK_FALSE(cli::classify_structure_planes(level, 0.1f, 100, 7, strict, true, labels).ceiling.found);
+
+  // A wall (the dominant plane, which the plain RANSAC takes) is no ground.
+  std::vector<Eigen::Vector3f> walled(level.begin(), level.begin() + 4000);  // the ground alone
+  for (int i = 0; i < 6000; ++i) walled.emplace_back(-11.0f + noise(rng), 10.0f * u(rng), 0.5f + 1.5f * u(rng));
+  const cli::PlaneFit dominant = cli::ransac_dominant_plane(walled, 0.1f, 100, 3);
+  REQUIRE(dominant.found);
+  CHECK(std::abs(dominant.normal.x()) > 0.99f);
+  const cli::StructurePlanes checked = cli::classify_structure_planes(walled, 0.1f, 100, 7, {}, true, labels);
+  REQUIRE(checked.ground.found);
+  CHECK(checked.ground.offset == doctest::Approx(1.0f).epsilon(0.02));
+  CHECK_FALSE(checked.ceiling.found);  // the wall's slices are too steep
+
+  cli::StructurePlaneChecks bad;
+  bad.up = Eigen::Vector3f(0.0f, 0.0f, 2.0f);
+  CHECK_THROWS_AS(cli::classify_structure_planes(level, 0.1f, 100, 7, bad, true, labels), std::invalid_argument);
+  bad = cli::StructurePlaneChecks{};
+  bad.max_tilt_deg = 90.0f;
+  CHECK_THROWS_AS(cli::classify_structure_planes(level, 0.1f, 100, 7, bad, true, labels), std::invalid_argument);
+  CHECK_THROWS_AS(cli::classify_structure_planes(level, 0.0f, 100, 7, {}, true, labels), std::invalid_argument);
+  CHECK_THROWS_AS(cli::classify_structure_planes(level, 0.1f, 0, 7, {}, true, labels), std::invalid_argument);
+}
+
 TEST_CASE("evaluate --objects: option errors and help") {
   const auto code = [](std::vector<std::string> args) {
     args.insert(args.begin(), {"evaluate", "--objects"});
@@ -178,6 +286,12 @@ TEST_CASE("evaluate --objects: option errors and help") {
   CHECK(code({"--mount", "0,30"}) == 2);
   CHECK(code({"--burst", "1:0.3"}) == 2);
   CHECK(code({"--distance", "0"}) == 2);
+  CHECK(code({"--euclidean-distances", "0.3,0"}) == 2);
+  CHECK(code({"--frame-distances", ""}) == 2);
+  CHECK(code({"--plane-distance", "0.1,20"}) == 2);
+  CHECK(code({"--frame-ceiling", "maybe"}) == 2);
+  CHECK(code({"--frame-max-tilt", "90"}) == 2);
+  CHECK(code({"--frame-height-tolerance", "-0.1"}) == 2);
   CHECK(code({"--no-such-option"}) == 2);
   const RunResult bad = run_cli({"evaluate", "--objects", "--scene", "moon"});
   CHECK(bad.code == 2);
@@ -205,12 +319,12 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
   const streamclust::test::TempDir dir("evaluate_objects", "runs");
   struct Case {
     std::vector<std::string> args;
-    bool ceiling;
+    bool ceiling, wall;
   };
   const Case cases[] = {
-      {{"--sensor", "mid360", "--scene", "office", "--mount", "180,0,0"}, true},
-      {{"--sensor", "avia", "--scene", "street", "--mount", "0,15,0", "--speed", "1.5", "--yaw-rate", "0.3"}, false},
-      {{"--sensor", "mid360", "--scene", "hills", "--speed", "1.5", "--yaw-rate", "0.3", "--poses", "off"}, false}};
+      {{"--sensor", "mid360", "--scene", "office", "--mount", "180,0,0"}, true, true},
+      {{"--sensor", "avia", "--scene", "street", "--mount", "0,15,0", "--speed", "1.5", "--yaw-rate", "0.3"}, false, true},
+      {{"--sensor", "mid360", "--scene", "hills", "--speed", "1.5", "--yaw-rate", "0.3", "--poses", "off"}, false, false}};
   int k = 0;
   for (const Case& c : cases) {
     const std::string json = dir.path("run" + std::to_string(k++) + ".json");
@@ -222,23 +336,39 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
     REQUIRE(r.code == 0);
     CHECK(r.out.find("equals the batch partition") != std::string::npos);
     CHECK((r.out.find("ceiling F1") != std::string::npos) == c.ceiling);
+    CHECK((r.out.find("wall recall") != std::string::npos) == c.wall);
+    CHECK(r.out.find("coverage >= 30 m") != std::string::npos);
     std::ifstream f(json);
     const nlohmann::json doc = nlohmann::json::parse(f);
     CHECK(doc["verify"]["mismatches"].empty());
     CHECK(doc["verify"]["retrievals"].get<int>() == doc["retrievals"].get<int>());
     CHECK(doc["retrievals"].get<int>() >= 6);  // of the 10 at 20 Hz after the first window (engines calibrate first)
     CHECK(doc["scene_has_ceiling"].get<bool>() == c.ceiling);
+    CHECK(doc["scene_has_wall"].get<bool>() == c.wall);
     REQUIRE(doc["methods"].size() == 4);
     for (const auto& m : doc["methods"]) {
       INFO(m["name"].get<std::string>());
       const auto& mean = m["mean"];
       CHECK(mean["objects"].get<double>() > 0.0);
       for (const char* key : {"ari", "correct", "over_segmented", "under_segmented", "missed", "object_point_coverage",
-                              "ground_f1", "ceiling_f1"}) {
+                              "ground_f1", "ceiling_f1", "wall_precision", "wall_recall", "wall_f1"}) {
         INFO(key);
         CHECK(mean[key].get<double>() >= 0.0);
         CHECK(mean[key].get<double>() <= 1.0);
       }
+      // Coverage per range band: three bands whose points add up, each kept share in [0, 1].
+      const auto& bands = m["object_point_coverage_by_range"];
+      REQUIRE(bands.size() == 3);
+      CHECK(bands[0]["from_m"].get<double>() == 0.0);
+      CHECK(bands[2]["to_m"].is_null());
+      double points = 0.0;
+      for (const auto& band : bands) {
+        CHECK(band["kept"].get<double>() <= band["object_points"].get<double>());
+        CHECK(band["coverage"].get<double>() >= 0.0);
+        CHECK(band["coverage"].get<double>() <= 1.0);
+        points += band["object_points"].get<double>();
+      }
+      CHECK(points > 0.0);
       CHECK(m["cost_median_ms"].get<double>() > 0.0);
       CHECK(m["cost_p99_ms"].get<double>() >= m["cost_median_ms"].get<double>());
       const std::string name = m["name"].get<std::string>();
@@ -246,11 +376,34 @@ TEST_CASE("evaluate --objects: short runs score in range and the objects method 
         // No structure removal: every object point is left to clustering, no point is ground.
         CHECK(mean["object_point_coverage"].get<double>() == 1.0);
         CHECK(mean["ground_f1"].get<double>() == 0.0);
+        for (const auto& band : bands) CHECK(band["coverage"].get<double>() == 1.0);
       } else {
         CHECK(mean["ground_f1"].get<double>() > 0.5);
       }
     }
   }
+}
+
+TEST_CASE("evaluate --objects: swept peer settings run as one method each, in one run") {
+  const streamclust::test::TempDir dir("evaluate_objects", "sweep");
+  const std::string json = dir.path("sweep.json");
+  const RunResult r =
+      run_cli({"evaluate", "--objects", "--scene", "office", "--mount", "0,30,0", "--duration", "0.5",
+               "--window-time", "0.2", "--rate", "10", "--method", "euclidean,frame", "--euclidean-distances",
+               "0.3,0.5", "--frame-distances", "0.4", "--plane-distance", "0.1,0.2", "--json", json, "-q"});
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  std::ifstream f(json);
+  const nlohmann::json doc = nlohmann::json::parse(f);
+  std::vector<std::string> names;
+  for (const auto& m : doc["methods"]) names.push_back(m["name"].get<std::string>());
+  CHECK(names == std::vector<std::string>{"euclidean@0.3", "euclidean@0.5", "frame@0.1/0.4", "frame@0.2/0.4"});
+  CHECK(doc["methods"][1]["settings"]["distance"].get<double>() == doctest::Approx(0.5));
+  CHECK(doc["methods"][3]["settings"]["plane_distance"].get<double>() == doctest::Approx(0.2));
+  // Another radius, another partition; another tolerance, another ground.
+  CHECK(doc["methods"][0]["mean"]["ari"] != doc["methods"][1]["mean"]["ari"]);
+  CHECK(doc["methods"][2]["mean"]["ground_f1"] != doc["methods"][3]["mean"]["ground_f1"]);
+  CHECK(doc["settings"]["plane_distances"].size() == 2);
 }
 
 TEST_CASE("evaluate --objects --linkage: the objects preset with another registered linkage") {
@@ -262,7 +415,9 @@ TEST_CASE("evaluate --objects --linkage: the objects preset with another registe
   const cli::EvaluateObjectsOptions euclidean =
       cli::parse_evaluate_objects_options({"--linkage", "euclidean", "--distance", "0.4", "--min-distance", "0.3"});
   CHECK(euclidean.linkage == "euclidean");
-  CHECK(euclidean.euclidean_distance == doctest::Approx(0.4f));
+  REQUIRE(euclidean.euclidean_distances.size() == 1);
+  CHECK(euclidean.euclidean_distances[0] == doctest::Approx(0.4f));
+  CHECK(euclidean.frame_distances == euclidean.euclidean_distances);
   CHECK(euclidean.linkage_params.get<streamclust::EuclideanLinkage>().max_distance == doctest::Approx(0.4f));
   CHECK(euclidean.linkage_params.get<streamclust::RangeAdaptiveLinkage>().min_distance == doctest::Approx(0.3f));
   CHECK(preset.linkage_params.get<streamclust::RangeAdaptiveLinkage>().min_distance ==

@@ -7,6 +7,7 @@
 #include "cli/euclidean_clusters.hpp"
 #include "cli/objects_engine.hpp"
 #include "cli/objects_sensors.hpp"
+#include "cli/structure_planes.hpp"
 
 #include <streamclust/eval/object_metrics.hpp>
 #include <streamclust/motion/trajectory.hpp>
@@ -16,6 +17,7 @@
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/stream_clusterer.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -95,8 +97,8 @@ struct EngineRun {
 };
 
 /// Predicted labels of the window [lo, lo + n) from an engine's result:
-/// cluster ids, -2 / -3 for structure, -1 for points the engine does not
-/// hold. Returns the result's points outside the window.
+/// cluster ids, -2 / -3 / -4 for ground / ceiling / wall, -1 for points the
+/// engine does not hold. Returns the result's points outside the window.
 std::size_t labels_from(const Clustering& result, std::size_t lo, std::vector<std::int64_t>& predicted) {
   std::size_t outside = 0;
   const std::size_t n = predicted.size();
@@ -109,9 +111,24 @@ std::size_t labels_from(const Clustering& result, std::size_t lo, std::vector<st
   };
   for (const PointLabel& p : result.points) put(p.stream_index, static_cast<std::int64_t>(p.label));
   for (const StructurePoint& s : result.structure) {
-    put(s.stream_index, s.surface == SurfaceClass::ceiling ? eval::kClassedCeiling : eval::kClassedGround);
+    put(s.stream_index, s.surface == SurfaceClass::ceiling ? eval::kClassedCeiling
+                        : s.surface == SurfaceClass::wall  ? eval::kClassedWall
+                                                           : eval::kClassedGround);
   }
   return outside;
+}
+
+/// The name of a swept peer: "euclidean@0.3", "frame@0.2/0.3"; the plain
+/// name when its settings are not swept.
+std::string peer_name(const char* method, bool swept, float plane_distance, float distance) {
+  if (!swept) return method;
+  char name[64];
+  if (plane_distance > 0.0f) {
+    std::snprintf(name, sizeof name, "%s@%g/%g", method, static_cast<double>(plane_distance), static_cast<double>(distance));
+  } else {
+    std::snprintf(name, sizeof name, "%s@%g", method, static_cast<double>(distance));
+  }
+  return name;
 }
 
 void summarize(ObjectsMethodResult& m) {
@@ -128,7 +145,10 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   const SimulatedStream stream = simulate_objects_stream(o, e.height);
   const std::vector<io::Record>& records = stream.records;
   e.records = records.size();
-  for (const SurfaceClass c : stream.classes) e.scene_has_ceiling = e.scene_has_ceiling || c == SurfaceClass::ceiling;
+  for (const SurfaceClass c : stream.classes) {
+    e.scene_has_ceiling = e.scene_has_ceiling || c == SurfaceClass::ceiling;
+    e.scene_has_wall = e.scene_has_wall || c == SurfaceClass::wall;
+  }
 
   const SimulateOptions& s = o.scenario;
   const Pose mount = mount_from_roll_pitch_yaw_deg(s.mount_roll_deg, s.mount_pitch_deg, s.mount_yaw_deg);
@@ -162,10 +182,44 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   } catch (const std::invalid_argument& ex) {
     throw UsageError(ex.what());
   }
-  EuclideanClustering euclidean(o.euclidean_distance);
+  // The peers: one Euclidean clustering per radius; the frame pipeline's
+  // structure stage per plane distance, its clustering per radius.
+  std::vector<EuclideanClustering> euclidean, frame_clustering;
+  std::vector<ObjectsMethodResult> r_euclidean, r_frame;  // r_frame: plane distance major
+  const bool euclidean_swept = o.euclidean_distances.size() > 1;
+  const bool frame_swept = o.frame_distances.size() > 1 || o.plane_distances.size() > 1;
+  if (o.run_euclidean) {
+    for (const float d : o.euclidean_distances) {
+      euclidean.emplace_back(d);
+      r_euclidean.push_back(ObjectsMethodResult{peer_name("euclidean", euclidean_swept, 0.0f, d), d, 0.0f, {}, {}, {}, 0.0, 0.0});
+    }
+  }
+  if (o.run_frame) {
+    for (const float d : o.frame_distances) frame_clustering.emplace_back(d);
+    for (const float plane : o.plane_distances) {
+      for (const float d : o.frame_distances) {
+        r_frame.push_back(ObjectsMethodResult{peer_name("frame", frame_swept, plane, d), d, plane, {}, {}, {}, 0.0, 0.0});
+      }
+    }
+  }
+  const bool frame_ceiling = o.frame_ceiling == "on" || (o.frame_ceiling == "auto" && s.scene == "office");
+  StructurePlaneChecks plane_checks;
+  plane_checks.sensor_height = e.height;
+  plane_checks.max_tilt_deg = o.frame_max_tilt_deg;
+  plane_checks.height_tolerance = o.frame_height_tolerance;
+  // Gravity in the sensor frame: from the simulator's sensor poses (the
+  // vehicle's attitude and the mount) with poses, else the mount alone.
+  PoseTrajectory gravity_poses(stream.trajectory);
+  const auto up_at = [&](double time) -> Eigen::Vector3f {
+    Eigen::Quaterniond attitude = mount.rotation;
+    if (o.poses) {
+      if (const std::optional<Pose> pose = gravity_poses.at(time)) attitude = pose->rotation;
+    }
+    return (attitude.conjugate() * Eigen::Vector3d::UnitZ()).cast<float>().normalized();
+  };
 
-  ObjectsMethodResult r_objects{"objects", {}, {}, 0.0, 0.0}, r_carc{"carc", {}, {}, 0.0, 0.0},
-      r_euclidean{"euclidean", {}, {}, 0.0, 0.0}, r_frame{"frame", {}, {}, 0.0, 0.0};
+  ObjectsMethodResult r_objects{"objects", 0.0f, 0.0f, {}, {}, {}, 0.0, 0.0},
+      r_carc{"carc", 0.0f, 0.0f, {}, {}, {}, 0.0, 0.0};
   eval::MetricOptions metric_options;
   metric_options.min_points = o.min_points;
 
@@ -186,9 +240,10 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     }
   }
 
-  std::vector<std::int64_t> truth, predicted;
+  std::vector<std::int64_t> truth, predicted, planes;
   std::vector<SurfaceClass> classes;
   std::vector<Eigen::Vector3f> points, rest;
+  std::vector<float> ranges;
   std::vector<std::size_t> rest_index;
   RetrievalSchedule schedule(o.rate_hz);
   const double first = records.front().t;
@@ -215,11 +270,13 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     truth.resize(n);
     classes.resize(n);
     points.resize(n);
+    ranges.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       const io::Record& rec = records[lo + k];
       truth[k] = rec.label;
       classes[k] = stream.classes[lo + k];
       points[k] = Eigen::Vector3f(rec.x, rec.y, rec.z);
+      ranges[k] = points[k].norm();
     }
     ++e.retrievals;
     window_points += static_cast<double>(n);
@@ -228,6 +285,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
     first_evaluated = false;
     const auto score = [&](ObjectsMethodResult& m, double cost_ms) {
       m.average.add(eval::object_metrics(truth, classes, predicted, metric_options));
+      m.range_coverage.add(truth, predicted, ranges);
       if (timed) m.cost_ms.push_back(cost_ms);
     };
     if (objects) {
@@ -236,7 +294,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
       score(r_objects, objects_cost);
       StructureDiagnostics& d = e.structure;
       for (std::size_t k = 0; k < n; ++k) {
-        const bool lost = predicted[k] == eval::kClassedGround || predicted[k] == eval::kClassedCeiling;
+        const bool lost = eval::is_classed_structure(predicted[k]);
         if (truth[k] > 0) {
           const std::size_t bin = StructureDiagnostics::bin_of(heights[lo + k]);
           ++d.object_points[bin];
@@ -245,6 +303,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
         const auto c = static_cast<std::size_t>(classes[k]);
         if (predicted[k] == eval::kClassedGround) ++d.classed_ground[c];
         if (predicted[k] == eval::kClassedCeiling) ++d.classed_ceiling[c];
+        if (predicted[k] == eval::kClassedWall) ++d.classed_wall[c];
       }
       if (o.verify) {
         ++e.verified;
@@ -261,28 +320,33 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
       labels_from(*carc_result, lo, predicted);
       score(r_carc, carc_cost);
     }
-    if (o.run_euclidean) {
+    for (std::size_t m = 0; m < euclidean.size(); ++m) {
       const auto t0 = Clock::now();
-      const std::vector<std::int64_t>& labels = euclidean.cluster(points);
-      const double cost = ms_since(t0);
-      predicted = labels;
-      score(r_euclidean, cost);
+      predicted = euclidean[m].cluster(points);
+      score(r_euclidean[m], ms_since(t0));
     }
     if (o.run_frame) {
-      const auto t0 = Clock::now();
-      const PlaneFit plane = ransac_dominant_plane(points, o.plane_distance, o.ransac_iterations, o.scenario.seed);
-      predicted.assign(n, eval::kClassedGround);
-      rest.clear();
-      rest_index.clear();
-      for (std::size_t k = 0; k < n; ++k) {
-        if (plane.found && std::abs(plane.normal.dot(points[k]) + plane.offset) <= o.plane_distance) continue;
-        rest.push_back(points[k]);
-        rest_index.push_back(k);
+      plane_checks.up = up_at(time);
+      for (std::size_t p = 0; p < o.plane_distances.size(); ++p) {
+        const auto t0 = Clock::now();
+        classify_structure_planes(points, o.plane_distances[p], o.ransac_iterations, o.scenario.seed, plane_checks,
+                                  frame_ceiling, planes);
+        rest.clear();
+        rest_index.clear();
+        for (std::size_t k = 0; k < n; ++k) {
+          if (planes[k] != -1) continue;
+          rest.push_back(points[k]);
+          rest_index.push_back(k);
+        }
+        const double structure_cost = ms_since(t0);
+        for (std::size_t d = 0; d < frame_clustering.size(); ++d) {
+          const auto t1 = Clock::now();
+          const std::vector<std::int64_t>& labels = frame_clustering[d].cluster(rest);
+          predicted = planes;
+          for (std::size_t k = 0; k < rest.size(); ++k) predicted[rest_index[k]] = labels[k];
+          score(r_frame[p * frame_clustering.size() + d], structure_cost + ms_since(t1));
+        }
       }
-      const std::vector<std::int64_t>& labels = euclidean.cluster(rest);
-      for (std::size_t k = 0; k < rest.size(); ++k) predicted[rest_index[k]] = labels[k];
-      const double cost = ms_since(t0);
-      score(r_frame, cost);
     }
   };
   for (std::size_t i = 0; i < records.size(); ++i) {
@@ -290,7 +354,10 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   }
   if (e.retrievals == 0) throw UsageError("--duration: no retrieval after the first window");
   e.window_points = window_points / static_cast<double>(e.retrievals);
-  for (ObjectsMethodResult* m : {&r_objects, &r_carc, &r_euclidean, &r_frame}) {
+  std::vector<ObjectsMethodResult*> all{&r_objects, &r_carc};
+  for (ObjectsMethodResult& m : r_euclidean) all.push_back(&m);
+  for (ObjectsMethodResult& m : r_frame) all.push_back(&m);
+  for (ObjectsMethodResult* m : all) {
     if (m->average.frames() == 0) continue;
     summarize(*m);
     e.methods.push_back(std::move(*m));
@@ -316,10 +383,36 @@ Json mean_json(const ObjectsMethodResult& m) {
               {"ceiling_precision", a.ceiling_precision},
               {"ceiling_recall", a.ceiling_recall},
               {"ceiling_f1", a.ceiling_f1},
+              {"wall_precision", a.wall_precision},
+              {"wall_recall", a.wall_recall},
+              {"wall_f1", a.wall_f1},
               {"pooled_correct", pooled.correct},
               {"pooled_ground_f1", m.average.pooled_ground().f1},
               {"pooled_ceiling_f1", m.average.pooled_ceiling().f1},
+              {"pooled_wall_f1", m.average.pooled_wall().f1},
               {"pooled_object_point_coverage", m.average.pooled_object_point_coverage()}};
+}
+
+/// Object-point coverage per range band, pooled over the retrievals:
+/// [{"from_m": 0, "to_m": 10, "object_points": N, "kept": K, "coverage": K / N}, ...].
+Json range_coverage_json(const eval::RangeCoverage& r) {
+  Json bands = Json::array();
+  for (std::size_t b = 0; b < eval::RangeCoverage::kBands; ++b) {
+    bands.push_back({{"from_m", eval::RangeCoverage::kLowerEdges[b]},
+                     {"to_m", b + 1 < eval::RangeCoverage::kBands ? Json(eval::RangeCoverage::kLowerEdges[b + 1])
+                                                                  : Json(nullptr)},
+                     {"object_points", r.object_points(b)},
+                     {"kept", r.kept(b)},
+                     {"coverage", r.coverage(b)}});
+  }
+  return bands;
+}
+
+/// A list of floats as a JSON array.
+Json floats_json(const std::vector<float>& values) {
+  Json list = Json::array();
+  for (const float v : values) list.push_back(static_cast<double>(v));
+  return list;
 }
 
 /// The options of the objects engine's linkage by their JSON key
@@ -355,8 +448,12 @@ Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvalu
                      {"max_range", s.max_range}};
   doc["settings"] = {{"window_time", o.window_seconds},
                      {"rate", o.rate_hz},
-                     {"distance", o.euclidean_distance},
-                     {"plane_distance", o.plane_distance},
+                     {"euclidean_distances", floats_json(o.euclidean_distances)},
+                     {"frame_distances", floats_json(o.frame_distances)},
+                     {"plane_distances", floats_json(o.plane_distances)},
+                     {"frame_ceiling", o.frame_ceiling},
+                     {"frame_max_tilt", o.frame_max_tilt_deg},
+                     {"frame_height_tolerance", o.frame_height_tolerance},
                      {"ransac_iterations", o.ransac_iterations},
                      {"min_points", o.min_points},
                      {"linkage", o.linkage},
@@ -365,6 +462,7 @@ Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvalu
   doc["retrievals"] = e.retrievals;
   doc["window_points"] = e.window_points;
   doc["scene_has_ceiling"] = e.scene_has_ceiling;
+  doc["scene_has_wall"] = e.scene_has_wall;
   if (o.run_objects) {
     const StructureDiagnostics& d = e.structure;
     Json bins = Json::array();
@@ -374,20 +472,27 @@ Json objects_evaluation_json(const EvaluateObjectsOptions& o, const ObjectsEvalu
                       {"object_points", d.object_points[b]},
                       {"classed_structure", d.object_points_lost[b]}});
     }
-    Json ground = Json::object(), ceiling = Json::object();
+    Json ground = Json::object(), ceiling = Json::object(), wall = Json::object();
     for (std::size_t c = 0; c < static_cast<std::size_t>(kSurfaceClassCount); ++c) {
       ground[to_string(static_cast<SurfaceClass>(c))] = d.classed_ground[c];
       ceiling[to_string(static_cast<SurfaceClass>(c))] = d.classed_ceiling[c];
+      wall[to_string(static_cast<SurfaceClass>(c))] = d.classed_wall[c];
     }
     doc["objects_structure"] = {{"object_points_by_height", std::move(bins)},
                                 {"classed_ground_by_truth", std::move(ground)},
-                                {"classed_ceiling_by_truth", std::move(ceiling)}};
+                                {"classed_ceiling_by_truth", std::move(ceiling)},
+                                {"classed_wall_by_truth", std::move(wall)}};
   }
   doc["verify"] = o.verify ? Json{{"retrievals", e.verified}, {"mismatches", e.mismatches}} : Json(nullptr);
   Json methods = Json::array();
   for (const ObjectsMethodResult& m : e.methods) {
+    Json settings = Json::object();
+    if (m.distance > 0.0f) settings["distance"] = static_cast<double>(m.distance);
+    if (m.plane_distance > 0.0f) settings["plane_distance"] = static_cast<double>(m.plane_distance);
     methods.push_back({{"name", m.name},
+                       {"settings", std::move(settings)},
                        {"retrievals", m.average.frames()},
+                       {"object_point_coverage_by_range", range_coverage_json(m.range_coverage)},
                        {"cost_median_ms", m.cost_median_ms},
                        {"cost_p99_ms", m.cost_p99_ms},
                        {"mean", mean_json(m)}});
@@ -417,10 +522,12 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
   std::snprintf(line, sizeof line, "T_B %.3g s, retrievals %.3g Hz: %zu scored, %.0f points per window", o.window_seconds,
                 o.rate_hz, e.retrievals, e.window_points);
   out << line << "\n\n";
+  // A column per method, 11 characters or its name's length + 1.
+  const auto column = [](const ObjectsMethodResult& m) { return static_cast<int>(std::max<std::size_t>(11, m.name.size() + 1)); };
   std::snprintf(line, sizeof line, "%-30s", "mean over retrievals");
   out << line;
   for (const ObjectsMethodResult& m : e.methods) {
-    std::snprintf(line, sizeof line, "%11s", m.name.c_str());
+    std::snprintf(line, sizeof line, "%*s", column(m), m.name.c_str());
     out << line;
   }
   out << "\n";
@@ -435,13 +542,33 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
                            {"objects missed", &eval::MeanObjectMetrics::missed},
                            {"object-point coverage", &eval::MeanObjectMetrics::object_point_coverage},
                            {"ground F1", &eval::MeanObjectMetrics::ground_f1}};
+  if (e.scene_has_wall) {
+    rows.push_back({"wall precision", &eval::MeanObjectMetrics::wall_precision});
+    rows.push_back({"wall recall", &eval::MeanObjectMetrics::wall_recall});
+  }
   if (e.scene_has_ceiling) rows.push_back({"ceiling F1", &eval::MeanObjectMetrics::ceiling_f1});
   rows.push_back({"objects rated per window", &eval::MeanObjectMetrics::objects});
   for (const Row& r : rows) {
     std::snprintf(line, sizeof line, "%-30s", r.label);
     out << line;
     for (const ObjectsMethodResult& m : e.methods) {
-      std::snprintf(line, sizeof line, "%11.3f", m.average.mean().*(r.field));
+      std::snprintf(line, sizeof line, "%*.3f", column(m), m.average.mean().*(r.field));
+      out << line;
+    }
+    out << "\n";
+  }
+  for (std::size_t b = 0; b < eval::RangeCoverage::kBands; ++b) {
+    if (b + 1 < eval::RangeCoverage::kBands) {
+      std::snprintf(line, sizeof line, "coverage %g-%g m (pooled)", eval::RangeCoverage::kLowerEdges[b],
+                    eval::RangeCoverage::kLowerEdges[b + 1]);
+    } else {
+      std::snprintf(line, sizeof line, "coverage >= %g m (pooled)", eval::RangeCoverage::kLowerEdges[b]);
+    }
+    char label[40];
+    std::snprintf(label, sizeof label, "%-30s", line);
+    out << label;
+    for (const ObjectsMethodResult& m : e.methods) {
+      std::snprintf(line, sizeof line, "%*.3f", column(m), m.range_coverage.coverage(b));
       out << line;
     }
     out << "\n";
@@ -450,7 +577,7 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
     std::snprintf(line, sizeof line, "%-30s", p99 ? "cycle cost P99 [ms]" : "cycle cost median [ms]");
     out << line;
     for (const ObjectsMethodResult& m : e.methods) {
-      std::snprintf(line, sizeof line, "%11.2f", p99 ? m.cost_p99_ms : m.cost_median_ms);
+      std::snprintf(line, sizeof line, "%*.2f", column(m), p99 ? m.cost_p99_ms : m.cost_median_ms);
       out << line;
     }
     out << "\n";
@@ -476,9 +603,9 @@ void print_objects_evaluation(std::ostream& out, const EvaluateObjectsOptions& o
       }
       if (b < StructureDiagnostics::kHeightBins - 1) lower = StructureDiagnostics::kHeightEdges[b];
     }
-    out << "\nobjects: points classed ground / ceiling by truth class (object, ground, wall, ceiling):";
-    for (const auto* counts : {&d.classed_ground, &d.classed_ceiling}) {
-      out << (counts == &d.classed_ground ? " ground" : "; ceiling");
+    out << "\nobjects: points classed ground / ceiling / wall by truth class (object, ground, wall, ceiling):";
+    for (const auto* counts : {&d.classed_ground, &d.classed_ceiling, &d.classed_wall}) {
+      out << (counts == &d.classed_ground ? " ground" : counts == &d.classed_ceiling ? "; ceiling" : "; wall");
       for (const std::uint64_t v : *counts) out << ' ' << v;
     }
     out << "\n";

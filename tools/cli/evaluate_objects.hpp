@@ -12,19 +12,24 @@
 ///   linkage slot (cli/objects_engine.hpp);
 /// - carc: the paper's preset (CArcFastConfig, theta 30 for the Mid-360, 80
 ///   for the Avia, the sensor's FOV), every point clustered;
-/// - euclidean: exact Euclidean single linkage at 0.3 m of each window
-///   (EuclideanClustering: PCL's definition);
-/// - frame: RANSAC removal of the dominant plane, then the same Euclidean
-///   clustering, per window.
-/// The peers see the window's points in the sensor frame, without poses.
+/// - euclidean: exact Euclidean single linkage of each window
+///   (EuclideanClustering: PCL's definition), one method per radius;
+/// - frame: the frame pipeline, per window: RANSAC ground removal checked
+///   against gravity and the sensor height, indoors a ceiling removed the
+///   same way (cli/structure_planes.hpp), then Euclidean clustering; one
+///   method per (inlier tolerance, radius).
+/// The peers see the window's points in the sensor frame; gravity comes from
+/// the sensor's pose (the vehicle's with poses, the mount without).
 /// Results and definitions: docs/evaluation.md, section "Objects".
 
 #include "cli/json.hpp"
 #include "cli/objects_engine.hpp"
 #include "cli/options.hpp"
 #include "cli/simulate.hpp"
+#include "cli/structure_planes.hpp"
 
 #include <streamclust/eval/object_average.hpp>
+#include <streamclust/eval/range_coverage.hpp>
 
 #include <array>
 #include <cmath>
@@ -50,9 +55,19 @@ struct EvaluateObjectsOptions {
   /// Every linkage's parameters (--theta, --min-distance, a registered
   /// linkage's own): the preset's for its linkage, else the defaults.
   ToolRegistry::Values linkage_params = objects_linkage_values();
-  float euclidean_distance = 0.3f;  ///< [m] euclidean and frame
-  float plane_distance = 0.2f;      ///< [m] frame: points this close to the RANSAC plane are ground
-  std::size_t ransac_iterations = 100;  ///< frame
+  /// [m] the euclidean peer's radii: one method per radius (a sweep).
+  std::vector<float> euclidean_distances{0.3f};
+  /// [m] the frame pipeline's Euclidean radii, each with every plane distance.
+  std::vector<float> frame_distances{0.3f};
+  /// [m] frame: points this close to its ground (ceiling) plane are ground (ceiling).
+  std::vector<float> plane_distances{0.2f};
+  /// frame: remove a ceiling plane too: "on", "off", or "auto" (indoor scenes: the office).
+  std::string frame_ceiling = "auto";
+  std::size_t ransac_iterations = 100;  ///< frame: accepted RANSAC candidates per plane
+  /// frame: a plane's normal within this of gravity [deg]
+  float frame_max_tilt_deg = StructurePlaneChecks{}.max_tilt_deg;
+  /// frame: the ground plane the sensor height +- this below the sensor [m]
+  float frame_height_tolerance = StructurePlaneChecks{}.height_tolerance;
   std::size_t min_points = 10;      ///< eval::MetricOptions::min_points
   bool verify = false;              ///< objects: every retrieval against the batch partition
   bool walls = true;                ///< objects: walls classed as structure (false: --no-walls)
@@ -75,8 +90,11 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
 
 /// One method's scores, averaged over the evaluated retrievals.
 struct ObjectsMethodResult {
-  std::string name;                  ///< objects, carc, euclidean or frame
+  std::string name;                  ///< objects, carc, euclidean or frame (swept peers: "euclidean@0.3", "frame@0.2/0.3")
+  float distance = 0.0f;             ///< [m] euclidean and frame: the Euclidean radius (0: not applicable)
+  float plane_distance = 0.0f;       ///< [m] frame: the planes' inlier tolerance (0: not applicable)
   eval::ObjectMetricsAverage average;
+  eval::RangeCoverage range_coverage;  ///< object-point coverage per range band, pooled
   std::vector<double> cost_ms;       ///< per evaluated retrieval: the method's work since the previous one [ms]
   double cost_median_ms = 0.0;
   double cost_p99_ms = 0.0;
@@ -84,16 +102,17 @@ struct ObjectsMethodResult {
 
 /// Where the objects method's structure removal errs, pooled over the
 /// evaluated retrievals: object points (truth instance > 0) and those
-/// classed ground or ceiling, by height above the scene's ground; points
-/// classed ground and ceiling by their truth class.
+/// classed structure (ground, ceiling or wall), by height above the scene's
+/// ground; points classed ground, ceiling and wall by their truth class.
 struct StructureDiagnostics {
   /// Upper edges of the height bins [m] (a last bin holds the rest).
   static constexpr double kHeightEdges[] = {0.0, 0.25, 0.5, 1.0, 2.0, 4.0};
   static constexpr std::size_t kHeightBins = sizeof(kHeightEdges) / sizeof(kHeightEdges[0]) + 1;
   std::array<std::uint64_t, kHeightBins> object_points{};
-  std::array<std::uint64_t, kHeightBins> object_points_lost{};  ///< classed ground or ceiling
+  std::array<std::uint64_t, kHeightBins> object_points_lost{};  ///< classed ground, ceiling or wall
   std::array<std::uint64_t, kSurfaceClassCount> classed_ground{};   ///< by truth class
   std::array<std::uint64_t, kSurfaceClassCount> classed_ceiling{};  ///< by truth class
+  std::array<std::uint64_t, kSurfaceClassCount> classed_wall{};     ///< by truth class
 
   static std::size_t bin_of(double height) {
     std::size_t b = 0;
@@ -107,6 +126,7 @@ struct ObjectsEvaluation {
   std::size_t records = 0;
   float height = 0.0f;               ///< [m]
   bool scene_has_ceiling = false;    ///< some point's truth class is ceiling
+  bool scene_has_wall = false;       ///< some point's truth class is wall
   std::size_t retrievals = 0;        ///< evaluated retrievals
   double window_points = 0.0;        ///< mean points per evaluated window
   std::vector<ObjectsMethodResult> methods;
@@ -139,13 +159,17 @@ Simulates one scenario with ground truth and scores, at every retrieval of a
   objects    the objects preset (StreamClusterer<ObjectsConfig>, objects_params):
              ground / ceiling removal, range-adaptive linkage (--linkage: any other), poses or mount
   carc       the paper's preset (theta 30 Mid-360, 80 Avia; the sensor's FOV), all points clustered
-  euclidean  Euclidean single linkage at --distance of each window (PCL's definition)
-  frame      RANSAC removal of the dominant plane (points within --plane-distance: ground),
-             then the same Euclidean clustering, per window
-The peers (carc, euclidean, frame) see the sensor-frame points, without poses.
-Prints ARI on object points, strict objects correct / over- / under-segmented,
-object-point coverage, ground F1 (ceiling F1 when the scene has a ceiling) and
-the cycle cost (median, P99) of each method.
+  euclidean  Euclidean single linkage of each window (PCL's definition), per radius
+  frame      RANSAC ground plane checked against gravity and the sensor height (normal within
+             --frame-max-tilt of up, height +- --frame-height-tolerance; refitted on its inliers,
+             else rejected), indoors a ceiling plane above the sensor the same way, then
+             Euclidean clustering, per window
+The peers (carc, euclidean, frame) see the sensor-frame points; the frame pipeline takes
+gravity from the sensor's pose (with --poses off: the mount). Prints ARI on object points,
+strict objects correct / over- / under-segmented, object-point coverage (also per range
+band: 0-10, 10-30, >= 30 m), ground F1 (walls are their own class: -4), wall precision /
+recall when the scene has walls, ceiling F1 when it has a ceiling, and the cycle cost
+(median, P99) of each method.
 
 scenario:
   --sensor mid360|avia|mid40|mid70              (default mid360)
@@ -161,7 +185,13 @@ methods:
   --method all|objects|carc|euclidean|frame[,...]  (default all)
   --window-time T_B (default 0.5)  --rate HZ (default 20)
   --distance M (default 0.3)        euclidean and frame linkage radius
-  --plane-distance M (default 0.2)  --ransac-iterations N (default 100)
+  --euclidean-distances M[,M...]    euclidean: one method per radius (a sweep)
+  --frame-distances M[,M...]        frame: its Euclidean radii
+  --plane-distance M[,M...] (default 0.2)  frame: the planes' inlier tolerance(s); with several
+                                    radii or tolerances, one frame method per pair
+  --frame-ceiling auto|on|off       frame: remove a ceiling plane (auto: the office)
+  --frame-max-tilt DEG (default 10)  --frame-height-tolerance M (default 0.25)  frame: plane checks
+  --ransac-iterations N (default 100)  accepted RANSAC candidates per plane
   --min-points N (default 10)       objects smaller than N points are not rated
   --no-walls                        objects: no wall detection (walls clustered like objects)
 the objects engine's linkage (every other slot and parameter stays the objects preset's;

@@ -22,6 +22,20 @@ bool is_linkage_option(const std::string& option) {
   return false;
 }
 
+/// A comma-separated list of radii or tolerances in (0, limit] m.
+std::vector<float> parse_distances(const std::string& option, const std::string& text, float limit) {
+  std::vector<float> values;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    const float v = parse_positive_float(option, item);
+    if (v > limit) throw UsageError(option + ": expected values in (0, " + std::to_string(limit) + "] m, got " + item);
+    values.push_back(v);
+  }
+  if (values.empty()) throw UsageError(option + ": expected one or more values, got '" + text + "'");
+  return values;
+}
+
 }  // namespace
 
 EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::string>& args) {
@@ -76,14 +90,26 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
     } else if (a == "--distance") {
       // The peers' radius, and that of every linkage with a --distance option.
       const std::string text = c.value();
-      o.euclidean_distance = parse_positive_float(a, text);
-      if (o.euclidean_distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
+      const float distance = parse_positive_float(a, text);
+      if (distance > 100.0f) throw UsageError("--distance: expected (0, 100] m");
+      o.euclidean_distances = o.frame_distances = {distance};
       ToolRegistry::parse_option(a, [&] { return text; }, o.linkage_params);
+    } else if (a == "--euclidean-distances") {
+      o.euclidean_distances = parse_distances(a, c.value(), 100.0f);
+    } else if (a == "--frame-distances") {
+      o.frame_distances = parse_distances(a, c.value(), 100.0f);
+    } else if (a == "--frame-max-tilt") {
+      o.frame_max_tilt_deg = parse_positive_float(a, c.value());
+      if (o.frame_max_tilt_deg >= 90.0f) throw UsageError("--frame-max-tilt: expected (0, 90) deg");
+    } else if (a == "--frame-height-tolerance") {
+      o.frame_height_tolerance = parse_positive_float(a, c.value());
+      if (o.frame_height_tolerance > 10.0f) throw UsageError("--frame-height-tolerance: expected (0, 10] m");
+    } else if (a == "--frame-ceiling") {
+      o.frame_ceiling = c.choice({"auto", "on", "off"});
     } else if (is_linkage_option(a)) {
       ToolRegistry::parse_option(a, [&] { return c.value(); }, o.linkage_params);
     } else if (a == "--plane-distance") {
-      o.plane_distance = parse_positive_float(a, c.value());
-      if (o.plane_distance > 10.0f) throw UsageError("--plane-distance: expected (0, 10] m");
+      o.plane_distances = parse_distances(a, c.value(), 10.0f);
     } else if (a == "--ransac-iterations") {
       o.ransac_iterations = static_cast<std::size_t>(parse_count(a, c.value()));
       if (o.ransac_iterations > 100000) throw UsageError("--ransac-iterations: expected [1, 100000]");

@@ -8,8 +8,10 @@
 /// bundling them into a QualityReport, QualityAverage over frames and
 /// recovery_after for a metric's time series, evaluate_on_labelled for
 /// scores on the points a reference method labelled; object_metrics for a
-/// pipeline that removes ground and ceiling (strict object rates, object-point
-/// coverage, ground / ceiling precision and recall) and ObjectMetricsAverage.
+/// pipeline that removes ground, walls and ceiling (strict object rates,
+/// object-point coverage, ground / wall / ceiling precision and recall),
+/// ObjectMetricsAverage, and RangeCoverage (object-point coverage per range
+/// band).
 /// Definitions: docs/evaluation-metrics.md.
 ///
 /// Inputs: per-point ground-truth instance ids (0 = structure, > 0 = object,
@@ -25,6 +27,7 @@
 #include <streamclust/eval/object_rates.hpp>
 #include <streamclust/eval/options.hpp>
 #include <streamclust/eval/panoptic.hpp>
+#include <streamclust/eval/range_coverage.hpp>
 #include <streamclust/eval/rand_index.hpp>
 #include <streamclust/eval/recovery.hpp>
 #include <streamclust/eval/report.hpp>

@@ -33,6 +33,9 @@ struct MeanObjectMetrics {
   double ceiling_precision = 0.0;
   double ceiling_recall = 0.0;
   double ceiling_f1 = 0.0;
+  double wall_precision = 0.0;
+  double wall_recall = 0.0;
+  double wall_f1 = 0.0;
   double ari = 0.0;  ///< adjusted_rand_index
 };
 
@@ -71,6 +74,9 @@ class ObjectMetricsAverage {
     sum_.ceiling_precision += m.ceiling.precision;
     sum_.ceiling_recall += m.ceiling.recall;
     sum_.ceiling_f1 += m.ceiling.f1;
+    sum_.wall_precision += m.wall.precision;
+    sum_.wall_recall += m.wall.recall;
+    sum_.wall_f1 += m.wall.f1;
     sum_.ari += m.adjusted_rand_index;
 
     objects_.objects += m.objects.objects;
@@ -83,6 +89,7 @@ class ObjectMetricsAverage {
     classed_structure_ += m.object_points_classed_structure;
     add_counts(ground_, m.ground);
     add_counts(ceiling_, m.ceiling);
+    add_counts(wall_, m.wall);
   }
 
   std::size_t frames() const { return sum_.frames; }
@@ -99,7 +106,8 @@ class ObjectMetricsAverage {
     m.under_segmented /= with_objects;
     m.missed /= with_objects;
     for (double* v : {&m.object_point_coverage, &m.ground_precision, &m.ground_recall, &m.ground_f1,
-                      &m.ceiling_precision, &m.ceiling_recall, &m.ceiling_f1, &m.ari}) {
+                      &m.ceiling_precision, &m.ceiling_recall, &m.ceiling_f1, &m.wall_precision, &m.wall_recall,
+                      &m.wall_f1, &m.ari}) {
       *v /= frames;
     }
     return m;
@@ -115,7 +123,9 @@ class ObjectMetricsAverage {
   ClassScores pooled_ground() const { return class_scores(ground_[0], ground_[1], ground_[2]); }
   /// Ceiling scores from the summed TP / FP / FN of every frame.
   ClassScores pooled_ceiling() const { return class_scores(ceiling_[0], ceiling_[1], ceiling_[2]); }
-  /// Object points of every frame not classed ground / ceiling (fraction; 1 without object points).
+  /// Wall scores from the summed TP / FP / FN of every frame.
+  ClassScores pooled_wall() const { return class_scores(wall_[0], wall_[1], wall_[2]); }
+  /// Object points of every frame not classed ground / ceiling / wall (fraction; 1 without object points).
   double pooled_object_point_coverage() const {
     return detail::ratio_or(static_cast<double>(object_points_ - classed_structure_),
                             static_cast<double>(object_points_), 1.0);
@@ -134,6 +144,7 @@ class ObjectMetricsAverage {
   std::uint64_t classed_structure_ = 0;
   std::uint64_t ground_[3] = {0, 0, 0};
   std::uint64_t ceiling_[3] = {0, 0, 0};
+  std::uint64_t wall_[3] = {0, 0, 0};
 };
 
 }  // namespace eval

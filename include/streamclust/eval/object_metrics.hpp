@@ -3,9 +3,10 @@
 
 /// \file
 /// ObjectMetrics and object_metrics(): are the clusters objects, once a
-/// ground / ceiling removal stage has taken points out of clustering? Strict
-/// object rates, object-point coverage, ground and ceiling precision / recall
-/// / F1, and the adjusted Rand index on object points, from one call.
+/// structure stage has taken ground, wall and ceiling points out of
+/// clustering? Strict object rates, object-point coverage, ground, wall and
+/// ceiling precision / recall / F1, and the adjusted Rand index on object
+/// points, from one call.
 
 #include <streamclust/eval/contingency.hpp>
 #include <streamclust/eval/options.hpp>
@@ -27,10 +28,11 @@ struct ObjectMetrics {
   std::size_t evaluated_points = 0;                 ///< points with truth instance >= 0
   std::size_t object_points = 0;                    ///< points with truth instance > 0
   StrictObjectRates objects;                        ///< strict_object_rates()
-  double object_point_coverage = 1.0;               ///< object points not classed ground / ceiling (fraction)
-  std::size_t object_points_classed_structure = 0;  ///< object points predicted -2 or -3
+  double object_point_coverage = 1.0;               ///< object points not classed ground / ceiling / wall (fraction)
+  std::size_t object_points_classed_structure = 0;  ///< object points predicted -2, -3 or -4
   ClassScores ground;                               ///< predicted -2 against the class ground
   ClassScores ceiling;                              ///< predicted -3 against the class ceiling
+  ClassScores wall;                                 ///< predicted -4 against the class wall
   double adjusted_rand_index = 1.0;                 ///< on object points; every negative prediction a singleton
 };
 
@@ -42,15 +44,16 @@ struct ObjectMetrics {
 /// - `truth_class`: the point's SurfaceClass; an object instance (> 0) must
 ///   have the class object (else std::invalid_argument).
 /// - `predicted`: a cluster id >= 0, kUnlabelled (-1, or any negative other
-///   than -2 and -3), kClassedGround (-2) or kClassedCeiling (-3).
+///   than -2, -3 and -4), kClassedGround (-2), kClassedCeiling (-3) or
+///   kClassedWall (-4).
 ///
 /// Fields:
-/// - objects: strict_object_rates() (a point predicted -1, -2 or -3 is in no
+/// - objects: strict_object_rates() (a point predicted -1 ... -4 is in no
 ///   cluster; structure in a cluster is foreign to every object).
-/// - object_point_coverage, ground, ceiling: surface_scores().
+/// - object_point_coverage, ground, ceiling, wall: surface_scores().
 /// - adjusted_rand_index: adjusted_rand_index() between truth instance and
 ///   prediction on the object points only (truth_instance > 0, whatever
-///   options.ari_include_structure says), each point predicted -1, -2 or -3
+///   options.ari_include_structure says), each point predicted -1 ... -4
 ///   a singleton cluster: an object the removal stage swallowed is lost, not
 ///   one well-grouped cluster.
 ///
@@ -83,6 +86,7 @@ inline ObjectMetrics object_metrics(const std::vector<std::int64_t>& truth_insta
   m.object_points_classed_structure = surfaces.object_points_classed_structure;
   m.ground = surfaces.ground;
   m.ceiling = surfaces.ceiling;
+  m.wall = surfaces.wall;
   MetricOptions objects_only = options;
   objects_only.ari_include_structure = false;
   m.adjusted_rand_index = adjusted_rand_index(table, objects_only);

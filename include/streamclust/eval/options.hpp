@@ -14,7 +14,8 @@
 ///   (conventionally -1, `kUnlabelled`) means the point received no label
 ///   (dropped, lost by an overwrite grid, evicted...). All negative values are
 ///   the same "unlabelled" label, except in object_metrics(), which tells
-///   `kClassedGround` (-2) and `kClassedCeiling` (-3) apart from the rest.
+///   `kClassedGround` (-2), `kClassedCeiling` (-3) and `kClassedWall` (-4)
+///   apart from the rest.
 /// - Both vectors have the same length, else std::invalid_argument naming both
 ///   sizes. Label values are arbitrary (not dense): every metric is invariant
 ///   to a relabelling of either side (see the tie rule of ObjectRates).
@@ -41,6 +42,16 @@ inline constexpr std::int64_t kClassedGround = -2;
 /// Predicted id of a point classed as ceiling (taken out of clustering); as
 /// kClassedGround, for the ceiling.
 inline constexpr std::int64_t kClassedCeiling = -3;
+
+/// Predicted id of a point classed as wall (vertical structure taken out of
+/// clustering); as kClassedGround, for walls.
+inline constexpr std::int64_t kClassedWall = -4;
+
+/// True for the predicted ids of points a structure stage took out of
+/// clustering: kClassedGround, kClassedCeiling or kClassedWall.
+inline constexpr bool is_classed_structure(std::int64_t predicted) {
+  return predicted == kClassedGround || predicted == kClassedCeiling || predicted == kClassedWall;
+}
 
 /// Options of the metrics; a plain aggregate, construct with braces:
 /// `MetricOptions o; o.min_points = 30;`. Checked by `validate()` (called by

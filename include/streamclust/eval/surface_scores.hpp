@@ -2,9 +2,10 @@
 #pragma once
 
 /// \file
-/// Scores of a ground / ceiling removal stage: precision, recall and F1 of
-/// the points classed ground (ceiling) against the truth class, and the
-/// fraction of object points it left to clustering.
+/// Scores of a structure stage (ground, wall and ceiling removal):
+/// precision, recall and F1 of the points classed ground (wall, ceiling)
+/// against the truth class, and the fraction of object points it left to
+/// clustering.
 
 #include <streamclust/eval/options.hpp>
 #include <streamclust/surface_class.hpp>
@@ -47,13 +48,14 @@ inline ClassScores class_scores(std::uint64_t true_positives, std::uint64_t fals
   return s;
 }
 
-/// What a ground / ceiling removal stage did to one frame (surface_scores()).
+/// What a structure stage did to one frame (surface_scores()).
 struct SurfaceScores {
   std::size_t object_points = 0;                    ///< non-ignored points with truth instance > 0
-  std::size_t object_points_classed_structure = 0;  ///< of those, predicted kClassedGround or kClassedCeiling
+  std::size_t object_points_classed_structure = 0;  ///< of those, predicted kClassedGround, kClassedCeiling or kClassedWall
   double object_point_coverage = 1.0;               ///< 1 - classed_structure / object_points; 1 when no object point
   ClassScores ground;                               ///< kClassedGround against SurfaceClass::ground
   ClassScores ceiling;                              ///< kClassedCeiling against SurfaceClass::ceiling
+  ClassScores wall;                                 ///< kClassedWall against SurfaceClass::wall
 };
 
 namespace detail {
@@ -87,19 +89,21 @@ inline void check_surface_point(std::size_t i, std::int64_t instance, SurfaceCla
 /// Scores of the structure classification of one frame. Ignored points
 /// (truth_instance < 0) are removed first.
 /// - object_point_coverage: the fraction of object points (truth_instance
-///   > 0) NOT predicted kClassedGround (-2) or kClassedCeiling (-3): what the
-///   removal stage left to clustering (unlabelled, -1, still counts as left).
-///   1 when there is no object point.
+///   > 0) NOT predicted kClassedGround (-2), kClassedCeiling (-3) or
+///   kClassedWall (-4): what the structure stage left to clustering
+///   (unlabelled, -1, still counts as left). 1 when there is no object point.
 /// - ground: TP = predicted -2 and truth class ground, FP = predicted -2 and
 ///   another class, FN = truth class ground and predicted anything but -2
-///   (a cluster, unlabelled, or -3). ceiling: the same with -3 and the class
-///   ceiling. Precision is 1 when nothing is predicted as the class (no
-///   classed point can be wrong), recall is 1 when no point has the class
-///   (nothing to find), F1 = 2 TP / (2 TP + FP + FN), 1 when both are empty.
-///   So a frame without ground scores 1 / 1 / 1 when no point is classed
-///   ground, and precision 0, recall 1, F1 0 when some are.
-/// - Other negative predictions (-1, -4, ...) are unlabelled: neither ground
-///   nor ceiling.
+///   (a cluster, unlabelled, -3 or -4). ceiling: the same with -3 and the
+///   class ceiling; wall: with -4 and the class wall. Each class is its own:
+///   a wall point classed ground is a ground false positive (and a wall
+///   false negative), a ground point classed wall a ground false negative
+///   (and a wall false positive). Precision is 1 when nothing is predicted as
+///   the class (no classed point can be wrong), recall is 1 when no point has
+///   the class (nothing to find), F1 = 2 TP / (2 TP + FP + FN), 1 when both
+///   are empty. So a frame without ground scores 1 / 1 / 1 when no point is
+///   classed ground, and precision 0, recall 1, F1 0 when some are.
+/// - Other negative predictions (-1, -5, ...) are unlabelled: no class.
 ///
 /// Throws std::invalid_argument when the sizes differ, a class is not a
 /// SurfaceClass enumerator, or a point with truth_instance > 0 has a class
@@ -111,8 +115,8 @@ inline SurfaceScores surface_scores(const std::vector<std::int64_t>& truth_insta
                                     const std::vector<std::int64_t>& predicted) {
   detail::check_same_size(truth_instance.size(), predicted.size());
   detail::check_same_size(truth_class.size(), predicted.size());
-  std::uint64_t ground[3] = {0, 0, 0};   // TP, FP, FN
-  std::uint64_t ceiling[3] = {0, 0, 0};  // TP, FP, FN
+  // TP, FP, FN of each structure class, indexed by SurfaceClass.
+  std::uint64_t counts[kSurfaceClassCount][3] = {};
   SurfaceScores s;
   for (std::size_t i = 0; i < predicted.size(); ++i) {
     const std::int64_t instance = truth_instance[i];
@@ -120,26 +124,29 @@ inline SurfaceScores surface_scores(const std::vector<std::int64_t>& truth_insta
     detail::check_surface_point(i, instance, c);
     if (instance < 0) continue;
     const std::int64_t p = predicted[i];
-    const bool classed_ground = p == kClassedGround;
-    const bool classed_ceiling = p == kClassedCeiling;
+    const bool classed = is_classed_structure(p);
     if (instance > 0) {
       ++s.object_points;
-      if (classed_ground || classed_ceiling) ++s.object_points_classed_structure;
+      if (classed) ++s.object_points_classed_structure;
     }
-    const bool is_ground = c == SurfaceClass::ground;
-    const bool is_ceiling = c == SurfaceClass::ceiling;
-    ground[0] += (classed_ground && is_ground) ? 1u : 0u;
-    ground[1] += (classed_ground && !is_ground) ? 1u : 0u;
-    ground[2] += (!classed_ground && is_ground) ? 1u : 0u;
-    ceiling[0] += (classed_ceiling && is_ceiling) ? 1u : 0u;
-    ceiling[1] += (classed_ceiling && !is_ceiling) ? 1u : 0u;
-    ceiling[2] += (!classed_ceiling && is_ceiling) ? 1u : 0u;
+    const int truth = static_cast<int>(c);
+    const int called = p == kClassedGround    ? static_cast<int>(SurfaceClass::ground)
+                       : p == kClassedCeiling ? static_cast<int>(SurfaceClass::ceiling)
+                       : p == kClassedWall    ? static_cast<int>(SurfaceClass::wall)
+                                              : static_cast<int>(SurfaceClass::object);
+    if (called != static_cast<int>(SurfaceClass::object)) ++counts[called][called == truth ? 0 : 1];
+    if (truth != static_cast<int>(SurfaceClass::object) && called != truth) ++counts[truth][2];
   }
   s.object_point_coverage =
       detail::ratio_or(static_cast<double>(s.object_points - s.object_points_classed_structure),
                        static_cast<double>(s.object_points), 1.0);
-  s.ground = class_scores(ground[0], ground[1], ground[2]);
-  s.ceiling = class_scores(ceiling[0], ceiling[1], ceiling[2]);
+  const auto scores_of = [&counts](SurfaceClass k) {
+    const std::uint64_t* n = counts[static_cast<int>(k)];
+    return class_scores(n[0], n[1], n[2]);
+  };
+  s.ground = scores_of(SurfaceClass::ground);
+  s.ceiling = scores_of(SurfaceClass::ceiling);
+  s.wall = scores_of(SurfaceClass::wall);
   return s;
 }
 

@@ -23,11 +23,13 @@ namespace streamclust::sim {
 /// An office room of 20 x 12 x 3 m (x in [-10, 10], y in [-6, 6], z in
 /// [0, 3]); floor, ceiling and walls are structure (instance 0). Objects,
 /// ids in this order: 2-4 pillars ("pillar", floor to ceiling cylinders, r
-/// 0.25-0.4 m), 6-10 desks ("desk": top at 0.75 m plus two side panels),
-/// 3-5 cabinets ("cabinet", against a wall, 1.0-2.0 m tall), 2-3 people
-/// ("person", capsules 1.7 m x 0.3 m at 1.2 m/s, back and forth along a
-/// straight path or, for a third person, around a circle). Walking paths
-/// never cross furniture.
+/// 0.25-0.4 m), 6-10 desks ("desk": top at 0.75 m plus two side panels; 2-3
+/// of them pushed against a wall, 2-5 cm from it, the others free), 3-5
+/// cabinets ("cabinet", 2 cm from a wall, 1.0-2.0 m tall), 2-4 bookshelves
+/// ("bookshelf", 2-5 cm from a wall, 1.6-2.0 m tall, 0.3-0.4 m deep,
+/// 0.8-1.6 m wide), 2-3 people ("person", capsules 1.7 m x 0.3 m at 1.2
+/// m/s, back and forth along a straight path or, for a third person, around
+/// a circle). Walking paths never cross furniture.
 inline Scene office_scene(std::uint64_t seed) {
   detail::SplitMix64 rng = detail::make_rng(seed, 0x0FF1CE);
   constexpr float kHalfX = 10.0f;
@@ -102,17 +104,49 @@ inline Scene office_scene(std::uint64_t seed) {
   }
   detail::require_count(placed, n_pillars, "pillar");
 
-  // Desks: grid-aligned (yaw 0 or 90 degrees), top 0.72-0.75 m, two side panels.
+  // A footprint against one of the four walls: `along` wide (along the
+  // wall), `depth` deep, `gap` from it; its centre drawn along the wall.
+  struct Footprint {
+    Eigen::Vector2f centre, half;  // [m]
+  };
+  const auto against_wall = [&rng](float along, float depth, float gap) {
+    const int wall = rng.uniform_int(0, 3);
+    Footprint f;
+    if (wall < 2) {  // y walls
+      const float sy = wall == 0 ? -1.0f : 1.0f;
+      f.centre = {rng.uniform(-kHalfX + along, kHalfX - along), sy * (kHalfY - 0.5f * depth - gap)};
+      f.half = {0.5f * along, 0.5f * depth};
+    } else {  // x walls
+      const float sx = wall == 2 ? -1.0f : 1.0f;
+      f.centre = {sx * (kHalfX - 0.5f * depth - gap), rng.uniform(-kHalfY + along, kHalfY - along)};
+      f.half = {0.5f * depth, 0.5f * along};
+    }
+    return f;
+  };
+
+  // Desks: grid-aligned (yaw 0 or 90 degrees), top 0.72-0.75 m, two side
+  // panels; the first 2-3 pushed against a wall (a long side 2-5 cm from it).
   const int n_desks = rng.uniform_int(6, 10);
+  const int n_wall_desks = rng.uniform_int(2, 3);
   placed = 0;
   for (int attempt = 0; placed < n_desks && attempt < 20000; ++attempt) {
     const float l = rng.uniform(1.4f, 1.8f);
     const float w = rng.uniform(0.7f, 0.9f);
-    const float yaw = rng.uniform_int(0, 1) ? 0.5f * detail::kPi : 0.0f;
+    float yaw = 0.0f;
+    Eigen::Vector2f c;
+    if (placed < n_wall_desks) {
+      const float gap = rng.uniform(0.02f, 0.05f);
+      const Footprint f = against_wall(l, w, gap);
+      c = f.centre;
+      yaw = f.half.x() > f.half.y() ? 0.0f : 0.5f * detail::kPi;  // the long side along the wall
+    } else {
+      yaw = rng.uniform_int(0, 1) ? 0.5f * detail::kPi : 0.0f;
+      const float half_diagonal = 0.5f * std::hypot(l, w);
+      c = detail::uniform2(rng, -kHalfX + half_diagonal + 0.3f, kHalfX - half_diagonal - 0.3f,
+                           -kHalfY + half_diagonal + 0.3f, kHalfY - half_diagonal - 0.3f);
+    }
     const float r = 0.5f * std::hypot(l, w);
-    const Eigen::Vector2f c =
-        detail::uniform2(rng, -kHalfX + r + 0.3f, kHalfX - r - 0.3f, -kHalfY + r + 0.3f, kHalfY - r - 0.3f);
-    if (!layout.free_disc(c, r, 0.4f)) continue;
+    if (!layout.free_disc(c, r, placed < n_wall_desks ? 0.3f : 0.4f)) continue;
     layout.occupy_disc(c, r);
     const Eigen::Vector3f base(c.x(), c.y(), 0.0f);
     ShapeSet desk;
@@ -127,34 +161,43 @@ inline Scene office_scene(std::uint64_t seed) {
   }
   detail::require_count(placed, n_desks, "desk");
 
-  // Cabinets against a wall.
+  // Cabinets, 2 cm from a wall.
   const int n_cabinets = rng.uniform_int(3, 5);
   placed = 0;
   for (int attempt = 0; placed < n_cabinets && attempt < 20000; ++attempt) {
     const float width = rng.uniform(0.8f, 1.2f);
     const float depth = rng.uniform(0.45f, 0.6f);
     const float height = rng.uniform(1.0f, 2.0f);
-    const int wall = rng.uniform_int(0, 3);
-    Eigen::Vector2f c, half;
-    if (wall < 2) {  // y walls
-      const float sy = wall == 0 ? -1.0f : 1.0f;
-      c = {rng.uniform(-kHalfX + width, kHalfX - width), sy * (kHalfY - 0.5f * depth - 0.02f)};
-      half = {0.5f * width, 0.5f * depth};
-    } else {  // x walls
-      const float sx = wall == 2 ? -1.0f : 1.0f;
-      c = {sx * (kHalfX - 0.5f * depth - 0.02f), rng.uniform(-kHalfY + width, kHalfY - width)};
-      half = {0.5f * depth, 0.5f * width};
-    }
-    const float r = half.norm();
-    if (!layout.free_disc(c, r, 0.3f)) continue;
-    layout.occupy_disc(c, r);
+    const Footprint f = against_wall(width, depth, 0.02f);
+    const float r = f.half.norm();
+    if (!layout.free_disc(f.centre, r, 0.3f)) continue;
+    layout.occupy_disc(f.centre, r);
     const Material body = looks.below(2) == 0 ? Material::wood : Material::metal;
-    scene.add_object("cabinet", ShapeSet().add(Box::aligned({c.x() - half.x(), c.y() - half.y(), 0.0f},
-                                                            {c.x() + half.x(), c.y() + half.y(), height}),
+    scene.add_object("cabinet", ShapeSet().add(Box::aligned({f.centre.x() - f.half.x(), f.centre.y() - f.half.y(), 0.0f},
+                                                            {f.centre.x() + f.half.x(), f.centre.y() + f.half.y(), height}),
                                                body));
     ++placed;
   }
   detail::require_count(placed, n_cabinets, "cabinet");
+
+  // Bookshelves, 2-5 cm from a wall: tall, shallow boxes.
+  const int n_bookshelves = rng.uniform_int(2, 4);
+  placed = 0;
+  for (int attempt = 0; placed < n_bookshelves && attempt < 20000; ++attempt) {
+    const float width = rng.uniform(0.8f, 1.6f);
+    const float depth = rng.uniform(0.3f, 0.4f);
+    const float height = rng.uniform(1.6f, 2.0f);
+    const float gap = rng.uniform(0.02f, 0.05f);
+    const Footprint f = against_wall(width, depth, gap);
+    const float r = f.half.norm();
+    if (!layout.free_disc(f.centre, r, 0.3f)) continue;
+    layout.occupy_disc(f.centre, r);
+    scene.add_object("bookshelf", ShapeSet().add(Box::aligned({f.centre.x() - f.half.x(), f.centre.y() - f.half.y(), 0.0f},
+                                                              {f.centre.x() + f.half.x(), f.centre.y() + f.half.y(), height}),
+                                                 Material::wood));
+    ++placed;
+  }
+  detail::require_count(placed, n_bookshelves, "bookshelf");
 
   for (Walker& w : walkers)
     scene.add_moving_object("person", detail::person_shapes(Eigen::Vector3f::Zero(), 1.7f, kPersonR), std::move(w.trajectory));

@@ -23,14 +23,17 @@ namespace streamclust::sim {
 /// A street along the x axis (see the file comment for the cross-section).
 /// Structure: road plane, two sidewalk slabs (x in [-150, 150]) and
 /// building blocks on both sides (6-20 m tall, occasional 2-5 m alleys).
-/// Objects in this order: parked cars ("parked_car", |x| <= 60), lamp poles
-/// ("pole", every 18-28 m at |y| = 7.4), street trees ("tree", every 10-20
-/// m at |y| = 10.8), 4-6 moving cars ("car", 10 m/s on a loop y = +2 going
-/// +x and y = -2 going -x with U-turns at |x| = 100), 2 cyclists
-/// ("cyclist", 5 m/s, loop at y = +-3.8 with U-turns at |x| = 120), 4-6
-/// pedestrians ("pedestrian", 1.1-1.5 m/s back and forth on the sidewalks,
-/// each on its own line). Objects on loops interpenetrate only during the
-/// U-turns, >= 100 m from the origin.
+/// Objects in this order: parked cars ("parked_car", two unbroken rows at
+/// |y| = 5.5 for |x| <= 60, 0.6-1.5 m between consecutive bodies), lamp
+/// poles ("pole", every 10-20 m in a gap between two parked cars, on the
+/// sidewalk by the kerb, 0.9-1.0 m from the nearest car body), street trees
+/// ("tree", every 10-20 m at |y| = 10.8), 4-6 moving cars ("car", 10 m/s on
+/// a loop y = +2 going +x and y = -2 going -x with U-turns at |x| = 100), 2
+/// cyclists ("cyclist", 5 m/s, loop at y = +-3.8 with U-turns at |x| =
+/// 120), 4-6 pedestrians ("pedestrian", 1.1-1.5 m/s back and forth on the
+/// sidewalks, each on its own line). Objects on loops interpenetrate only
+/// during the U-turns, >= 100 m from the origin; no moving object comes
+/// within 0.3 m of a parked car or a pole.
 inline Scene street_scene(std::uint64_t seed) {
   detail::SplitMix64 rng = detail::make_rng(seed, 0x57EE7);
   constexpr float kRoad = 7.0f;
@@ -68,37 +71,60 @@ inline Scene street_scene(std::uint64_t seed) {
     }
   }
 
-  // Parked cars.
+  // Parked cars: two unbroken rows, 0.6-1.5 m between consecutive bodies.
+  // Every 10-20 m a lamp pole stands in a gap, on the sidewalk by the kerb,
+  // `kPoleClearance` from the nearest car body (its corner across the gap)
+  // or a little more where the kerb keeps it back: the poles are added after
+  // the cars (object ids: cars first).
+  constexpr float kParkedY = 5.5f;
+  constexpr float kPoleClearance = 0.9f;  // [m] pole surface to the nearest car body
+  struct PoleSpot {
+    float x, y;  // [m] axis
+    float side;
+  };
+  std::vector<PoleSpot> pole_spots;
   for (float side : {-1.0f, 1.0f}) {
-    float x = -60.0f + rng.uniform(0.0f, 5.0f);
+    float x = -60.0f + rng.uniform(0.0f, 2.0f);
+    float next_pole = -60.0f + rng.uniform(0.0f, 10.0f);
     while (true) {
       const float l = rng.uniform(4.2f, 4.8f);
       if (x + l > 60.0f) break;
-      if (rng.uniform_int(0, 9) < 7) {
-        const Eigen::Vector3f base(x + 0.5f * l, side * 5.5f, 0.0f);
-        const float yaw = side > 0 ? 0.0f : detail::kPi;
-        const float w = rng.uniform(1.75f, 1.9f);
-        const float h = rng.uniform(1.4f, 1.6f);
-        scene.add_object("parked_car", detail::car_shapes(base, yaw, l, w, h));
+      const Eigen::Vector3f base(x + 0.5f * l, side * kParkedY, 0.0f);
+      const float yaw = side > 0 ? 0.0f : detail::kPi;
+      const float w = rng.uniform(1.75f, 1.9f);
+      const float h = rng.uniform(1.4f, 1.6f);
+      scene.add_object("parked_car", detail::car_shapes(base, yaw, l, w, h));
+      const float gap = rng.uniform(0.6f, 1.5f);
+      const float pole_x = x + l + 0.5f * gap;
+      if (pole_x >= next_pole && pole_x + 0.5f * gap + 4.8f <= 60.0f) {
+        // The nearest car body is a corner 0.5 gap away along x; the next
+        // car's width is not drawn yet, so both are taken at the widest car
+        // (1.9 m) and the pole at its thickest (r 0.12 m).
+        const float r_max = 0.12f;
+        const float reach = kPoleClearance + r_max;
+        const float beside = std::sqrt(reach * reach - 0.25f * gap * gap);
+        const float y = std::max(kParkedY + 0.95f + beside, kRoad + r_max + 0.03f);
+        pole_spots.push_back(PoleSpot{pole_x, side * y, side});
+        next_pole = pole_x + rng.uniform(10.0f, 20.0f);
       }
-      x += l + rng.uniform(1.0f, 6.0f);
+      x += l + gap;
     }
   }
 
-  // Lamp poles: a thin cylinder and an arm reaching over the road.
-  for (float side : {-1.0f, 1.0f}) {
-    for (float x = -60.0f + rng.uniform(0.0f, 10.0f); x < 60.0f; x += rng.uniform(18.0f, 28.0f)) {
-      const float r = rng.uniform(0.08f, 0.12f);
-      const float h = rng.uniform(6.0f, 8.0f);
-      const float y = side * 7.4f;
-      ShapeSet pole;
-      pole.add(Cylinder{x, y, r, 0.0f, h}, Material::metal);
-      pole.add(Box::aligned({x - 0.06f, std::min(y, y - side * 1.4f), h - 0.12f}, {x + 0.06f, std::max(y, y - side * 1.4f), h}),
-               Material::metal);
-      pole.add(Box::aligned({x - 0.25f, side * 5.9f - 0.15f, h - 0.25f}, {x + 0.25f, side * 5.9f + 0.15f, h - 0.1f}),
-               Material::glass);
-      scene.add_object("pole", pole);
-    }
+  // Lamp poles: a thin cylinder and an arm reaching over the parked cars.
+  for (const PoleSpot& spot : pole_spots) {
+    const float r = rng.uniform(0.08f, 0.12f);
+    const float h = rng.uniform(6.0f, 8.0f);
+    const float x = spot.x;
+    const float y = spot.y;
+    const float side = spot.side;
+    ShapeSet pole;
+    pole.add(Cylinder{x, y, r, 0.0f, h}, Material::metal);
+    pole.add(Box::aligned({x - 0.06f, std::min(y, y - side * 1.4f), h - 0.12f}, {x + 0.06f, std::max(y, y - side * 1.4f), h}),
+             Material::metal);
+    pole.add(Box::aligned({x - 0.25f, side * 5.9f - 0.15f, h - 0.25f}, {x + 0.25f, side * 5.9f + 0.15f, h - 0.1f}),
+             Material::glass);
+    scene.add_object("pole", pole);
   }
 
   // Street trees.
