@@ -75,6 +75,22 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
   return points;
 }
 
+/// A run setup for a stream held in memory, sensor frame, no motion and no
+/// ground model: only the sensor fit of the linkage `o.linkage` names (null
+/// when it has none), from the records of the first T_B seconds. O(window).
+inline std::shared_ptr<const RunSetup> sensor_fit_setup(const ClusterOptions& o, const std::vector<io::Record>& records) {
+  if (!linkage_fits_sensor(o)) return nullptr;
+  SensorFit fit;
+  const double t0 = records.empty() ? 0.0 : records.front().t;
+  for (const io::Record& r : records) {
+    if (r.t - t0 >= o.window_seconds) break;
+    fit.first_window.emplace_back(r.x, r.y, r.z);
+  }
+  RunSetup s;
+  s.sensor_fit = std::make_shared<const SensorFit>(std::move(fit));
+  return std::make_shared<const RunSetup>(std::move(s));
+}
+
 /// An angle [deg] for a "%.1f" field: a hair below zero prints 0.0, not -0.0.
 inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : deg; }
 

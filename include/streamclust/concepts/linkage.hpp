@@ -73,6 +73,10 @@
 /// as the pairwise operator, bit for bit. The engine's neighbour search and
 /// the batch clusterer then call it once per point with all its candidates.
 ///
+/// Optional, for the tools: `static Params fit_to_sensor(const Params&, const
+/// SensorFit&)` (sensor_fit.hpp, `has_sensor_fit_v<L>`): the Params completed
+/// from the sensor's first window and placement before an engine is built.
+///
 /// Near misses: a linkage with a member NAMED like one of these
 /// (`Payload`, `make_payload`, `restore_ray`, `link_many`) that does not
 /// have the signature above stops compilation where the engine starts
