@@ -101,7 +101,10 @@ struct PolicyDescriptor<ScanAdaptiveLinkage> {
     return {option("--min-distance", &P::min_distance, "M", ValueKind::positive,
                    "radius near the sensor [m], in (0, 100]", "min_distance"),
             option("--spacing-factor", &P::spacing_factor, "F", ValueKind::positive,
-                   "the radius in local spacings of the returns, in (0, 1000]", "spacing_factor")};
+                   "the radius in local spacings of the returns, in (0, 1000]", "spacing_factor"),
+            option("--spacing-quantile", &P::spacing_quantile, "Q", ValueKind::number,
+                   "the spacing: this quantile of the gaps between the first window's returns, in [0, 1]",
+                   "spacing_quantile")};
   }
   static std::string describe(const ScanAdaptiveLinkage::Params& p) {
     char line[96];

@@ -73,7 +73,7 @@ namespace streamclust {
 /// ScanSpacing::from_sensor_model for a simulated sensor, or
 /// from_directions on a recording's first window), or call
 /// `fit_to_sensor` (sensor_fit.hpp), which builds the table from the first
-/// window with `table` and takes the mount and poses; the tool does that.
+/// window and takes the mount and poses; the tool does that.
 ///
 /// Complexity: O(1) per pair (three differences, three squares, a min, no
 /// sqrt); O(1) per point for the payload (O(log poses) with a trajectory).
@@ -100,8 +100,11 @@ class ScanAdaptiveLinkage {
     /// the sensor's spacing table (sensor frame, one window T_B); required
     /// (fit_to_sensor builds it when null)
     std::shared_ptr<const ScanSpacing> spacing;
-    /// how fit_to_sensor builds `spacing` from a first window
-    ScanSpacing::Params table;
+    /// how fit_to_sensor builds `spacing` from a first window: the
+    /// quantile of the spanning-tree edges a cell keeps (ScanSpacing), in [0, 1]
+    float spacing_quantile = ScanSpacing::Params{}.quantile;
+    /// ... and its cells' side [deg], in [0.25, 10]
+    float spacing_cell_deg = ScanSpacing::Params{}.cell_deg;
     Pose mount;  ///< vehicle (or world) from sensor, as PosedMotion's; identity: the sensor frame is the world's
     std::shared_ptr<const PoseTrajectory> trajectory;  ///< world from vehicle over time; null: the mount alone
   };
@@ -125,11 +128,16 @@ class ScanAdaptiveLinkage {
 
   /// `params` with the mount and poses of `fit`, and, when `params.spacing`
   /// is null, the table of fit.first_window (ScanSpacing::from_directions
-  /// with `params.table`). Throws std::invalid_argument from the table.
-  /// O(first window).
+  /// with spacing_quantile and spacing_cell_deg). Throws
+  /// std::invalid_argument from the table. O(first window).
   static Params fit_to_sensor(const Params& params, const SensorFit& fit) {
     Params p = params;
-    if (!p.spacing) p.spacing = ScanSpacing::from_directions(fit.first_window, p.table);
+    if (!p.spacing) {
+      ScanSpacing::Params table;
+      table.quantile = p.spacing_quantile;
+      table.cell_deg = p.spacing_cell_deg;
+      p.spacing = ScanSpacing::from_directions(fit.first_window, table);
+    }
     p.mount = fit.mount;
     p.trajectory = fit.trajectory;
     return p;

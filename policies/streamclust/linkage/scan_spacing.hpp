@@ -17,7 +17,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -25,28 +24,35 @@ namespace streamclust {
 
 /// How ScanSpacing builds its table.
 struct ScanSpacingParams {
-  /// [deg] side of a table cell (azimuth x elevation), finite, in [0.25, 30]
+  /// [deg] side of a table cell (azimuth x elevation), finite, in [0.25, 10]
   float cell_deg = 2.0f;
-  /// which quantile of a cell's nearest-neighbour angles the cell keeps, in [0, 1]
-  float quantile = 0.5f;
-  /// fewest directions that make a cell's own value, >= 1
+  /// which quantile of a cell's spanning-tree edges the cell keeps, in [0, 1]
+  /// (0.5: about the median nearest-neighbour angle; 1: the widest gap)
+  float quantile = 0.9f;
+  /// fewest directions that make a cell's own value, >= 2
   int min_samples = 8;
-  /// [deg] largest nearest-neighbour angle searched (farther: the
-  /// direction has no neighbour and is left out), finite, in (0, 30]
+  /// [deg] spanning-tree edges longer than this are left out (a gap
+  /// between separate parts of the pattern, not a spacing), finite, in (0, 30]
   float max_spacing_deg = 5.0f;
 };
 
-/// The typical nearest-neighbour angle [rad] between the returns of one
-/// window T_B around each direction of the sensor frame (x forward, z up).
+/// The typical angle [rad] between neighbouring returns of one window T_B
+/// around each direction of the sensor frame (x forward, z up): what a
+/// single linkage must bridge there.
 ///
-/// Built once (`from_directions`, `from_sensor_model`): every direction's
-/// nearest neighbour among the window's directions (exact, on a grid of
-/// unit vectors), then per table cell (azimuth x elevation, `cell_deg`
-/// square) the `quantile` of those angles; cells with fewer than
-/// `min_samples` directions (outside the field of view, the sky of a
-/// recording) take the mean of their filled neighbours, ring after ring;
-/// then a 3 x 3 mean smooths the table. `at(d)` interpolates bilinearly
-/// between cell centres (azimuth wraps), so the spacing is continuous in d.
+/// Built once (`from_directions`, `from_sensor_model`): the window's
+/// directions are binned in table cells (azimuth x elevation, `cell_deg`
+/// square); in each cell with at least `min_samples` of them, the minimum
+/// spanning tree of their angles (edges over `max_spacing_deg` left out)
+/// and the `quantile` of its edges: 0.5 is about the median nearest-
+/// neighbour angle, near 1 the widest gap that keeps the cell's returns
+/// connected, which a pattern of traces (the Avia's six beams fire side by
+/// side: their nearest neighbours are close along a trace, the traces
+/// farther apart) makes several times the former. Cells without a value
+/// (outside the field of view, the sky of a recording) take the mean of
+/// their filled neighbours, ring after ring; then a 3 x 3 mean smooths the
+/// table. `at(d)` interpolates bilinearly between cell centres (azimuth
+/// wraps), so the spacing is continuous in d.
 ///
 /// The table depends on the window's length: twice the window, about
 /// 1/sqrt(2) the spacing. Build it from exactly one window T_B.
@@ -65,9 +71,10 @@ class ScanSpacing {
 
   /// The table of `directions` (sensor frame, any length > 0; zero and
   /// non-finite vectors are skipped), one window of them. Throws
-  /// std::invalid_argument for bad Params or when fewer than 2 directions
-  /// have a neighbour within max_spacing_deg. O(n) expected (a hash grid;
-  /// about 0.1 s for 100k directions) plus O(cells).
+  /// std::invalid_argument for bad Params or when no cell has min_samples
+  /// directions. O(sum over cells of n_cell^2) (a dense Prim per cell;
+  /// about 0.1 s for the 100k directions of a Mid-360 or Avia window) plus
+  /// O(cells).
   static std::shared_ptr<const ScanSpacing> from_directions(const std::vector<Eigen::Vector3f>& directions,
                                                             const Params& params = Params{}) {
     check(params);
@@ -128,7 +135,7 @@ class ScanSpacing {
   int rows() const { return rows_; }
   int cols() const { return cols_; }
   double cell_deg() const { return cell_deg_; }
-  /// Directions that had a nearest neighbour within max_spacing_deg.
+  /// Directions in cells with a value of their own (min_samples or more).
   std::size_t directions_used() const { return used_; }
   /// The smallest and largest cell values [rad].
   float min_spacing() const { return *std::min_element(table_.begin(), table_.end()); }
@@ -144,40 +151,27 @@ class ScanSpacing {
       : cell_deg_(static_cast<double>(p.cell_deg)),
         rows_(std::max(1, static_cast<int>(std::ceil(180.0 / cell_deg_)))),
         cols_(std::max(1, static_cast<int>(std::ceil(360.0 / cell_deg_)))) {
-    std::vector<Eigen::Vector3d> units;
-    units.reserve(directions.size());
+    std::vector<std::vector<Eigen::Vector3d>> per_cell(static_cast<std::size_t>(rows_) * cols_);
     for (const Eigen::Vector3f& d : directions) {
       const Eigen::Vector3d v = d.cast<double>();
       const double n = v.norm();
-      if (std::isfinite(n) && n > 0.0) units.push_back(v / n);
+      if (std::isfinite(n) && n > 0.0) per_cell[index_of(v / n)].push_back(v / n);
     }
-    const std::vector<double> nearest = nearest_angles(units, static_cast<double>(p.max_spacing_deg) / kRadToDeg);
-    std::vector<std::vector<float>> per_cell(static_cast<std::size_t>(rows_) * cols_);
-    for (std::size_t i = 0; i < units.size(); ++i) {
-      if (!(nearest[i] >= 0.0)) continue;
-      ++used_;
-      per_cell[index_of(units[i])].push_back(static_cast<float>(nearest[i]));
-    }
-    if (used_ < 2) throw error("directions", static_cast<double>(used_), "at least 2 with a neighbour within max_spacing_deg");
+    const double max_chord = 2.0 * std::sin(static_cast<double>(p.max_spacing_deg) / kRadToDeg / 2.0);
     std::vector<float> raw(per_cell.size(), 0.0f);
     std::vector<std::uint8_t> filled(per_cell.size(), 0);
+    std::vector<double> edges;
     for (std::size_t k = 0; k < per_cell.size(); ++k) {
-      std::vector<float>& a = per_cell[k];
-      if (a.size() < static_cast<std::size_t>(p.min_samples)) continue;
-      const auto at = static_cast<std::size_t>(std::llround(static_cast<double>(p.quantile) * static_cast<double>(a.size() - 1)));
-      std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(at), a.end());
-      raw[k] = a[at];
+      if (per_cell[k].size() < static_cast<std::size_t>(p.min_samples)) continue;
+      spanning_tree_edges(per_cell[k], max_chord, edges);
+      if (edges.empty()) continue;
+      const auto at = static_cast<std::size_t>(std::llround(static_cast<double>(p.quantile) * static_cast<double>(edges.size() - 1)));
+      std::nth_element(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(at), edges.end());
+      raw[k] = static_cast<float>(2.0 * std::asin(std::min(1.0, edges[at] / 2.0)));
       filled[k] = 1;
+      used_ += per_cell[k].size();
     }
-    if (std::find(filled.begin(), filled.end(), std::uint8_t{1}) == filled.end()) {
-      // Too few directions for any cell of their own: one value everywhere.
-      std::vector<float> all;
-      for (const auto& a : per_cell) all.insert(all.end(), a.begin(), a.end());
-      const auto at = static_cast<std::size_t>(std::llround(static_cast<double>(p.quantile) * static_cast<double>(all.size() - 1)));
-      std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(at), all.end());
-      raw.assign(raw.size(), all[at]);
-      filled.assign(filled.size(), 1);
-    }
+    if (used_ == 0) throw error("directions", static_cast<double>(directions.size()), "enough for one cell of min_samples");
     fill_empty(raw, filled);
     table_ = smoothed(raw);
   }
@@ -196,67 +190,29 @@ class ScanSpacing {
     return static_cast<int>(m < 0 ? m + cols_ : m);
   }
 
-  /// The angle [rad] from each unit vector to its nearest other one, or -1
-  /// when none lies within `max_angle`. A hash grid of side h on the unit
-  /// vectors; rings of cells searched until the nearest chord found is
-  /// within the ring's reach (exact). O(n) expected for a window's spacing.
-  static std::vector<double> nearest_angles(const std::vector<Eigen::Vector3d>& units, double max_angle) {
-    std::vector<double> out(units.size(), -1.0);
-    if (units.size() < 2) return out;
-    // A side of about the mean spacing of n directions over a hemisphere.
-    const double h = std::clamp(std::sqrt(2.0 * kPi / static_cast<double>(units.size())), 1e-4, max_angle);
-    const double max_chord = 2.0 * std::sin(max_angle / 2.0);
-    const auto key_of = [](long long x, long long y, long long z) {
-      constexpr long long kOffset = 1 << 20;
-      return (static_cast<std::uint64_t>(x + kOffset) << 42) | (static_cast<std::uint64_t>(y + kOffset) << 21) |
-             static_cast<std::uint64_t>(z + kOffset);
-    };
-    const auto cell_of = [h](double c) { return static_cast<long long>(std::floor(c / h)); };
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(units.size());
-    for (std::size_t i = 0; i < units.size(); ++i) {
-      const Eigen::Vector3d& u = units[i];
-      keyed[i] = {key_of(cell_of(u.x()), cell_of(u.y()), cell_of(u.z())), static_cast<std::uint32_t>(i)};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> cells;  // key -> [first, last) of keyed
-    cells.reserve(units.size());
-    for (std::size_t i = 0; i < keyed.size();) {
-      std::size_t j = i;
-      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
-      cells.emplace(keyed[i].first, std::make_pair(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
-      i = j;
-    }
-    const long long max_ring = static_cast<long long>(std::ceil(max_chord / h));
-    for (std::size_t i = 0; i < units.size(); ++i) {
-      const Eigen::Vector3d& u = units[i];
-      const long long cx = cell_of(u.x()), cy = cell_of(u.y()), cz = cell_of(u.z());
-      double best = HUGE_VAL;  // squared chord
-      for (long long ring = 1; ring <= max_ring; ++ring) {
-        // Only the shell of this ring is new (the inner cube was searched).
-        for (long long x = cx - ring; x <= cx + ring; ++x) {
-          for (long long y = cy - ring; y <= cy + ring; ++y) {
-            for (long long z = cz - ring; z <= cz + ring; ++z) {
-              const bool shell = ring == 1 || std::max({std::llabs(x - cx), std::llabs(y - cy), std::llabs(z - cz)}) == ring;
-              if (!shell) continue;
-              const auto found = cells.find(key_of(x, y, z));
-              if (found == cells.end()) continue;
-              for (std::uint32_t k = found->second.first; k < found->second.second; ++k) {
-                const std::uint32_t j = keyed[k].second;
-                if (j == i) continue;
-                const double d2 = (units[j] - u).squaredNorm();
-                if (d2 < best) best = d2;
-              }
-            }
-          }
+  /// The chords of the minimum spanning tree of `units` (a dense Prim),
+  /// those up to `max_chord`, into `edges` (cleared). O(n^2).
+  static void spanning_tree_edges(const std::vector<Eigen::Vector3d>& units, double max_chord, std::vector<double>& edges) {
+    edges.clear();
+    const std::size_t n = units.size();
+    std::vector<double> best(n, HUGE_VAL);  // squared chord to the tree
+    std::vector<std::uint8_t> in_tree(n, 0);
+    std::size_t next = 0;
+    for (std::size_t added = 0; added < n; ++added) {
+      const std::size_t u = next;
+      in_tree[u] = 1;
+      if (added > 0 && best[u] <= max_chord * max_chord) edges.push_back(std::sqrt(best[u]));
+      double nearest = HUGE_VAL;
+      for (std::size_t v = 0; v < n; ++v) {
+        if (in_tree[v]) continue;
+        const double d2 = (units[v] - units[u]).squaredNorm();
+        if (d2 < best[v]) best[v] = d2;
+        if (best[v] < nearest) {
+          nearest = best[v];
+          next = v;
         }
-        // Every point within ring * h of u lies in the cube searched.
-        const double reach = static_cast<double>(ring) * h;
-        if (best <= reach * reach) break;
       }
-      const double chord = std::sqrt(best);
-      if (chord <= max_chord) out[i] = 2.0 * std::asin(std::min(1.0, chord / 2.0));
     }
-    return out;
   }
 
   /// Empty cells take the mean of their filled 8-neighbours, ring after ring
@@ -320,11 +276,11 @@ class ScanSpacing {
   }
 
   static void check(const Params& p) {
-    if (!std::isfinite(p.cell_deg) || p.cell_deg < 0.25f || p.cell_deg > 30.0f)
-      throw error("cell_deg", p.cell_deg, "finite, in [0.25, 30] deg");
+    if (!std::isfinite(p.cell_deg) || p.cell_deg < 0.25f || p.cell_deg > 10.0f)
+      throw error("cell_deg", p.cell_deg, "finite, in [0.25, 10] deg");
     if (!std::isfinite(p.quantile) || p.quantile < 0.0f || p.quantile > 1.0f)
       throw error("quantile", p.quantile, "finite, in [0, 1]");
-    if (p.min_samples < 1) throw error("min_samples", p.min_samples, ">= 1");
+    if (p.min_samples < 2) throw error("min_samples", p.min_samples, ">= 2");
     if (!std::isfinite(p.max_spacing_deg) || !(p.max_spacing_deg > 0.0f) || p.max_spacing_deg > 30.0f)
       throw error("max_spacing_deg", p.max_spacing_deg, "finite, in (0, 30] deg");
   }
