@@ -186,9 +186,9 @@ TEST_CASE("ScanAdaptiveLinkage: radius = max(min_distance, factor x spacing at t
   CHECK(link.radius(sample_at(fine, 50.0f)) == doctest::Approx(4.0 * table.at(fine) * 50.0));
   CHECK(link.radius(sample_at(coarse, 50.0f)) == doctest::Approx(4.0 * table.at(coarse) * 50.0));
   CHECK(link.radius(sample_at(coarse, 50.0f)) > 2.5f * link.radius(sample_at(fine, 50.0f)));
-  CHECK(link.radius(sample_at(fine, 2.0f)) == 0.2f);  // 4 x 0.2 deg x 2 m = 2.8 cm: the floor
+  CHECK(link.radius(sample_at(fine, 2.0f)) == link.params().min_distance);  // 4 x 0.2 deg x 2 m = 2.8 cm: the floor
   // Linked iff within the smaller radius: two points at 50 m, the fine
-  // one's radius (0.70 m) decides.
+  // one's radius (0.70 m, above the floor) decides.
   const sc::Sample a = sample_at(fine, 50.0f);
   const float r_fine = link.radius(a);
   sc::Sample b = sample_at(coarse, 50.0f);

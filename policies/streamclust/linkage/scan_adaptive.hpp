@@ -94,9 +94,9 @@ class ScanAdaptiveLinkage {
  public:
   struct Params {
     /// [m] radius near the sensor (the floor), finite, in (0, 100]
-    float min_distance = 0.2f;
+    float min_distance = 0.4f;
     /// [1] the radius in local spacings of the returns, finite, in (0, 1000]
-    float spacing_factor = 6.0f;
+    float spacing_factor = 4.0f;
     /// the sensor's spacing table (sensor frame, one window T_B); required
     /// (fit_to_sensor builds it when null)
     std::shared_ptr<const ScanSpacing> spacing;
