@@ -23,7 +23,9 @@
 #include <streamclust/testing/livox_streams.hpp>
 
 #include "support/oracle_input.hpp"
+#include "support/streams.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -396,6 +398,59 @@ int run_objects_oracle(Sensor sensor, const sc::SphericalProjection::Params& fov
 }
 
 }  // namespace
+
+TEST_CASE("ScanAdaptiveLinkage in the objects engine on random and adversarial streams equals the batch") {
+  // The Mid-360 model's table (read in any direction: the streams cover the
+  // sphere), a mount upside down or pitched, and poses over most of the
+  // stream (points outside are rejected); a short window, random stretches.
+  sc::sim::Mid360Model model;
+  const auto table = sc::ScanSpacing::from_sensor_model(model, 0.05);
+  for (std::uint64_t seed = 0; seed < 16; ++seed) {
+    std::mt19937_64 rng(seed * 13 + 5);
+    const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
+    const auto stream = st::make_stream(kind, 400 + seed % 300, seed);
+    double t_end = 0.0;
+    for (const auto& p : stream) {
+      if (std::isfinite(p.t) && p.t < 1e6) t_end = std::max(t_end, p.t);
+    }
+    std::vector<sc::StampedPose> poses;
+    for (double t = -0.1; t <= t_end + 1.0; t += 0.01) {
+      sc::Pose pose = sc::mount_from_roll_pitch_yaw_deg(3.0 * std::sin(t), 2.0 * std::cos(2.0 * t), 60.0 * t);
+      pose.translation = Eigen::Vector3d(1.5 * t, 0.2 * t, 0.0);
+      poses.push_back(sc::StampedPose{t, pose});
+    }
+    sc::ObjectsSetup setup;
+    setup.mount = sc::mount_from_roll_pitch_yaw_deg(seed % 2 ? 180.0 : 0.0, 15.0 * static_cast<double>(seed % 3), 0.0);
+    if (seed % 4 != 0) setup.trajectory = std::make_shared<const sc::PoseTrajectory>(std::move(poses));
+    setup.sensor_height = seed % 3 == 0 ? 0.0f : 1.2f;
+    setup.window_seconds = 0.05;
+    sc::ScanAdaptiveLinkage::Params lp;
+    lp.spacing = table;
+    lp.spacing_factor = 2.0f + static_cast<float>(seed % 5) * 6.0f;
+    lp.min_distance = seed % 2 ? 0.1f : 0.4f;
+    lp.mount = setup.mount;
+    lp.trajectory = setup.trajectory;
+    auto params = sc::rebind_params<ObjectsScanConfig>(sc::objects_params(sc::SphericalProjection::Params{}, setup), lp);
+    params.resolution.initial_rows = 8;
+    params.resolution.initial_cols = 32;
+    sc::StreamClusterer<ObjectsScanConfig> engine(params);
+    sc::BatchClusterer<ObjectsScanConfig> batch(params);
+    for (std::size_t offered = 0; offered < stream.size();) {
+      const std::size_t stop = std::min(stream.size(), offered + 1 + static_cast<std::size_t>(rng() % 90));
+      if (rng() % 2) {
+        engine.insert_batch(stream.begin() + static_cast<std::ptrdiff_t>(offered),
+                            stream.begin() + static_cast<std::ptrdiff_t>(stop));
+      } else {
+        for (std::size_t i = offered; i < stop; ++i) engine.insert(stream[i]);
+      }
+      offered = stop;
+      engine.retrieve();
+      const std::string mismatch = st::compare_with_batch_on_input(engine, batch, stream);
+      INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << offered - 1);
+      REQUIRE(mismatch == "");
+    }
+  }
+}
 
 TEST_CASE("ScanAdaptiveLinkage in the objects engine: the partition equals the batch partition") {
   namespace sim = sc::sim;
