@@ -39,14 +39,15 @@ namespace streamclust {
 ///     |a.position - b.position| <= min(radius(a), radius(b))
 ///     radius(p) = max(min_distance, spacing_factor * spacing(direction_sensor(p)) * p.range)
 ///
-/// spacing(d) [rad] is the sensor's typical nearest-neighbour angle between
-/// the returns of one window at sensor-frame direction d (ScanSpacing, a
-/// table fixed before the engine starts), so the radius is a few lateral
-/// spacings of the returns where the point is: tight in the Avia's dense
-/// centre, wide at its rim and in the Mid-360's sparse bands, where
-/// RangeAdaptiveLinkage has one angle (range_factor) for every direction.
-/// The nearer point's radius decides (min), as RangeAdaptiveLinkage's
-/// nearer range does.
+/// spacing(d) [rad] is the sensor's gap between neighbouring returns of one
+/// window at sensor-frame direction d (ScanSpacing: a quantile of the
+/// spanning-tree edges of the window's directions there, a table fixed
+/// before the engine starts), so the radius is a few such gaps where the
+/// point is: tight in the Avia's dense centre, wide at its rim and in the
+/// Mid-360's sparse bands, where RangeAdaptiveLinkage has one angle
+/// (range_factor) for every direction. The smaller radius decides (min),
+/// as RangeAdaptiveLinkage's nearer range does. Defaults and the objects
+/// evaluation: docs/design-decisions.md (a radius that follows the scan).
 ///
 /// Sensor frame: the scan pattern is fixed to the sensor, the Sample's
 /// direction is in world orientation (a motion policy placed it). The
