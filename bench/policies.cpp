@@ -17,7 +17,11 @@
 // (mid360_office_back16), and against what a 5 x 5 mask offers it
 // (mid360_office_mask5). BM_LinkageCompare<RangeAdaptiveLinkage> times it
 // against the Euclidean linkage alternately (the kit's comparison, ratio
-// `over_reference`). The motion policy PosedMotion is measured on its
+// `over_reference`), BM_LinkageCompare<ScanAdaptiveLinkage> the
+// scan-adaptive linkage (its table from the sensor model, T_B 0.5 s) against
+// the range-adaptive one on the Mid-360 and Avia office mask pairs, and
+// BM_LinkagePayload the per-point cost of making the payload (the
+// scan-adaptive radius: a table read and, with poses, a rotation). The motion policy PosedMotion is measured on its
 // own (BM_PosedMotion, ns per point). Inputs and counters: the kit's headers.
 //
 // Measure with (numbers: docs/performance.md):
@@ -36,11 +40,14 @@
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
+#include <streamclust/linkage/scan_adaptive.hpp>
 #include <streamclust/motion/posed_motion.hpp>
 #include <streamclust/motion/trajectory.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/adaptive.hpp>
+#include <streamclust/sim/sensors/avia_model.hpp>
+#include <streamclust/sim/sensors/mid360_model.hpp>
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
 
@@ -109,6 +116,62 @@ void BM_PosedMotion(benchmark::State& state) {
 }
 BENCHMARK(BM_PosedMotion)->ArgName("trajectory")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
+// ----------------------------------------------------------- scan-adaptive
+
+/// ScanAdaptiveLinkage's defaults with the table of `sensor`'s model over
+/// 0.5 s (the objects presets' T_B). About 0.5 s to build.
+sc::ScanAdaptiveLinkage::Params scan_adaptive_params(bk::Sensor sensor) {
+  sc::ScanAdaptiveLinkage::Params p;
+  if (sensor == bk::Sensor::mid360) {
+    sc::sim::Mid360Model model;
+    p.spacing = sc::ScanSpacing::from_sensor_model(model, 0.5);
+  } else {
+    sc::sim::AviaModel model;
+    p.spacing = sc::ScanSpacing::from_sensor_model(model, 0.5);
+  }
+  return p;
+}
+
+/// make_payload over the 0.1 s Mid-360 office stream (as Samples, times
+/// every 5 us over a 100 Hz trajectory). Argument: 0 RangeAdaptiveLinkage
+/// (a copy), 1 ScanAdaptiveLinkage with a fixed mount (pitched 15 deg),
+/// 2 ScanAdaptiveLinkage with the trajectory (a slerp per point).
+void BM_LinkagePayload(benchmark::State& state) {
+  const auto& points = bk::simulated_points({bk::Sensor::mid360, "office"}, 0.1);
+  std::vector<sc::Sample> samples;
+  samples.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3f p(points[i].x, points[i].y, points[i].z);
+    samples.push_back(sc::make_sample(p, p.norm(), 0.0f, 0.001 * static_cast<double>(i) / static_cast<double>(points.size())));
+  }
+  static const sc::ScanAdaptiveLinkage::Params table = scan_adaptive_params(bk::Sensor::mid360);
+  sc::ScanAdaptiveLinkage::Params params = table;
+  params.mount = sc::mount_from_roll_pitch_yaw_deg(0.0, 15.0, 0.0);
+  if (state.range(0) == 2) {
+    std::vector<sc::StampedPose> poses;
+    for (int i = 0; i <= 100; ++i) {
+      const double t = 0.01 * i;
+      sc::Pose pose = sc::mount_from_roll_pitch_yaw_deg(0.0, 0.0, t * 57.29577951308232);
+      pose.translation = Eigen::Vector3d(10.0 * t, 0.0, 0.0);
+      poses.push_back(sc::StampedPose{t, pose});
+    }
+    params.trajectory = std::make_shared<const sc::PoseTrajectory>(std::move(poses));
+  }
+  const sc::ScanAdaptiveLinkage scan{params};
+  const sc::RangeAdaptiveLinkage range{{}};
+  float sum = 0.0f;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      for (const sc::Sample& s : samples) sum += range.make_payload(s).range;
+    } else {
+      for (const sc::Sample& s : samples) sum += scan.make_payload(s).radius;
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(samples.size()));
+}
+BENCHMARK(BM_LinkagePayload)->ArgName("linkage")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+
 /// Registers one benchmark per policy of each list (support/policy_lists.hpp).
 bool register_policy_benchmarks() {
   namespace st = sc::test;
@@ -132,6 +195,13 @@ bool register_policy_benchmarks() {
   // range-adaptive linkage against the Euclidean one on the pairs a 5 x 5
   // mask offers in the Mid-360 and Avia office streams.
   bk::register_linkage_comparison<sc::RangeAdaptiveLinkage, sc::EuclideanLinkage>("BM_LinkageCompare<RangeAdaptiveLinkage>");
+  // The scan-adaptive linkage against the range-adaptive one, each sensor's
+  // pairs with that sensor's table.
+  for (const bk::PairSource& source : bk::mask_pair_sources()) {
+    const bk::Sensor sensor = source.name.rfind("mid360", 0) == 0 ? bk::Sensor::mid360 : bk::Sensor::avia;
+    bk::register_linkage_comparison<sc::ScanAdaptiveLinkage, sc::RangeAdaptiveLinkage>(
+        "BM_LinkageCompare<ScanAdaptiveLinkage>", scan_adaptive_params(sensor), {}, {source});
+  }
   st::for_each_type<st::Windows>([&](auto tag) {
     bk::register_window<typename decltype(tag)::type>(name("BM_Window", tag));
   });

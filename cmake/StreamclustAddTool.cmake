@@ -33,7 +33,8 @@ endif()
 
 # The stock policies each slot always offers (registry/stock.hpp's order).
 set(_STREAMCLUST_STOCK_PROJECTIONS streamclust::SphericalProjection streamclust::CylindricalProjection)
-set(_STREAMCLUST_STOCK_LINKAGES streamclust::AngularLinkage streamclust::EuclideanLinkage streamclust::RangeAdaptiveLinkage)
+set(_STREAMCLUST_STOCK_LINKAGES streamclust::AngularLinkage streamclust::EuclideanLinkage streamclust::RangeAdaptiveLinkage
+    streamclust::ScanAdaptiveLinkage)
 
 # _streamclust_policies_header(<caller> <header> POLICIES ... PROJECTIONS ... INDEXES ... LINKAGES ...
 #                              CONNECTIVITIES ...): writes <header>, which includes the POLICIES headers

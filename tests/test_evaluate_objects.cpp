@@ -425,7 +425,7 @@ TEST_CASE("evaluate --objects --linkage: the objects preset with another registe
 
   const RunResult unknown = run_cli({"evaluate", "--objects", "--linkage", "nearest"});
   CHECK(unknown.code == 2);
-  CHECK(unknown.err.find("--linkage: expected angular|euclidean|range-adaptive, got 'nearest'") != std::string::npos);
+  CHECK(unknown.err.find("--linkage: expected angular|euclidean|range-adaptive|scan-adaptive, got 'nearest'") != std::string::npos);
   const RunResult bad_value = run_cli({"evaluate", "--objects", "--linkage", "angular", "--theta", "x"});
   CHECK(bad_value.code == 2);
   CHECK(bad_value.err.find("--theta: expected a number, got 'x'") != std::string::npos);

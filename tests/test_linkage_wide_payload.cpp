@@ -18,6 +18,7 @@
 #include <streamclust/index/overwrite_grid.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
+#include <streamclust/linkage/scan_adaptive.hpp>
 #include <streamclust/linkage/runtime_linkage.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/resolution/fixed.hpp>
@@ -117,7 +118,7 @@ struct MemberMakePayload {
     float range;
   };
   explicit MemberMakePayload(const Params&) {}
-  Payload make_payload(const sc::Sample& s) const { return Payload{s.range}; }
+  Payload make_payload(const sc::Sample& s) { return Payload{s.range}; }  // neither static nor const
   bool operator()(const Payload& a, const Payload& b) const { return a.range == b.range; }
   bool operator()(const sc::Sample&, const sc::Sample&) const { return true; }
 };
@@ -145,6 +146,14 @@ static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, sc::Eucli
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::RangeAdaptiveLinkage, SamplePathOnly<IntensityGate>>>);
 static_assert(sc::StreamClusterer<Cfg<Gated>>::uses_payload);
 static_assert(!sc::StreamClusterer<Cfg<SamplePathOnly<Gated>>>::uses_payload);
+// a const member make_payload is a bound payload: the engine's, not a combinator's
+static_assert(sc::has_linkage_bound_payload_v<sc::ScanAdaptiveLinkage> &&
+              !sc::has_linkage_static_payload_v<sc::ScanAdaptiveLinkage>);
+static_assert(sc::has_linkage_static_payload_v<sc::RangeAdaptiveLinkage> &&
+              !sc::has_linkage_bound_payload_v<sc::RangeAdaptiveLinkage>);
+static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::RangeAdaptiveLinkage, sc::ScanAdaptiveLinkage>>);
+static_assert(sc::StreamClusterer<Cfg<sc::ScanAdaptiveLinkage>>::uses_payload &&
+              sc::StreamClusterer<Cfg<sc::ScanAdaptiveLinkage>>::tests_many);
 // near misses are told apart from absent capabilities
 static_assert(sc::detail::names_link_many<NonConstLinkMany> && !sc::has_linkage_link_many_v<NonConstLinkMany>);
 static_assert(sc::detail::names_make_payload<MemberMakePayload> && !sc::has_linkage_payload_v<MemberMakePayload>);
@@ -155,6 +164,7 @@ static_assert(sc::detail::names_gather<sc::CappedGrid> && !sc::detail::names_you
 static_assert(sc::detail::check_linkage_capabilities<sc::EuclideanLinkage>() &&
               sc::detail::check_linkage_capabilities<sc::AngularLinkage>() &&
               sc::detail::check_linkage_capabilities<sc::RangeAdaptiveLinkage>() &&
+              sc::detail::check_linkage_capabilities<sc::ScanAdaptiveLinkage>() &&
               sc::detail::check_linkage_capabilities<sc::RuntimeLinkage>() &&
               sc::detail::check_linkage_capabilities<sc::AngularOrEuclidean>() &&
               sc::detail::check_linkage_capabilities<Gated>());

@@ -167,7 +167,7 @@ TEST_CASE("registry: every policy, option and preset of the tool is in its help 
   }
   // The tool's choices keep their documented messages.
   CHECK(contains(sc::test::run_cli({"cluster", "a.csv", "--linkage", "x"}).err,
-                 "--linkage: expected angular|euclidean|range-adaptive, got 'x'"));
+                 "--linkage: expected angular|euclidean|range-adaptive|scan-adaptive, got 'x'"));
   CHECK(sc::test::run_cli({"cluster", "a.csv", "--cap", "300"}).err ==
         "streamclust: --cap: expected 1 to 255 points per cell\n");
 }

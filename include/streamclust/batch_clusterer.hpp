@@ -134,7 +134,7 @@ class BatchClusterer {
     const std::size_t n = samples_.size();
     if constexpr (tests_many) {
       payloads_.clear();
-      for (const Sample& smp : samples_) payloads_.push_back(traits::linkage::make_payload(smp));
+      for (const Sample& smp : samples_) payloads_.push_back(linkage_.make_payload(smp));
     }
     cells_.assign(n, 0);
     sets_.reset(n);

@@ -484,7 +484,7 @@ class StreamClusterer {
     if (calibrating_) {
       // Buffering the first window: nothing expires before it is complete.
       if (size() == 0 || !window_.complete(ring_.time(ring_.oldest()), time, size() + 1)) {
-        ring_.append(sample, stream_index);
+        ring_.append(sample, stream_index, linkage_);
         calibration_coords_.push_back(pr);
         return RejectReason::accepted;
       }
@@ -497,7 +497,7 @@ class StreamClusterer {
     const auto t0 = Clock::now();
     evict_expired(time, size() + 1);
     Clock::add_since(stats_.phase_us.eviction, t0);
-    const PointHandle h = ring_.append(sample, stream_index);
+    const PointHandle h = ring_.append(sample, stream_index, linkage_);
     ring_.record(h).cell = cell;
     const auto t1 = Clock::now();
     link(h);

@@ -17,6 +17,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/combinators.hpp>
 #include <streamclust/linkage/euclidean.hpp>
+#include <streamclust/linkage/scan_adaptive.hpp>
 #include <streamclust/objects_presets.hpp>
 #include <streamclust/point_traits.hpp>
 #include <streamclust/presets.hpp>

@@ -38,8 +38,14 @@ inline cli::ClusterOptions parse_python_options(std::vector<std::string> args) {
 /// True when `o` asks the run setup to estimate the mount or the sensor
 /// height from the first window (--ground without --mount/--poses or
 /// without --sensor-height).
-inline bool needs_first_window(const cli::ClusterOptions& o) {
+inline bool needs_ground_window(const cli::ClusterOptions& o) {
   return o.ground && (!cli::has_motion_options(o) || !o.sensor_height);
+}
+
+/// True when the run setup reads the first window: a ground estimate, or a
+/// linkage fitted to the sensor (`--linkage scan-adaptive`, sensor_fit.hpp).
+inline bool needs_first_window(const cli::ClusterOptions& o) {
+  return needs_ground_window(o) || (o.mode == cli::Mode::continuous && cli::linkage_fits_sensor(o));
 }
 
 /// The first window of a stream given as arrays, as the CLI's
@@ -72,10 +78,15 @@ inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o
 /// files that cannot be read throw io::InputError.
 inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vector3f>* first_window) {
   if (o.mode != cli::Mode::continuous) return;  // the CLI resolves a setup for the continuous engine only
-  if (!first_window && needs_first_window(o)) {
+  if (!first_window && needs_ground_window(o)) {
     throw cli::UsageError("--ground: the mount and sensor height are estimated from the stream's first window, "
                           "which a Clusterer does not have yet: give first_window=(xyz, t) (the stream's "
                           "beginning), or --mount (or --poses) and --sensor-height, or use cluster_stream");
+  }
+  if (!first_window && needs_first_window(o)) {
+    throw cli::UsageError("--linkage " + o.linkage + ": the linkage is fitted to the stream's first window, which "
+                          "a Clusterer does not have yet: give first_window=(xyz, t) (the stream's beginning), or "
+                          "use cluster_stream");
   }
   o.quiet = true;
   std::ostringstream notes;  // the CLI's notes on stderr; not shown

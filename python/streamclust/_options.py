@@ -82,7 +82,7 @@ for _table in (POLICY_KEYWORDS, READ_KEYWORDS, SIMULATION_KEYWORDS):
         _OPTION_TO_KEYWORD.setdefault(_opt, _kw)
 
 # Convenience spellings of the CLI's choices (Python identifiers).
-_CHOICE_ALIASES = {"range_adaptive": "range-adaptive", "lazy_bfs": "lazy-bfs", "spanning_forest": "forest"}
+_CHOICE_ALIASES = {"range_adaptive": "range-adaptive", "scan_adaptive": "scan-adaptive", "lazy_bfs": "lazy-bfs", "spanning_forest": "forest"}
 
 
 def _is_number(v):

@@ -24,7 +24,7 @@ function(expect_in text what)
 endfunction()
 
 run(0 cluster --help)
-expect_in("${out}" "cluster --help" "--linkage angular|euclidean|range-adaptive|upright" "--stretch S (default 2)"
+expect_in("${out}" "cluster --help" "--linkage angular|euclidean|range-adaptive|scan-adaptive|upright" "--stretch S (default 2)"
           "upright: vertical reach over horizontal, in [1, 10]")
 run(2 cluster x.csv --linkage upright --stretch -3)
 expect_in("${out}" "the message" "--stretch: expected a positive number, got '-3'")

@@ -1,8 +1,8 @@
 // EXPECT: STREAMCLUST_LINKAGE_CAPABILITY_INVALID: a linkage with a member named `Payload` or `make_payload`
 // SPDX-License-Identifier: MIT
-// A linkage whose `make_payload` is not static has no compact payload (the
-// payload must not depend on the parameters): the slot check says so
-// instead of leaving it on the Sample path.
+// A linkage whose `make_payload` is neither static nor a const member (a
+// bound payload) has no compact payload: the slot check says so instead of
+// leaving it on the Sample path.
 #include <streamclust/presets.hpp>
 #include <streamclust/stream_clusterer.hpp>
 
@@ -14,7 +14,7 @@ struct MemberMakePayload {
     float x, y, z;
   };
   explicit MemberMakePayload(const Params& p) : max_distance(p.max_distance) {}
-  Payload make_payload(const streamclust::Sample& s) const {  // not static: a near miss
+  Payload make_payload(const streamclust::Sample& s) {  // neither static nor const: a near miss
     return Payload{s.position.x(), s.position.y(), s.position.z()};
   }
   bool operator()(const Payload& a, const Payload& b) const {
@@ -22,7 +22,8 @@ struct MemberMakePayload {
     return dx * dx + dy * dy + dz * dz <= max_distance * max_distance;
   }
   bool operator()(const streamclust::Sample& a, const streamclust::Sample& b) const {
-    return (*this)(make_payload(a), make_payload(b));
+    MemberMakePayload self = *this;
+    return (*this)(self.make_payload(a), self.make_payload(b));
   }
   float max_distance;
 };

@@ -92,6 +92,15 @@ ClustererParams<Config> make_params(const ClusterOptions& o) {
   p.resolution.adaptive_loop.max_multiplicity = o.max_multiplicity;
   p.mask_size = o.mask;
   p.time_order = engine_time_order_params(o);
+  if constexpr (has_sensor_fit_v<typename Config::linkage>) {
+    if (o.setup && o.setup->sensor_fit) {
+      try {
+        p.linkage = Config::linkage::fit_to_sensor(p.linkage, *o.setup->sensor_fit);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--linkage ") + o.linkage + ": fitting it to the first window: " + e.what());
+      }
+    }
+  }
   if (o.setup) {
     p.motion = o.setup->motion;
     p.ground = o.setup->ground;

@@ -26,6 +26,7 @@ MethodResult run_carc_method(const EvaluateOptions& o, const std::vector<io::Rec
                              const LabelledSets* baseline_labelled) {
   ClusterOptions c = o.policy;
   c.grid = std::make_pair(grid.rows, grid.cols);
+  if (!c.setup) c.setup = sensor_fit_setup(c, records);  // a linkage fitted to the sensor: to the first window
   StreamClusterer<Config> engine(make_params<Config>(c));
   MethodResult m;
   m.name = "carc";
@@ -84,6 +85,7 @@ MethodResult run_baseline_method(const EvaluateOptions& o, const std::vector<io:
   using Config = CliConfig<SphericalProjection, OverwriteGrid, Linkage, TimeWindow>;
   ClusterOptions c = o.policy;
   c.grid = std::make_pair(grid.rows, grid.cols);
+  if (!c.setup) c.setup = sensor_fit_setup(c, records);
   FrameClusterer<Config> frame(make_params<Config>(c), BatchMode::range_image);
   MethodResult m;
   m.name = "baseline";

@@ -13,39 +13,48 @@
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/partition_compare.hpp>
 #include <streamclust/rebind_params.hpp>
+#include <streamclust/sensor_fit.hpp>
 #include <streamclust/stream_clusterer.hpp>
 
 #include <chrono>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 namespace streamclust::cli {
 namespace detail {
 
 /// ObjectsEngine over StreamClusterer<Config>: fed in stretches between
-/// retrievals, the work between two take_cost() calls timed [ms].
+/// retrievals, the work between two take_cost() calls timed [ms]. A linkage
+/// fitted to the sensor (sensor_fit.hpp) is fitted at the first feed, before
+/// the engine is built, to the stream's first window T_B (sensor-frame
+/// records) and the preset's mount and poses (untimed: the fit happens once,
+/// before the stream); until then the engine counts as calibrating.
 template <class Config>
 class ObjectsEngineOf final : public ObjectsEngine {
   static_assert(std::is_same_v<typename Config::projection, SphericalProjection>,
                 "STREAMCLUST_OBJECTS_PROJECTION: the objects engines are instantiated with the spherical projection's "
                 "units; instantiate them with ObjectsConfig's projection");
+  using Linkage = typename config_traits<Config>::linkage;
 
  public:
   using Clock = std::chrono::steady_clock;
 
-  ObjectsEngineOf(const ClustererParams<Config>& params, bool verify) : engine_(params) {
-    if (verify) batch_.emplace(params);
+  ObjectsEngineOf(const ClustererParams<Config>& params, bool verify) : params_(params), verify_(verify) {
+    if constexpr (!has_sensor_fit_v<Linkage>) build(params_);
   }
 
   void feed(const std::vector<io::Record>& records, std::size_t first, std::size_t last) override {
+    if (!engine_) build(fitted(records, first));
     const auto t0 = Clock::now();
-    for (std::size_t i = first; i < last; ++i) engine_.insert(records[i], records[i].t);
+    for (std::size_t i = first; i < last; ++i) engine_->insert(records[i], records[i].t);
     pending_ms_ += ms_since(t0);
   }
   const Clustering& retrieve(double time) override {
+    if (!engine_) return empty_;
     const auto t0 = Clock::now();
-    engine_.advance_to(time);
-    const Clustering& result = engine_.retrieve();
+    engine_->advance_to(time);
+    const Clustering& result = engine_->retrieve();
     pending_ms_ += ms_since(t0);
     return result;
   }
@@ -54,15 +63,17 @@ class ObjectsEngineOf final : public ObjectsEngine {
     pending_ms_ = 0.0;
     return c;
   }
-  bool calibrating() const override { return engine_.calibrating(); }
+  bool calibrating() const override { return !engine_ || engine_->calibrating(); }
 
   std::string verify(const std::vector<io::Record>& records, std::size_t outside) override {
-    if (!batch_) throw std::logic_error("ObjectsEngine::verify: the engine was made without verify");
-    const Clustering& result = engine_.last_result();
+    if (!verify_) throw std::logic_error("ObjectsEngine::verify: the engine was made without verify");
+    if (!engine_) return "";
+    const StreamClusterer<Config>& engine = *engine_;
+    const Clustering& result = engine.last_result();
     if (outside != 0) return std::to_string(outside) + " labelled points outside the scored window";
-    if (result.structure.size() != engine_.structure_size()) return "the structure list and the structure ring differ";
-    if (engine_.calibrating()) return result.points.empty() ? "" : "labels while calibrating";
-    if (result.points.size() != engine_.size()) return "the result and the window differ in size";
+    if (result.structure.size() != engine.structure_size()) return "the structure list and the structure ring differ";
+    if (engine.calibrating()) return result.points.empty() ? "" : "labels while calibrating";
+    if (result.points.size() != engine.size()) return "the result and the window differ in size";
     window_.clear();
     continuous_.clear();
     for (const PointLabel& p : result.points) {
@@ -70,7 +81,7 @@ class ObjectsEngineOf final : public ObjectsEngine {
       continuous_.push_back(p.label);
     }
     if (window_.empty()) return "";
-    batch_->set_grid({engine_.grid().rows, engine_.grid().cols});
+    batch_->set_grid({engine.grid().rows, engine.grid().cols});
     const BatchResult& reference = batch_->cluster(window_);
     if (reference.rejections.rejected() != 0) return "the batch rejected a point the engine accepted";
     const auto m = first_partition_mismatch(continuous_, reference.labels);
@@ -85,8 +96,44 @@ class ObjectsEngineOf final : public ObjectsEngine {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   }
 
-  StreamClusterer<Config> engine_;
+  /// The engine (and, with verify, the batch clusterer) of `params`. Throws
+  /// UsageError for parameters a policy rejects.
+  void build(const ClustererParams<Config>& params) {
+    try {
+      engine_.emplace(params);
+      if (verify_) batch_.emplace(params);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
+
+  /// The parameters with the linkage fitted to the records of the first
+  /// window from `first` (sensor frame, T_B = the window's duration) and to
+  /// the preset's mount and poses. O(window).
+  ClustererParams<Config> fitted(const std::vector<io::Record>& records, std::size_t first) const {
+    ClustererParams<Config> p = params_;
+    if constexpr (has_sensor_fit_v<Linkage>) {
+      SensorFit fit;
+      fit.mount = p.motion.mount;
+      fit.trajectory = p.motion.trajectory;
+      const double t0 = first < records.size() ? records[first].t : 0.0;
+      for (std::size_t i = first; i < records.size() && records[i].t - t0 < p.window.duration; ++i) {
+        fit.first_window.emplace_back(records[i].x, records[i].y, records[i].z);
+      }
+      try {
+        p.linkage = Linkage::fit_to_sensor(p.linkage, fit);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("fitting the linkage to the first window: ") + e.what());
+      }
+    }
+    return p;
+  }
+
+  ClustererParams<Config> params_;
+  bool verify_;
+  std::optional<StreamClusterer<Config>> engine_;
   std::optional<BatchClusterer<Config>> batch_;
+  Clustering empty_;  ///< the result before the first feed
   double pending_ms_ = 0.0;  ///< work since the last take_cost [ms]
   std::vector<io::Record> window_;       ///< verify's scratch: the window's records
   std::vector<ComponentId> continuous_;  ///< verify's scratch: the engine's labels
@@ -98,11 +145,7 @@ template <class Linkage>
 std::unique_ptr<ObjectsEngine> make_objects_engine_for(const ClustererParams<ObjectsConfig>& preset,
                                                        const typename Linkage::Params& linkage, bool verify) {
   using Config = ObjectsEngineConfig<Linkage>;
-  try {
-    return std::make_unique<detail::ObjectsEngineOf<Config>>(rebind_params<Config>(preset, linkage), verify);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  return std::make_unique<detail::ObjectsEngineOf<Config>>(rebind_params<Config>(preset, linkage), verify);
 }
 
 }  // namespace streamclust::cli

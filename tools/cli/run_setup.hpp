@@ -4,8 +4,9 @@
 /// \file
 /// What `streamclust cluster`'s options resolve to before a run: the poses
 /// and mount (given, or the mount estimated from the first window), the
-/// ground model's parameters (the sensor height given or estimated) and the
-/// projection bounds in world orientation.
+/// ground model's parameters (the sensor height given or estimated), the
+/// projection bounds in world orientation and, for a linkage fitted to the
+/// sensor (sensor_fit.hpp), the first window and the placement it is fitted to.
 
 #include "cli/options.hpp"
 #include "cli/poses.hpp"
@@ -15,6 +16,7 @@
 #include <streamclust/motion/gravity_estimate.hpp>
 #include <streamclust/motion/runtime_motion.hpp>
 #include <streamclust/objects_presets.hpp>
+#include <streamclust/sensor_fit.hpp>
 
 #include <Eigen/Core>
 
@@ -36,7 +38,18 @@ struct RunSetup {
   std::optional<GroundEstimate> estimate;  ///< the first window's ground, when one was estimated
   bool estimated_mount = false;            ///< the mount is the estimate's
   bool estimated_height = false;           ///< the sensor height is the estimate's
+  /// What the linkage is fitted to (make_params calls its fit_to_sensor):
+  /// the first window and the mount and poses of `motion`; null when the
+  /// linkage has no fit.
+  std::shared_ptr<const SensorFit> sensor_fit;
 };
+
+/// True when the linkage `o.linkage` names is fitted to the sensor before a
+/// run (`fit_to_sensor`, sensor_fit.hpp). Throws UsageError for an unknown name.
+inline bool linkage_fits_sensor(const ClusterOptions& o) {
+  return ToolRegistry::with_policy<Slot::linkage>(
+      o.linkage, [](auto tag) { return has_sensor_fit_v<typename decltype(tag)::type>; });
+}
 
 /// Sensor-frame positions of the first window of `o.input`: the records of
 /// the first T_B seconds (or the first --window-count records), at most
@@ -62,6 +75,22 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
   return points;
 }
 
+/// A run setup for a stream held in memory, sensor frame, no motion and no
+/// ground model: only the sensor fit of the linkage `o.linkage` names (null
+/// when it has none), from the records of the first T_B seconds. O(window).
+inline std::shared_ptr<const RunSetup> sensor_fit_setup(const ClusterOptions& o, const std::vector<io::Record>& records) {
+  if (!linkage_fits_sensor(o)) return nullptr;
+  SensorFit fit;
+  const double t0 = records.empty() ? 0.0 : records.front().t;
+  for (const io::Record& r : records) {
+    if (r.t - t0 >= o.window_seconds) break;
+    fit.first_window.emplace_back(r.x, r.y, r.z);
+  }
+  RunSetup s;
+  s.sensor_fit = std::make_shared<const SensorFit>(std::move(fit));
+  return std::make_shared<const RunSetup>(std::move(s));
+}
+
 /// An angle [deg] for a "%.1f" field: a hair below zero prints 0.0, not -0.0.
 inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : deg; }
 
@@ -73,9 +102,10 @@ inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : de
 /// apart) is noted and not used; with the floor out of view (a ceiling
 /// alone) the mount is used and the height stays unknown, as without a
 /// ground plane. `timed` times the ground and placement stages (the
-/// report). `first_window`, when given, replaces the first window read from
-/// `o.input` (a caller that holds the stream in memory). Throws UsageError
-/// for a value a policy rejects.
+/// report). A linkage fitted to the sensor gets the first window and the
+/// resolved mount and poses (`sensor_fit`). `first_window`, when given,
+/// replaces the first window read from `o.input` (a caller that holds the
+/// stream in memory). Throws UsageError for a value a policy rejects.
 inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream& err,
                                const std::vector<Eigen::Vector3f>* first_window = nullptr) {
   RunSetup s;
@@ -91,8 +121,14 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
   g.detect_ceiling = o.ceiling;
   g.detect_walls = o.walls;
   if (o.sensor_height) g.sensor_height = *o.sensor_height;
+  std::optional<std::vector<Eigen::Vector3f>> read_window;  // the first window, read once when needed
+  const auto window = [&]() -> const std::vector<Eigen::Vector3f>& {
+    if (first_window) return *first_window;
+    if (!read_window) read_window = first_window_points(o);
+    return *read_window;
+  };
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
-    s.estimate = estimate_ground(first_window ? *first_window : first_window_points(o));
+    s.estimate = estimate_ground(window());
     if (s.estimate && s.estimate->status == GroundStatus::ambiguous) {
       if (!o.quiet) {
         char planes[96];
@@ -163,6 +199,15 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
     } else if (g.sensor_height > 0.0f) {
       g.lowest_ray_elevation_deg = ray_field_of_view(sensor_fov).elevation_min_deg;  // a level sensor's
     }
+  }
+  if (linkage_fits_sensor(o)) {
+    SensorFit fit;
+    fit.first_window = window();
+    if (s.motion.enabled) {
+      fit.mount = s.motion.posed.mount;
+      fit.trajectory = s.motion.posed.trajectory;
+    }
+    s.sensor_fit = std::make_shared<const SensorFit>(std::move(fit));
   }
   return s;
 }

@@ -99,7 +99,7 @@ class LinkageRunner {
       : linkage_(linkage), pairs_(pairs), linked_(pairs.max_candidates + 1) {
     if constexpr (has_linkage_payload_v<Linkage>) {
       ring_.reserve(pairs.samples.size());
-      for (const Sample& s : pairs.samples) ring_.push_back(Linkage::make_payload(s));
+      for (const Sample& s : pairs.samples) ring_.push_back(linkage_.make_payload(s));
     }
   }
 

@@ -20,11 +20,11 @@
 /// | expression               | type     | meaning                                                        | complexity |
 /// |--------------------------|----------|----------------------------------------------------------------|------------|
 /// | `typename L::Payload`    | struct   | what the predicate reads of a point; trivially copyable, <= 32 bytes | |
-/// | `L::make_payload(s)`     | Payload  | static: the payload of Sample `s` (a pure function of `s`)     | O(1)       |
+/// | `l.make_payload(s)`      | Payload  | the payload of Sample `s` (a pure function of `s` and the linkage's parameters) | O(1) |
 /// | `l(pa, pb)`              | bool     | the predicate on two payloads (const Payload&)                 | O(1)       |
 ///
 /// Contract: `l(a, b)` on Samples MUST be implemented as
-/// `l(L::make_payload(a), L::make_payload(b))`, so that both decide the same
+/// `l(l.make_payload(a), l.make_payload(b))`, so that both decide the same
 /// bit for bit by construction (the batch oracle calls the Sample version,
 /// the engine the payload one). The engine then keeps a ring of payloads
 /// beside its ring of Samples (sizeof(Payload) bytes per point, counted in
@@ -38,9 +38,15 @@
 /// payload would rather be a Sample (40 bytes): the engine rejects it.
 /// `has_linkage_payload_v<L>` detects the capability, `linkage_payload_t<L>`
 /// names the payload (`detail::NoPayload` without it).
-/// `make_payload` is static so that the payload does not depend on the
-/// parameters: combinators can build theirs from their children's (AllOf/AnyOf
-/// of children with payloads have the capability too).
+/// `make_payload` is usually static: the payload does not depend on the
+/// parameters, so combinators can build theirs from their children's
+/// (AllOf/AnyOf of children with static payloads have the capability too).
+/// It may instead be a const member (a *bound* payload,
+/// `has_linkage_bound_payload_v<L>`) when the payload holds something the
+/// parameters decide once per point, e.g. a per-point radius read from a
+/// table (ScanAdaptiveLinkage): the engine and the batch clusterer make it
+/// with their own linkage object, and a combinator with such a child stays
+/// on the Sample path.
 ///
 /// Optional refinement: a payload that carries the ray (detected with
 /// `has_linkage_ray_payload_v<L>`).
@@ -66,6 +72,10 @@
 /// std::uint32_t*, `linked`: std::uint8_t*.) Contract: the same decisions
 /// as the pairwise operator, bit for bit. The engine's neighbour search and
 /// the batch clusterer then call it once per point with all its candidates.
+///
+/// Optional, for the tools: `static Params fit_to_sensor(const Params&, const
+/// SensorFit&)` (sensor_fit.hpp, `has_sensor_fit_v<L>`): the Params completed
+/// from the sensor's first window and placement before an engine is built.
 ///
 /// Near misses: a linkage with a member NAMED like one of these
 /// (`Payload`, `make_payload`, `restore_ray`, `link_many`) that does not
@@ -100,14 +110,21 @@ template <class L, class = void>
 struct has_linkage_payload : std::false_type {};
 template <class L>
 struct has_linkage_payload<
-    L, std::void_t<typename L::Payload, decltype(L::make_payload(std::declval<const Sample&>())),
+    L, std::void_t<typename L::Payload, decltype(std::declval<const L&>().make_payload(std::declval<const Sample&>())),
                    decltype(std::declval<const L&>()(std::declval<const typename L::Payload&>(),
                                                      std::declval<const typename L::Payload&>()))>>
     : std::bool_constant<
-          std::is_same_v<decltype(L::make_payload(std::declval<const Sample&>())), typename L::Payload> &&
+          std::is_same_v<decltype(std::declval<const L&>().make_payload(std::declval<const Sample&>())),
+                         typename L::Payload> &&
           std::is_convertible_v<decltype(std::declval<const L&>()(std::declval<const typename L::Payload&>(),
                                                                   std::declval<const typename L::Payload&>())),
                                 bool>> {};
+
+template <class L, class = void>
+struct has_linkage_static_payload : std::false_type {};
+template <class L>
+struct has_linkage_static_payload<L, std::void_t<decltype(L::make_payload(std::declval<const Sample&>()))>>
+    : has_linkage_payload<L> {};
 
 template <class L, class = void>
 struct has_linkage_ray_payload : std::false_type {};
@@ -138,10 +155,21 @@ template <class L>
 inline constexpr bool is_linkage_policy_v = detail::is_linkage_policy<L>::value;
 
 /// True when linkage `L` declares the optional compact payload: `L::Payload`,
-/// `static Payload make_payload(const Sample&)` and
+/// `Payload make_payload(const Sample&)` (static, or a const member) and
 /// `bool operator()(const Payload&, const Payload&) const`.
 template <class L>
 inline constexpr bool has_linkage_payload_v = detail::has_linkage_payload<L>::value;
+
+/// True when linkage `L` has the compact payload made by a static
+/// `make_payload` (independent of the parameters: combinators compose it).
+template <class L>
+inline constexpr bool has_linkage_static_payload_v = detail::has_linkage_static_payload<L>::value;
+
+/// True when linkage `L` has the compact payload made by a const member
+/// `make_payload` (a bound payload: it depends on the parameters).
+template <class L>
+inline constexpr bool has_linkage_bound_payload_v =
+    detail::has_linkage_payload<L>::value && !detail::has_linkage_static_payload<L>::value;
 
 /// True when linkage `L` has the compact payload and its payload carries the
 /// ray: `static void restore_ray(const Payload&, Sample&)`.
@@ -185,8 +213,8 @@ constexpr bool check_linkage_capabilities() {
     static_assert(!(names_Payload<L> || names_make_payload<L>) || has_linkage_payload_v<L>,
                   "STREAMCLUST_LINKAGE_CAPABILITY_INVALID: a linkage with a member named `Payload` or "
                   "`make_payload` declares the optional compact payload and needs all three of `struct Payload` "
-                  "(trivially copyable, <= 32 bytes), `static Payload make_payload(const Sample&)` (static, "
-                  "returning exactly Payload) and `bool operator()(const Payload&, const Payload&) const` "
+                  "(trivially copyable, <= 32 bytes), `Payload make_payload(const Sample&)` (static, or a const "
+                  "member; returning exactly Payload) and `bool operator()(const Payload&, const Payload&) const` "
                   "(see docs/policies.md, Linkage)");
     static_assert(is_linkage_payload_valid_v<L>,
                   "STREAMCLUST_LINKAGE_PAYLOAD_INVALID: a linkage's optional Payload must be trivially "

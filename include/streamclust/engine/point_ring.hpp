@@ -129,10 +129,10 @@ class PointRing {
   std::size_t stream_epochs() const { return epochs_.size(); }
 
   // --------------------------------------------------------------- changes
-  /// Appends a point: its sample (and payload) and a fresh record (cell 0,
-  /// default PointState). Grows the rings when full. Returns its handle.
-  /// Amortised O(1).
-  STREAMCLUST_ALWAYS_INLINE PointHandle append(const Sample& s, std::uint64_t stream_index) {
+  /// Appends a point: its sample (and its payload, `linkage.make_payload(s)`)
+  /// and a fresh record (cell 0, default PointState). Grows the rings when
+  /// full. Returns its handle. Amortised O(1).
+  STREAMCLUST_ALWAYS_INLINE PointHandle append(const Sample& s, std::uint64_t stream_index, const Linkage& linkage) {
     if (size() + 1 > capacity_) grow(std::max<std::size_t>(size() + 1 + (size() + 1) / 8, kMinCapacity));
     const PointHandle h = next_++;
     const std::uint32_t at = slot(h);
@@ -141,7 +141,7 @@ class PointRing {
     } else {
       samples_[at] = s;
     }
-    if constexpr (uses_payload) payloads_[at] = Linkage::make_payload(s);
+    if constexpr (uses_payload) payloads_[at] = linkage.make_payload(s);
     Record& r = records_[at];
     r.stream_index_low = static_cast<std::uint32_t>(stream_index);
     r.cell = 0;

@@ -3,8 +3,8 @@
 
 /// \file
 /// The registrations of the policies streamclust ships, and StockRegistry,
-/// the registry of the `streamclust` tool: the linkages angular, euclidean
-/// and range-adaptive, the indexes bucket, capped and overwrite, the time
+/// the registry of the `streamclust` tool: the linkages angular, euclidean,
+/// range-adaptive and scan-adaptive, the indexes bucket, capped and overwrite, the time
 /// and count windows, the spherical and cylindrical projections and the
 /// lazy-BFS and spanning-forest connectivities. A tool with its own
 /// policies lists these and its own (cmake/StreamclustAddTool.cmake).
@@ -22,6 +22,7 @@
 #include <streamclust/linkage/angular.hpp>
 #include <streamclust/linkage/euclidean.hpp>
 #include <streamclust/linkage/range_adaptive.hpp>
+#include <streamclust/linkage/scan_adaptive.hpp>
 #include <streamclust/projection/cylindrical.hpp>
 #include <streamclust/projection/spherical.hpp>
 #include <streamclust/window/count_window.hpp>
@@ -84,6 +85,31 @@ struct PolicyDescriptor<RangeAdaptiveLinkage> {
     char line[80];
     std::snprintf(line, sizeof line, "range-adaptive max(%.3g m, %.3g x range)", static_cast<double>(p.min_distance),
                   static_cast<double>(p.range_factor));
+    return line;
+  }
+};
+
+template <>
+struct PolicyDescriptor<ScanAdaptiveLinkage> {
+  static constexpr Slot slot = Slot::linkage;
+  static constexpr const char* name = "scan-adaptive";
+  static constexpr const char* summary =
+      "link within max(--min-distance, --spacing-factor x the sensor's local spacing x range), the spacing "
+      "table from the first window";
+  static std::vector<Option<ScanAdaptiveLinkage::Params>> options() {
+    using P = ScanAdaptiveLinkage::Params;
+    return {option("--min-distance", &P::min_distance, "M", ValueKind::positive,
+                   "radius near the sensor [m], in (0, 100]", "min_distance"),
+            option("--spacing-factor", &P::spacing_factor, "F", ValueKind::positive,
+                   "the radius in local spacings of the returns, in (0, 1000]", "spacing_factor"),
+            option("--spacing-quantile", &P::spacing_quantile, "Q", ValueKind::number,
+                   "the spacing: this quantile of the gaps between the first window's returns, in [0, 1]",
+                   "spacing_quantile")};
+  }
+  static std::string describe(const ScanAdaptiveLinkage::Params& p) {
+    char line[96];
+    std::snprintf(line, sizeof line, "scan-adaptive max(%.3g m, %.3g x spacing x range)",
+                  static_cast<double>(p.min_distance), static_cast<double>(p.spacing_factor));
     return line;
   }
 };
@@ -167,8 +193,9 @@ struct PolicyDescriptor<SpanningForestConnectivity> {
 #define STREAMCLUST_STOCK_POLICIES                                                                            \
   ::streamclust::SphericalProjection, ::streamclust::CylindricalProjection, ::streamclust::BucketGrid,          \
       ::streamclust::CappedGrid, ::streamclust::OverwriteGrid, ::streamclust::AngularLinkage,                   \
-      ::streamclust::EuclideanLinkage, ::streamclust::RangeAdaptiveLinkage, ::streamclust::TimeWindow,          \
-      ::streamclust::CountWindow, ::streamclust::LazyBfsConnectivity, ::streamclust::SpanningForestConnectivity
+      ::streamclust::EuclideanLinkage, ::streamclust::RangeAdaptiveLinkage, ::streamclust::ScanAdaptiveLinkage,   \
+      ::streamclust::TimeWindow, ::streamclust::CountWindow, ::streamclust::LazyBfsConnectivity,                \
+      ::streamclust::SpanningForestConnectivity
 
 /// The registry of the `streamclust` tool.
 using StockRegistry = PolicyRegistry<STREAMCLUST_STOCK_POLICIES>;

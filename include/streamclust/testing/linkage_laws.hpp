@@ -118,8 +118,8 @@ std::string linkage_laws_on(const L& link, const typename L::Params& params,
     ring.reserve(pairs.size());
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const auto& [a, b] = pairs[i];
-      const Payload pa = L::make_payload(a);
-      const Payload pb = L::make_payload(b);
+      const Payload pa = link.make_payload(a);
+      const Payload pb = link.make_payload(b);
       const bool ab = link(pa, pb);
       const bool ba = link(pb, pa);
       if (ab != (decision[i] != 0) || ba != (decision[i] != 0)) {
@@ -145,7 +145,7 @@ std::string linkage_laws_on(const L& link, const typename L::Params& params,
       std::vector<std::uint32_t> slots;
       std::vector<std::uint8_t> many;
       for (std::size_t i = 0; i < pairs.size() && !ring.empty(); i += 7) {
-        const Payload a = L::make_payload(pairs[i].first);
+        const Payload a = link.make_payload(pairs[i].first);
         const std::size_t count = 1 + rng() % 40;
         slots.resize(count);
         for (auto& slot : slots) slot = static_cast<std::uint32_t>(rng() % ring.size());

@@ -10,8 +10,9 @@
 ///   distinct payload types one after another, aligned to its size rounded
 ///   up to a power of two (so a candidate never straddles two cache lines);
 ///   used when it fits kMaxLinkagePayloadBytes (32);
-/// - a child without a payload, no child, or a composed payload over 32
-///   bytes: none (the combinator stays on the Sample path).
+/// - a child without a payload or with a bound one (made by a const member,
+///   concepts/linkage.hpp), no child, or a composed payload over 32 bytes:
+///   none (the combinator stays on the Sample path).
 ///
 /// The payload carries the ray when one of its parts does (the first such
 /// child's `restore_ray`). Compile time only; a payload is built by the
@@ -142,7 +143,7 @@ constexpr std::size_t count_entries(PayloadEntries<Es...>) {
 /// The children's payloads, shared or composed (see the file comment).
 template <class L0, class... Ls>
 struct CombinedPayload<L0, Ls...> {
-  static constexpr bool all_have_one = (has_linkage_payload_v<L0> && ... && has_linkage_payload_v<Ls>);
+  static constexpr bool all_have_one = (has_linkage_static_payload_v<L0> && ... && has_linkage_static_payload_v<Ls>);
   using entries = typename distinct_payloads<PayloadEntries<>, L0, Ls...>::type;
   static constexpr bool shared = all_have_one && count_entries(entries{}) == 1;
   using composed = typename ComposedPayloadOf<std::conditional_t<all_have_one, entries, PayloadEntries<>>>::type;
