@@ -103,7 +103,7 @@ CycleLabels library_labels(const fs::path& input, const streamclust::ClustererPa
           auto& row = rows[cycle++];
           for (const sc::PointLabel& p : engine.retrieve().points) row[p.stream_index] = static_cast<long long>(p.label);
           engine.for_each_structure_point([&](const sc::StructureEntry& e) {
-            row[e.stream_index] = e.surface == sc::SurfaceClass::ceiling ? -3 : -2;
+            row[e.stream_index] = e.surface == sc::SurfaceClass::ceiling ? -3 : e.surface == sc::SurfaceClass::wall ? -4 : -2;
           });
         }
       }
