@@ -56,7 +56,10 @@ struct GroundHeightEstimate {
 /// cells x iterations x planes); no state. Measured on the simulated office,
 /// forest, street and hills, Mid-360 and Avia, level, pitched 15 and 30 deg
 /// and upside down: within 5 % of the height, but a level Mid-360 on the
-/// hills (0.85 for 1 m: it sees the ground from 8 m on).
+/// hills (0.85 for 1 m: it sees the ground from 8 m on). It needs ground in
+/// view within `max_distance`: a level Mid-360 1.5 m up in the office sees
+/// the floor only from 12 m on, and the desk tops come out as the ground
+/// (0.90 m for 1.5).
 inline std::optional<GroundHeightEstimate> estimate_ground_height(const std::vector<Eigen::Vector3f>& rays,
                                                                   const GroundHeightParams& params = {}) {
   struct CellPoints {
