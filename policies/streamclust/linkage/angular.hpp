@@ -211,12 +211,8 @@ class AngularLinkage {
     const auto select = [](__m128 mask, __m128 yes, __m128 no) {
       return _mm_or_ps(_mm_and_ps(mask, yes), _mm_andnot_ps(mask, no));
     };
-    // Four payloads, one per row, transposed to one component per register.
-    __m128 bx = _mm_load_ps(ring[slots[0]].direction);
-    __m128 by = _mm_load_ps(ring[slots[1]].direction);
-    __m128 bz = _mm_load_ps(ring[slots[2]].direction);
-    __m128 br = _mm_load_ps(ring[slots[3]].direction);
-    _MM_TRANSPOSE4_PS(bx, by, bz, br);
+    const detail::FourColumns b = detail::load_four_columns(ring, slots);  // direction, range
+    const __m128 bx = b.x, by = b.y, bz = b.z, br = b.w;
     // precedes(a, b): larger range, then direction (lexicographic, ties true).
     const __m128 tie_z = _mm_cmpge_ps(az, bz);
     const __m128 tie_y = _mm_or_ps(_mm_cmpgt_ps(ay, by), _mm_and_ps(_mm_cmpeq_ps(ay, by), tie_z));
@@ -244,11 +240,7 @@ class AngularLinkage {
     cos_a = select(floored, cos_min, cos_a);
     const __m128 left = _mm_mul_ps(_mm_mul_ps(d2, sin_a), cos_theta);
     const __m128 right = _mm_mul_ps(_mm_sub_ps(d1, mul(d2, cos_a)), sin_theta);
-    const int bits = _mm_movemask_ps(_mm_cmpgt_ps(left, right));
-    linked[0] = static_cast<std::uint8_t>(bits & 1);
-    linked[1] = static_cast<std::uint8_t>((bits >> 1) & 1);
-    linked[2] = static_cast<std::uint8_t>((bits >> 2) & 1);
-    linked[3] = static_cast<std::uint8_t>((bits >> 3) & 1);
+    detail::store_four_decisions(_mm_movemask_ps(_mm_cmpgt_ps(left, right)), linked);
   }
 #endif
 

@@ -159,26 +159,13 @@ class RangeAdaptiveLinkage {
   /// for i < 4: the pairwise operator, lane by lane. O(1).
   STREAMCLUST_ALWAYS_INLINE static void link_four(const Lanes& l, const Payload* ring, const std::uint32_t* slots,
                                                   std::uint8_t* linked) {
-    // Four payloads, one per row, transposed to one component per register.
-    __m128 bx = _mm_load_ps(ring[slots[0]].position);
-    __m128 by = _mm_load_ps(ring[slots[1]].position);
-    __m128 bz = _mm_load_ps(ring[slots[2]].position);
-    __m128 br = _mm_load_ps(ring[slots[3]].position);
-    _MM_TRANSPOSE4_PS(bx, by, bz, br);
-    const auto mul = [](__m128 x, __m128 y) { return detail::rounded(_mm_mul_ps(x, y)); };
-    const __m128 dx = _mm_sub_ps(l.ax, bx);
-    const __m128 dy = _mm_sub_ps(l.ay, by);
-    const __m128 dz = _mm_sub_ps(l.az, bz);
-    const __m128 squared = _mm_add_ps(_mm_add_ps(mul(dx, dx), mul(dy, dy)), mul(dz, dz));
+    const detail::FourColumns b = detail::load_four_columns(ring, slots);  // x, y, z, range
+    const __m128 squared = detail::squared_distances_four(l.ax, l.ay, l.az, b);
     // radius(): std::max(min_distance, factor * std::min(ra, rb)). On finite
     // operands minps / maxps give the same value as std::min / std::max
     // (equal operands are equal floats; ranges are > 0, so no +0/-0 tie).
-    const __m128 r = _mm_max_ps(l.min_distance, _mm_mul_ps(l.range_factor, _mm_min_ps(l.ar, br)));
-    const int bits = _mm_movemask_ps(_mm_cmple_ps(squared, _mm_mul_ps(r, r)));
-    linked[0] = static_cast<std::uint8_t>(bits & 1);
-    linked[1] = static_cast<std::uint8_t>((bits >> 1) & 1);
-    linked[2] = static_cast<std::uint8_t>((bits >> 2) & 1);
-    linked[3] = static_cast<std::uint8_t>((bits >> 3) & 1);
+    const __m128 r = _mm_max_ps(l.min_distance, _mm_mul_ps(l.range_factor, _mm_min_ps(l.ar, b.w)));
+    detail::store_four_decisions(_mm_movemask_ps(_mm_cmple_ps(squared, _mm_mul_ps(r, r))), linked);
   }
 #endif
 
