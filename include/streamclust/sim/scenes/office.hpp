@@ -161,43 +161,38 @@ inline Scene office_scene(std::uint64_t seed) {
   }
   detail::require_count(placed, n_desks, "desk");
 
-  // Cabinets, 2 cm from a wall.
-  const int n_cabinets = rng.uniform_int(3, 5);
-  placed = 0;
-  for (int attempt = 0; placed < n_cabinets && attempt < 20000; ++attempt) {
-    const float width = rng.uniform(0.8f, 1.2f);
-    const float depth = rng.uniform(0.45f, 0.6f);
-    const float height = rng.uniform(1.0f, 2.0f);
-    const Footprint f = against_wall(width, depth, 0.02f);
-    const float r = f.half.norm();
-    if (!layout.free_disc(f.centre, r, 0.3f)) continue;
-    layout.occupy_disc(f.centre, r);
-    const Material body = looks.below(2) == 0 ? Material::wood : Material::metal;
-    scene.add_object("cabinet", ShapeSet().add(Box::aligned({f.centre.x() - f.half.x(), f.centre.y() - f.half.y(), 0.0f},
-                                                            {f.centre.x() + f.half.x(), f.centre.y() + f.half.y(), height}),
-                                               body));
-    ++placed;
-  }
-  detail::require_count(placed, n_cabinets, "cabinet");
-
+  // Upright boxes against a wall: `draw()` gives a candidate's size and gap,
+  // `material()` is drawn once it is placed.
+  struct WallBox {
+    float width, depth, height, gap;  // [m] width along the wall, gap from it
+  };
+  const auto place_wall_boxes = [&](const char* name, int count, auto&& draw, auto&& material) {
+    int done = 0;
+    for (int attempt = 0; done < count && attempt < 20000; ++attempt) {
+      const WallBox b = draw();
+      const Footprint f = against_wall(b.width, b.depth, b.gap);
+      const float r = f.half.norm();
+      if (!layout.free_disc(f.centre, r, 0.3f)) continue;
+      layout.occupy_disc(f.centre, r);
+      scene.add_object(name, ShapeSet().add(Box::aligned({f.centre.x() - f.half.x(), f.centre.y() - f.half.y(), 0.0f},
+                                                         {f.centre.x() + f.half.x(), f.centre.y() + f.half.y(), b.height}),
+                                            material()));
+      ++done;
+    }
+    detail::require_count(done, count, name);
+  };
+  // Cabinets, 2 cm from a wall, 1.0-2.0 m tall.
+  place_wall_boxes(
+      "cabinet", rng.uniform_int(3, 5),
+      [&] { return WallBox{rng.uniform(0.8f, 1.2f), rng.uniform(0.45f, 0.6f), rng.uniform(1.0f, 2.0f), 0.02f}; },
+      [&] { return looks.below(2) == 0 ? Material::wood : Material::metal; });
   // Bookshelves, 2-5 cm from a wall: tall, shallow boxes.
-  const int n_bookshelves = rng.uniform_int(2, 4);
-  placed = 0;
-  for (int attempt = 0; placed < n_bookshelves && attempt < 20000; ++attempt) {
-    const float width = rng.uniform(0.8f, 1.6f);
-    const float depth = rng.uniform(0.3f, 0.4f);
-    const float height = rng.uniform(1.6f, 2.0f);
-    const float gap = rng.uniform(0.02f, 0.05f);
-    const Footprint f = against_wall(width, depth, gap);
-    const float r = f.half.norm();
-    if (!layout.free_disc(f.centre, r, 0.3f)) continue;
-    layout.occupy_disc(f.centre, r);
-    scene.add_object("bookshelf", ShapeSet().add(Box::aligned({f.centre.x() - f.half.x(), f.centre.y() - f.half.y(), 0.0f},
-                                                              {f.centre.x() + f.half.x(), f.centre.y() + f.half.y(), height}),
-                                                 Material::wood));
-    ++placed;
-  }
-  detail::require_count(placed, n_bookshelves, "bookshelf");
+  place_wall_boxes(
+      "bookshelf", rng.uniform_int(2, 4),
+      [&] {
+        return WallBox{rng.uniform(0.8f, 1.6f), rng.uniform(0.3f, 0.4f), rng.uniform(1.6f, 2.0f), rng.uniform(0.02f, 0.05f)};
+      },
+      [] { return Material::wood; });
 
   for (Walker& w : walkers)
     scene.add_moving_object("person", detail::person_shapes(Eigen::Vector3f::Zero(), 1.7f, kPersonR), std::move(w.trajectory));
