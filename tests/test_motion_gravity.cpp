@@ -29,6 +29,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
@@ -264,14 +266,27 @@ std::vector<Eigen::Vector3f> first_window(Sensor sensor, const char* scene, cons
 }
 
 /// A Mid-360 (the real scan table when the shared data has it) or an Avia (analytic) first window.
-std::vector<Eigen::Vector3f> livox_window(const std::string& sensor, const char* scene, const sc::Pose& mount,
-                                          float height) {
-  if (sensor == "avia") return first_window(sim::AviaModel{}, scene, mount, height);
+// Simulated once per sensor, scene, mount and height: several test cases
+// read the same windows.
+const std::vector<Eigen::Vector3f>& livox_window(const std::string& sensor, const char* scene, const sc::Pose& mount,
+                                                 float height) {
+  static std::map<std::string, std::vector<Eigen::Vector3f>> windows;
+  const Eigen::Quaterniond& q = mount.rotation;
+  char key[160];
+  std::snprintf(key, sizeof key, "%s %s %.9g %.9g %.9g %.9g %.9g", sensor.c_str(), scene, q.w(), q.x(), q.y(), q.z(),
+                static_cast<double>(height));
+  const auto found = windows.find(key);
+  if (found != windows.end()) return found->second;
+  std::vector<Eigen::Vector3f> window;
   const auto table = streamclust::test::livox_data_dir() / "patterns" / "mid360_u16le.bin";
-  if (streamclust::test::data_present(table)) {
-    return first_window(sim::TableReplay::mid360(table.string()), scene, mount, height);
+  if (sensor == "avia") {
+    window = first_window(sim::AviaModel{}, scene, mount, height);
+  } else if (streamclust::test::data_present(table)) {
+    window = first_window(sim::TableReplay::mid360(table.string()), scene, mount, height);
+  } else {
+    window = first_window(sim::Mid360Model{}, scene, mount, height);
   }
-  return first_window(sim::Mid360Model{}, scene, mount, height);
+  return windows.emplace(key, std::move(window)).first->second;
 }
 
 }  // namespace
@@ -425,7 +440,7 @@ TEST_CASE("estimate_ground_height: with the orientation known, the height in eve
         CAPTURE(m.pitch);
         CAPTURE(m.roll);
         const sc::Pose mount = sc::mount_from_roll_pitch_yaw_deg(m.roll, m.pitch, 0.0);
-        std::vector<Eigen::Vector3f> rays = livox_window(sensor, scene, mount, m.height);
+        std::vector<Eigen::Vector3f> rays = livox_window(sensor, scene, mount, m.height);  // a copy, turned
         for (Eigen::Vector3f& r : rays) r = (mount.rotation.cast<float>() * r).eval();
         const std::optional<sc::GroundHeightEstimate> g = sc::estimate_ground_height(rays);
         REQUIRE(g.has_value());

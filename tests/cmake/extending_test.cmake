@@ -43,7 +43,9 @@ if(NOT _at EQUAL 0)
   message(FATAL_ERROR "FAILED: the example found streamclust in '${_found}', not under ${_prefix}")
 endif()
 
-run_step("build" "${CMAKE_COMMAND}" --build "${_build}")
+# Its tool is a dozen heavy translation units: as many jobs as cores.
+cmake_host_system_information(RESULT _cores QUERY NUMBER_OF_LOGICAL_CORES)
+run_step("build" "${CMAKE_COMMAND}" --build "${_build}" --parallel ${_cores})
 run_step("the example's tests" "${CMAKE_CTEST_COMMAND}" --test-dir "${_build}" --output-on-failure)
 foreach(_test test_upright bench_upright)
   string(REGEX MATCH "[0-9]+/[0-9]+ Test +#[0-9]+: ${_test} [.]+ +Passed" _passed "${out}")
