@@ -14,6 +14,7 @@
 #include "cli/run_setup.hpp"
 
 #include <streamclust/io/reader.hpp>
+#include <streamclust/io/tum.hpp>
 #include <streamclust/objects_presets.hpp>
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/sim/scenes.hpp>
@@ -32,6 +33,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -294,6 +296,75 @@ TEST_CASE("cluster --ground, a level Mid-360 1.5 m up in the office: the ceiling
   CHECK(err.str().find("and no floor: the mount given is used, height unknown") != std::string::npos);
   CHECK_FALSE(with_mount.estimated_mount);
   CHECK(with_mount.ground.height_map.sensor_height == 0.0f);
+}
+
+TEST_CASE("cluster --ground with the orientation known: planes nothing else tells apart, the height from gravity") {
+  namespace sc = streamclust;
+  // A floor 1.2 m below the sensor and a ceiling 1.8 m above, nothing
+  // standing on either: the sensor frame alone cannot tell them apart.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> across(-10.0f, 10.0f);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  std::vector<Eigen::Vector3f> window;
+  std::vector<double> times;
+  for (int i = 0; i < 20000; ++i) {
+    window.emplace_back(across(rng), across(rng), -1.2f + noise(rng));
+    window.emplace_back(across(rng), across(rng), 1.8f + noise(rng));
+    times.push_back(0.5 * i / 20000.0);
+    times.push_back(0.5 * i / 20000.0);
+  }
+  std::ostringstream err;
+  const auto setup = [&](std::vector<std::string> args, const std::vector<Eigen::Vector3f>& points) {
+    args.insert(args.begin(), {"in.csv", "--preset", "objects-mid360"});
+    err.str("");
+    return sc::cli::make_run_setup(sc::cli::parse_cluster_options(args), false, err, &points, &times);
+  };
+  // No orientation: ambiguous, the height unknown.
+  const sc::cli::RunSetup unknown = setup({}, window);
+  CHECK(err.str().find("the ground of the first window is ambiguous") != std::string::npos);
+  CHECK(unknown.ground.height_map.sensor_height == 0.0f);
+  // Level: the plane below is the ground. Upside down: the other one.
+  const sc::cli::RunSetup level = setup({"--mount", "0,0,0"}, window);
+  INFO(err.str());
+  CHECK(err.str().find("ground below the sensor in the first window: 1.20 m (no ground plane in the sensor frame; "
+                       "orientation from the mount") != std::string::npos);
+  CHECK(level.estimated_height);
+  CHECK(level.ground.height_map.sensor_height == doctest::Approx(1.2f).epsilon(0.02));
+  const sc::cli::RunSetup flipped = setup({"--mount", "180,0,0"}, window);
+  CHECK(flipped.ground.height_map.sensor_height == doctest::Approx(1.8f).epsilon(0.02));
+  // Poses that turn the vehicle upside down (the mount level): the same.
+  const streamclust::test::TempDir tmp("cli", "ground_from_poses");
+  const fs::path tum = tmp.dir / "upside_down.tum";
+  {
+    std::ofstream out(tum);
+    std::vector<sc::io::TumRecord> poses;
+    for (double t = -0.1; t <= 0.6; t += 0.1) {
+      sc::io::TumRecord r;
+      r.t = t;
+      r.qx = 1.0;  // roll 180 deg
+      r.qw = 0.0;
+      poses.push_back(r);
+    }
+    sc::io::write_tum(out, poses);
+  }
+  const sc::cli::RunSetup posed = setup({"--poses", tum.string()}, window);
+  CHECK(err.str().find("orientation from the poses") != std::string::npos);
+  CHECK(posed.ground.height_map.sensor_height == doctest::Approx(1.8f).epsilon(0.02));
+  // Too little below the sensor for a layer: said, the height unknown. (The
+  // plane search in the sensor frame takes the ceiling's points for a floor
+  // under an upside-down sensor; the mount given says otherwise.)
+  std::vector<Eigen::Vector3f> above;
+  for (const Eigen::Vector3f& p : window) {
+    if (p.z() > 0.0f) above.push_back(p);
+  }
+  std::vector<Eigen::Vector3f> sparse(above.begin(), above.begin() + 40);
+  times.resize(sparse.size());
+  const sc::cli::RunSetup lost = setup({"--mount", "0,0,0"}, sparse);
+  CHECK(err.str().find("no ground in the first window, neither a plane nor a dense layer below the sensor within "
+                       "12 m (orientation from the mount): its height unknown (give --sensor-height)") !=
+        std::string::npos);
+  CHECK(lost.ground.height_map.sensor_height == 0.0f);
+  CHECK_FALSE(lost.estimated_height);
 }
 
 TEST_CASE("cluster --poses with a moving, turning sensor: verified; points outside the poses' span are no_pose") {

@@ -231,8 +231,9 @@ class LiveRun {
         const bool window_complete = options_.window_is_count ? t_.size() > options_.window_count
                                                               : t_.back() - t_.front() >= options_.window_seconds;
         if (!window_complete && !ended && t_.size() < 400000) return;
-        const std::vector<Eigen::Vector3f> first = first_window_of(options_, buffers(base_, stored_end()));
-        resolve_setup(options_, &first);
+        std::vector<double> times;
+        const std::vector<Eigen::Vector3f> first = first_window_of(options_, buffers(base_, stored_end()), &times);
+        resolve_setup(options_, &first, &times);
       } else {
         resolve_setup(options_, nullptr);
       }

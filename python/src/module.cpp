@@ -149,8 +149,9 @@ class Clusterer {
       resolve_setup(o, nullptr);
     } else {
       const PointBuffers first = point_buffers(first_xyz, first_t, py::none(), "first_window xyz", "first_window t");
-      const std::vector<Eigen::Vector3f> window = first_window_of(o, first);
-      resolve_setup(o, &window);
+      std::vector<double> times;
+      const std::vector<Eigen::Vector3f> window = first_window_of(o, first, &times);
+      resolve_setup(o, &window, &times);
     }
     return make_erased_clusterer(o);
   }
@@ -176,8 +177,9 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   py::list out;
   py::gil_scoped_release release;
   if (needs_first_window(o)) {
-    const std::vector<Eigen::Vector3f> first = first_window_of(o, points);
-    resolve_setup(o, &first);
+    std::vector<double> times;
+    const std::vector<Eigen::Vector3f> first = first_window_of(o, points, &times);
+    resolve_setup(o, &first, &times);
   } else {
     resolve_setup(o, nullptr);
   }

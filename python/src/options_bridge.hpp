@@ -50,9 +50,10 @@ inline bool needs_first_window(const cli::ClusterOptions& o) {
 
 /// The first window of a stream given as arrays, as the CLI's
 /// first_window_points reads it from a file: finite points of the first T_B
-/// seconds (or the first window_count points), at most `max_points`.
-/// O(window).
+/// seconds (or the first window_count points), at most `max_points`; their
+/// times [s] in `times` when given. O(window).
 inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o, const PointBuffers& points,
+                                                    std::vector<double>* times = nullptr,
                                                     std::size_t max_points = 400000) {
   std::vector<Eigen::Vector3f> window;
   bool started = false;
@@ -68,6 +69,7 @@ inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o
     if (o.window_is_count ? seen >= o.window_count : p.t - t0 >= o.window_seconds) break;
     ++seen;
     window.emplace_back(p.x, p.y, p.z);
+    if (times) times->push_back(p.t);
   }
   return window;
 }
@@ -76,7 +78,8 @@ inline std::vector<Eigen::Vector3f> first_window_of(const cli::ClusterOptions& o
 /// estimate made on `first_window` when given. Without one, options that
 /// need an estimate are a UsageError naming what to give instead. Poses
 /// files that cannot be read throw io::InputError.
-inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vector3f>* first_window) {
+inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vector3f>* first_window,
+                          const std::vector<double>* first_window_times = nullptr) {
   if (o.mode != cli::Mode::continuous) return;  // the CLI resolves a setup for the continuous engine only
   if (!first_window && needs_ground_window(o)) {
     throw cli::UsageError("--ground: the mount and sensor height are estimated from the stream's first window, "
@@ -91,7 +94,7 @@ inline void resolve_setup(cli::ClusterOptions& o, const std::vector<Eigen::Vecto
   o.quiet = true;
   std::ostringstream notes;  // the CLI's notes on stderr; not shown
   try {
-    o.setup = std::make_shared<const cli::RunSetup>(cli::make_run_setup(o, false, notes, first_window));
+    o.setup = std::make_shared<const cli::RunSetup>(cli::make_run_setup(o, false, notes, first_window, first_window_times));
   } catch (const std::invalid_argument& e) {
     throw cli::UsageError(e.what());
   }

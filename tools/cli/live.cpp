@@ -166,8 +166,9 @@ std::optional<ImuGravity> prepare_live_cluster(ClusterOptions& c, LiveFeed& feed
   std::optional<ImuGravity> gravity;
   if (c.mode == Mode::continuous) {
     std::vector<Eigen::Vector3f> first_window;
+    std::vector<double> first_window_times;
     const bool needs_first_window = c.ground || linkage_fits_sensor(c);
-    if (needs_first_window) first_window = first_window_points(c);
+    if (needs_first_window) first_window = first_window_points(c, &first_window_times);
     std::vector<std::array<float, 3>> accelerations;
     for (const live::LivoxImuSample& s : feed.take_imu()) accelerations.push_back(s.acceleration);
     if (c.ground && !c.mount_deg && c.poses_path.empty() && !c.trajectory) {
@@ -184,7 +185,8 @@ std::optional<ImuGravity> prepare_live_cluster(ClusterOptions& c, LiveFeed& feed
     }
     try {
       c.setup = std::make_shared<const RunSetup>(make_run_setup(c, !c.report_path.empty(), err,
-                                                                needs_first_window ? &first_window : nullptr));
+                                                                needs_first_window ? &first_window : nullptr,
+                                                                &first_window_times));
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }

@@ -14,6 +14,7 @@
 #include <streamclust/ground/runtime_ground.hpp>
 #include <streamclust/io/reader.hpp>
 #include <streamclust/motion/gravity_estimate.hpp>
+#include <streamclust/motion/ground_height.hpp>
 #include <streamclust/motion/runtime_motion.hpp>
 #include <streamclust/objects_presets.hpp>
 #include <streamclust/sensor_fit.hpp>
@@ -36,6 +37,8 @@ struct RunSetup {
   /// the options' bounds are the sensor's.
   std::optional<SphericalProjection::Params> world_fov;
   std::optional<GroundEstimate> estimate;  ///< the first window's ground, when one was estimated
+  /// The height from the lowest dense layer (orientation known, no plane found).
+  std::optional<GroundHeightEstimate> height_estimate;
   bool estimated_mount = false;            ///< the mount is the estimate's
   bool estimated_height = false;           ///< the sensor height is the estimate's
   /// What the linkage is fitted to (make_params calls its fit_to_sensor):
@@ -53,8 +56,9 @@ inline bool linkage_fits_sensor(const ClusterOptions& o) {
 
 /// Sensor-frame positions of the first window of `o.input`: the records of
 /// the first T_B seconds (or the first --window-count records), at most
-/// `max_points` finite ones. O(window).
-inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o, std::size_t max_points = 400000) {
+/// `max_points` finite ones; their times [s] in `times` when given. O(window).
+inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o, std::vector<double>* times = nullptr,
+                                                        std::size_t max_points = 400000) {
   std::unique_ptr<io::PointReader> reader = o.open_input ? o.open_input() : io::open_reader(o.input, o.read);
   std::vector<Eigen::Vector3f> points;
   std::vector<io::Record> chunk;
@@ -69,6 +73,7 @@ inline std::vector<Eigen::Vector3f> first_window_points(const ClusterOptions& o,
       if (o.window_is_count ? seen >= o.window_count : r.t - *t0 >= o.window_seconds) return points;
       ++seen;
       points.emplace_back(r.x, r.y, r.z);
+      if (times) times->push_back(r.t);
       if (points.size() >= max_points) return points;
     }
   }
@@ -91,6 +96,50 @@ inline std::shared_ptr<const RunSetup> sensor_fit_setup(const ClusterOptions& o,
   return std::make_shared<const RunSetup>(std::move(s));
 }
 
+/// The first window's points in world orientation, each minus the sensor's
+/// position (estimate_ground_height's rays): turned by the mount and, with a
+/// trajectory, by the vehicle's attitude at the point's time (points outside
+/// the poses' span, or without times, are left out). O(window).
+inline std::vector<Eigen::Vector3f> world_rays(const std::vector<Eigen::Vector3f>& points,
+                                               const std::vector<double>* times, const PosedMotion::Params& motion) {
+  std::vector<Eigen::Vector3f> rays;
+  const Eigen::Matrix3f mount = motion.mount.rotation.cast<float>().toRotationMatrix();
+  if (!motion.trajectory) {
+    rays.reserve(points.size());
+    for (const Eigen::Vector3f& p : points) rays.push_back(mount * p);
+    return rays;
+  }
+  if (!times || times->size() != points.size()) return rays;
+  PoseTrajectory::Cursor cursor;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::optional<Pose> pose = motion.trajectory->at((*times)[i], cursor);
+    if (pose) rays.push_back(pose->rotation.cast<float>() * (mount * points[i]));
+  }
+  return rays;
+}
+
+/// Up (against gravity) in the sensor frame at the first window's start:
+/// the mount's, turned by the vehicle's attitude at the first point's time
+/// when there are poses (the mount's alone when that time has no pose).
+inline Eigen::Vector3d window_up(const std::vector<double>* times, const PosedMotion::Params& motion) {
+  Eigen::Quaterniond world_from_sensor = motion.mount.rotation;
+  if (motion.trajectory && times && !times->empty()) {
+    PoseTrajectory::Cursor cursor;
+    if (const std::optional<Pose> pose = motion.trajectory->at(times->front(), cursor)) {
+      world_from_sensor = pose->rotation * motion.mount.rotation;
+    }
+  }
+  return world_from_sensor.conjugate() * Eigen::Vector3d::UnitZ();
+}
+
+/// True when the ground estimate's up (from its mount) lies within 15 deg of
+/// `up`, the known orientation's (a vehicle's roll and pitch over a window
+/// stay well inside it).
+inline bool agrees_with_orientation(const GroundEstimate& estimate, const Eigen::Vector3d& up) {
+  const Eigen::Vector3d estimated_up = estimate.mount.rotation.conjugate() * Eigen::Vector3d::UnitZ();
+  return estimated_up.normalized().dot(up.normalized()) >= std::cos(15.0 * 3.14159265358979323846 / 180.0);
+}
+
 /// An angle [deg] for a "%.1f" field: a hair below zero prints 0.0, not -0.0.
 inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : deg; }
 
@@ -105,9 +154,14 @@ inline double printable_deg(double deg) { return std::abs(deg) < 0.05 ? 0.0 : de
 /// report). A linkage fitted to the sensor gets the first window and the
 /// resolved mount and poses (`sensor_fit`). `first_window`, when given,
 /// replaces the first window read from `o.input` (a caller that holds the
-/// stream in memory). Throws UsageError for a value a policy rejects.
+/// stream in memory), `first_window_times` its points' times. With the
+/// orientation known (--mount or --poses) and no ground plane found, or two
+/// that nothing but gravity tells apart, the height is the lowest dense
+/// horizontal layer under the sensor (estimate_ground_height), noted, or
+/// noted as unknown. Throws UsageError for a value a policy rejects.
 inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream& err,
-                               const std::vector<Eigen::Vector3f>* first_window = nullptr) {
+                               const std::vector<Eigen::Vector3f>* first_window = nullptr,
+                               const std::vector<double>* first_window_times = nullptr) {
   RunSetup s;
   s.motion.enabled = has_motion_options(o);
   s.motion.posed = load_motion_params(o);
@@ -122,14 +176,44 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
   g.detect_walls = o.walls;
   if (o.sensor_height) g.sensor_height = *o.sensor_height;
   std::optional<std::vector<Eigen::Vector3f>> read_window;  // the first window, read once when needed
+  std::vector<double> read_times;
   const auto window = [&]() -> const std::vector<Eigen::Vector3f>& {
     if (first_window) return *first_window;
-    if (!read_window) read_window = first_window_points(o);
+    if (!read_window) read_window = first_window_points(o, &read_times);
     return *read_window;
   };
+  const bool orientation_known = s.motion.enabled;  // --mount or --poses
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
     s.estimate = estimate_ground(window());
-    if (s.estimate && s.estimate->status == GroundStatus::ambiguous) {
+    bool plane_found = s.estimate && s.estimate->status != GroundStatus::ambiguous;
+    if (plane_found && orientation_known &&
+        !agrees_with_orientation(*s.estimate, window_up(first_window ? first_window_times : &read_times, s.motion.posed))) {
+      plane_found = false;  // a plane the known orientation puts elsewhere than below (a ceiling taken for a floor)
+    }
+    if (orientation_known && !plane_found) {
+      // Gravity is known: only the height is, the lowest dense layer under the sensor.
+      const std::vector<Eigen::Vector3f> rays =
+          world_rays(window(), first_window ? first_window_times : &read_times, s.motion.posed);
+      s.height_estimate = estimate_ground_height(rays);
+      if (s.height_estimate) {
+        g.sensor_height = static_cast<float>(s.height_estimate->height);
+        s.estimated_height = true;
+      }
+      if (!o.quiet) {
+        char line[320];
+        const char* from = s.motion.posed.trajectory ? "the poses" : "the mount";
+        if (s.height_estimate) {
+          std::snprintf(line, sizeof line, "streamclust: ground below the sensor in the first window: %.2f m "
+                        "(no ground plane in the sensor frame; orientation from %s, the lowest dense layer)\n",
+                        s.height_estimate->height, from);
+        } else {
+          std::snprintf(line, sizeof line, "streamclust: no ground in the first window, neither a plane nor a "
+                        "dense layer below the sensor within %.0f m (orientation from %s): its height unknown "
+                        "(give --sensor-height)\n", GroundHeightParams{}.max_distance, from);
+        }
+        err << line;
+      }
+    } else if (s.estimate && s.estimate->status == GroundStatus::ambiguous) {
       if (!o.quiet) {
         char planes[96];
         if (s.estimate->opposite_distance > 0.0) {
