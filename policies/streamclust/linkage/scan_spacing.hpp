@@ -227,21 +227,9 @@ class ScanSpacing {
         for (int c = 0; c < cols_; ++c) {
           const std::size_t k = static_cast<std::size_t>(r) * cols_ + c;
           if (filled[k]) continue;
-          double sum = 0.0;
-          int n = 0;
-          for (int dr = -1; dr <= 1; ++dr) {
-            const int rr = r + dr;
-            if (rr < 0 || rr >= rows_) continue;
-            for (int dc = -1; dc <= 1; ++dc) {
-              const std::size_t kk = static_cast<std::size_t>(rr) * cols_ + wrap(c + dc);
-              if (filled[kk]) {
-                sum += value[kk];
-                ++n;
-              }
-            }
-          }
+          const auto [mean, n] = neighbourhood_mean(value, r, c, [&](std::size_t kk) { return filled[kk] != 0; });
           if (n > 0) {
-            next_value[k] = static_cast<float>(sum / n);
+            next_value[k] = static_cast<float>(mean);
             next[k] = 1;
           } else {
             any_empty = true;
@@ -259,20 +247,32 @@ class ScanSpacing {
     std::vector<float> out(value.size());
     for (int r = 0; r < rows_; ++r) {
       for (int c = 0; c < cols_; ++c) {
-        double sum = 0.0;
-        int n = 0;
-        for (int dr = -1; dr <= 1; ++dr) {
-          const int rr = r + dr;
-          if (rr < 0 || rr >= rows_) continue;
-          for (int dc = -1; dc <= 1; ++dc) {
-            sum += value[static_cast<std::size_t>(rr) * cols_ + wrap(c + dc)];
-            ++n;
-          }
-        }
-        out[static_cast<std::size_t>(r) * cols_ + c] = static_cast<float>(sum / n);
+        const double mean = neighbourhood_mean(value, r, c, [](std::size_t) { return true; }).first;
+        out[static_cast<std::size_t>(r) * cols_ + c] = static_cast<float>(mean);
       }
     }
     return out;
+  }
+
+  /// The mean of the values of the cells around (r, c), itself included,
+  /// that `use(index)` accepts (azimuth wraps; elevation edges have fewer
+  /// rows), and how many there were (0: mean 0). O(1).
+  template <class Use>
+  std::pair<double, int> neighbourhood_mean(const std::vector<float>& value, int r, int c, Use&& use) const {
+    double sum = 0.0;
+    int n = 0;
+    for (int dr = -1; dr <= 1; ++dr) {
+      const int rr = r + dr;
+      if (rr < 0 || rr >= rows_) continue;
+      for (int dc = -1; dc <= 1; ++dc) {
+        const std::size_t k = static_cast<std::size_t>(rr) * cols_ + wrap(c + dc);
+        if (use(k)) {
+          sum += value[k];
+          ++n;
+        }
+      }
+    }
+    return {n > 0 ? sum / n : 0.0, n};
   }
 
   static void check(const Params& p) {
