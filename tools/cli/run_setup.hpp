@@ -182,18 +182,22 @@ inline RunSetup make_run_setup(const ClusterOptions& o, bool timed, std::ostream
     if (!read_window) read_window = first_window_points(o, &read_times);
     return *read_window;
   };
+  const auto window_times = [&]() -> const std::vector<double>* {  // the first window's point times
+    window();
+    return first_window ? first_window_times : &read_times;
+  };
   const bool orientation_known = s.motion.enabled;  // --mount or --poses
   if (o.ground && (!s.motion.enabled || !o.sensor_height)) {
     s.estimate = estimate_ground(window());
     bool plane_found = s.estimate && s.estimate->status != GroundStatus::ambiguous;
     if (plane_found && orientation_known &&
-        !agrees_with_orientation(*s.estimate, window_up(first_window ? first_window_times : &read_times, s.motion.posed))) {
+        !agrees_with_orientation(*s.estimate, window_up(window_times(), s.motion.posed))) {
       plane_found = false;  // a plane the known orientation puts elsewhere than below (a ceiling taken for a floor)
     }
     if (orientation_known && !plane_found) {
       // Gravity is known: only the height is, the lowest dense layer under the sensor.
       const std::vector<Eigen::Vector3f> rays =
-          world_rays(window(), first_window ? first_window_times : &read_times, s.motion.posed);
+          world_rays(window(), window_times(), s.motion.posed);
       s.height_estimate = estimate_ground_height(rays);
       if (s.height_estimate) {
         g.sensor_height = static_cast<float>(s.height_estimate->height);
