@@ -152,7 +152,7 @@ function(streamclust_add_tool target)
     set(_ros2_sources "${_src}/cli/ros2_node.cpp" "${_src}/cli/replay_ros2.cpp")
   endif()
   add_library(${ARG_LIBRARY} STATIC
-    "${_src}/cli/cluster.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
+    "${_src}/cli/cluster.cpp" "${_src}/cli/cluster_outputs.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
     "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/main.cpp" "${_src}/cli/replay.cpp"
     ${_ros2_sources} ${_units})
   if(TARGET streamclust::ros2)

@@ -20,7 +20,7 @@ TEST_CASE("UprightLinkage keeps the linkage laws") {
   kit::LinkageLawOptions<UprightLinkage> options;
   options.params = {{}, {0.1f, 0.0f, 1.0f}, {0.3f, 0.02f, 5.0f}};
   options.invalid_params = {{0.0f, 0.05f, 2.0f}, {0.2f, -0.1f, 2.0f}, {0.2f, 0.05f, 0.5f}};
-  // 5 m away the radius is 0.25 m: 0.45 m apart vertically links, horizontally does not.
+  // 5 m away the radius is 0.4 m (the floor): 0.45 m apart vertically links, horizontally does not.
   options.must_link = {{at({5.0f, 0.0f, 0.0f}), at({5.0f, 0.0f, 0.45f})}};
   options.must_split = {{at({5.0f, 0.0f, 0.0f}), at({5.0f, 0.45f, 0.0f})}};
   STREAMCLUST_CHECK_LAW(kit::check_linkage<UprightLinkage>(options));

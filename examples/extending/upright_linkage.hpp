@@ -22,8 +22,8 @@ namespace upright {
 class UprightLinkage {
  public:
   struct Params {
-    float min_distance = 0.2f;   ///< [m] radius near the sensor, finite, > 0
-    float range_factor = 0.05f;  ///< [m per m of range] growth of the radius, in [0, 1]
+    float min_distance = 0.4f;   ///< [m] radius near the sensor, finite, > 0 (the objects preset's)
+    float range_factor = 0.03f;  ///< [m per m of range] growth of the radius, in [0, 1] (the objects preset's)
     float stretch = 2.0f;        ///< vertical reach / horizontal reach, in [1, 10]
   };
 

@@ -5,12 +5,13 @@
 /// The driver of `streamclust cluster`, a template over the compiled
 /// configuration: reads the input in chunks, offers the records to the
 /// clusterer (StreamClusterer, or FrameClusterer in frame mode), retrieves
-/// on the RetrievalSchedule and writes the outputs. Included only by the
+/// on the RetrievalSchedule and hands each labelled window to the outputs
+/// (cli/cluster_outputs.hpp, compiled once). Included only by the
 /// translation units that instantiate it (tools/cli/cluster_*.cpp).
 
 #include "cli/cluster.hpp"
+#include "cli/cluster_outputs.hpp"
 #include "cli/engine_config.hpp"
-#include "cli/mcap_output.hpp"
 #include "cli/memory_context.hpp"
 #include "cli/options.hpp"
 #include "cli/report.hpp"
@@ -18,10 +19,8 @@
 
 #include <streamclust/batch_clusterer.hpp>
 #include <streamclust/frame_clusterer.hpp>
-#include <streamclust/io/birds_eye.hpp>
-#include <streamclust/io/png_writer.hpp>
-#include <streamclust/io/reader.hpp>
-#include <streamclust/io/writers.hpp>
+#include <streamclust/io/error.hpp>
+#include <streamclust/io/point_reader.hpp>
 #include <streamclust/partition_compare.hpp>
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/stream_clusterer.hpp>
@@ -30,8 +29,6 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -41,54 +38,8 @@
 #include <type_traits>
 #include <vector>
 
-#include <unistd.h>
 
 namespace streamclust::cli {
-
-/// Which cycles go to the labels file and the point clouds.
-class CycleSelection {
- public:
-  explicit CycleSelection(const ClusterOptions& o) : all_(o.all_cycles), list_(o.cycle_list) {
-    std::sort(list_.begin(), list_.end());
-  }
-  bool last_only() const { return !all_ && list_.empty(); }
-  bool selected(std::uint64_t cycle) const {
-    return all_ || std::binary_search(list_.begin(), list_.end(), cycle);
-  }
-
- private:
-  bool all_;
-  std::vector<std::uint64_t> list_;
-};
-
-/// One labelled window, kept for the outputs of the selected cycles.
-struct LabelledWindow {
-  std::uint64_t cycle = 0;
-  double time = 0.0;
-  std::vector<std::uint64_t> index;  ///< stream index per row, ascending
-  std::vector<std::int64_t> label;   ///< -1: in the window but unlabelled
-  std::vector<io::Record> points;    ///< clustered points (for --ply/--pcd)
-  std::vector<std::int64_t> point_labels;
-};
-
-inline bool stderr_is_terminal() { return ::isatty(2) == 1; }
-
-/// `path` with "_NNNNNN" (the cycle, six digits at least) before its extension.
-inline std::string numbered_path(const std::string& path, std::uint64_t cycle) {
-  const std::filesystem::path p(path);
-  std::string number = std::to_string(cycle);
-  if (number.size() < 6) number.insert(0, 6 - number.size(), '0');
-  return (p.parent_path() / (p.stem().string() + "_" + number + p.extension().string())).string();
-}
-
-/// `--png`: the bird's-eye picture of `window` (io/birds_eye.hpp).
-inline void write_picture(const std::string& path, const LabelledWindow& window) {
-  try {
-    io::write_png(path, io::render_birds_eye(window.points, window.point_labels));
-  } catch (const std::runtime_error&) {
-    throw UsageError("--png: cannot write '" + path + "'");
-  }
-}
 
 /// Accumulates wall time [us] over the clusterer's calls of one cycle.
 class CycleClock {
@@ -126,14 +77,8 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   }
 
   stage = Stage::reading;
-  std::unique_ptr<io::PointReader> reader = o.open_input ? o.open_input() : io::open_reader(o.input, o.read);
-  const CycleSelection selection(o);
-  std::ofstream labels_file;
-  if (!o.labels_path.empty()) {
-    labels_file.open(o.labels_path);
-    if (!labels_file) throw UsageError("--labels: cannot write '" + o.labels_path + "'");
-    labels_file << "cycle,time,index,label\n";
-  }
+  std::unique_ptr<io::PointReader> reader = open_cluster_input(o);
+  ClusterOutputs outputs(o);
   Report report;
   report.cycles.keep_last(o.report_cycles_kept);
   report.input = o.input;
@@ -157,8 +102,6 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   RejectionCounts rejected_by_reason{};
   std::deque<std::uint64_t> rejected;  // stream indices of rejected records, ascending
   LabelledWindow window_out;  // the current cycle
-  LabelledWindow kept;        // the last selected cycle, for --ply/--pcd (and --labels with --cycles last)
-  bool have_selected = false;
   std::uint64_t records = 0;
   std::uint64_t cycle = 0;
   double first_time = 0.0, last_time = 0.0;
@@ -188,14 +131,6 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
                            !o.mcap_path.empty() || !o.png_path.empty() || o.verify || o.cycle_windows;
   const std::vector<io::Record> no_points;
   const std::vector<std::int64_t> no_labels;
-  std::optional<McapOutput> mcap;  // every cycle
-  if (!o.mcap_path.empty()) {
-    try {
-      mcap.emplace(o.mcap_path);
-    } catch (const std::runtime_error&) {
-      throw UsageError("--mcap: cannot write '" + o.mcap_path + "'");
-    }
-  }
 
   // Retrieves at `cycle_time`, then writes/keeps the outputs of a selected cycle.
   auto run_cycle = [&](double cycle_time) -> int {
@@ -342,25 +277,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
         o.on_cycle(c, no_points, no_labels);
       }
     }
-    if (mcap) {
-      stage = Stage::writing;
-      mcap->write(window_out.points, window_out.point_labels, cycle_time, reader->time_origin());
-      stage = Stage::clustering;
-    }
-    if (o.png_every > 0 && cycle % o.png_every == 0) {
-      stage = Stage::writing;
-      write_picture(numbered_path(o.png_path, cycle), window_out);
-      stage = Stage::clustering;
-    }
-    if (selection.selected(cycle) || selection.last_only()) {
-      have_selected = true;
-      if (labels_file.is_open() && !selection.last_only()) {
-        stage = Stage::writing;
-        write_label_rows(labels_file, window_out, reader->time_origin());
-        stage = Stage::clustering;
-      }
-      kept = window_out;
-    }
+    outputs.on_window(window_out, reader->time_origin(), stage);
     ++cycle;
     return kOk;
   };
@@ -449,26 +366,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   report.records = records;
   report.time_origin = reader->time_origin();  // found with the first timed record unless the options fix it
   report.rejections = rejected_by_reason;
-  stage = Stage::writing;
-  if (labels_file.is_open() && selection.last_only()) write_label_rows(labels_file, kept, report.time_origin);
-  if (labels_file.is_open()) {
-    labels_file.flush();
-    if (!labels_file) throw UsageError("--labels: writing '" + o.labels_path + "' failed");
-  }
-  if (!o.report_path.empty()) write_report_file(o.report_path, report, o.report_extra);
-  if (have_selected && !o.ply_path.empty())
-    io::write_ply(o.ply_path, kept.points, kept.point_labels, true, report.time_origin);
-  if (have_selected && !o.pcd_path.empty())
-    io::write_pcd(o.pcd_path, kept.points, kept.point_labels, "binary", report.time_origin);
-  if (have_selected && !o.png_path.empty() && o.png_every == 0) write_picture(o.png_path, kept);
-  if (mcap) {
-    try {
-      mcap->close();
-    } catch (const std::runtime_error&) {
-      throw UsageError("--mcap: writing '" + o.mcap_path + "' failed");
-    }
-  }
-  if (!o.quiet) out << summary_line(report) << "\n";
+  outputs.finish(report, reader->time_origin(), out, stage);
   return kOk;
 }
 
