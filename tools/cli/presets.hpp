@@ -34,8 +34,8 @@ inline std::vector<std::pair<std::string_view, std::string_view>> preset_catalog
       {"carc-mid360", "C-ARC for the Livox Mid-360 (carc_mid360_params): theta 30 deg, its field of view"},
       {"carc-avia", "C-ARC for the Livox Avia (carc_avia_params): theta 80 deg, its field of view"},
       {"baseline", "the frame-based range-image baseline (baseline_params): overwrite grid, frame mode, w 3"},
-      {"objects", "objects of any sensor (objects_params, ObjectsConfig): --ground, range-adaptive linkage, "
-                  "capped grid, forest, T_B 0.5 s, full sphere"},
+      {"objects", "objects of any sensor (objects_params, ObjectsConfig): --ground, range-adaptive linkage "
+                  "max(0.4 m, 0.03 x range), capped grid, forest, T_B 0.5 s, full sphere"},
       {"objects-mid360", "objects with the Livox Mid-360 (objects_mid360_params): as objects, its field of view"},
       {"objects-avia", "objects with the Livox Avia (objects_avia_params): as objects, its field of view"},
   };
