@@ -93,6 +93,26 @@ class BruteGround {
         }
       }
     }
+    if (bound && p_.surface_evidence) {
+      // Ground needs a solid surface: in the 3 x 3 cells, else in the nearest
+      // ring holding one (whose layers bound it too).
+      bool evidence = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) evidence = evidence || (lowest(ix + dx, iy + dy) && solid(ix + dx, iy + dy));
+      }
+      for (int ring = 2; ring <= rings && !evidence; ++ring) {
+        for (int dy = -ring; dy <= ring; ++dy) {
+          for (int dx = -ring; dx <= ring; ++dx) {
+            if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
+            const std::optional<float> layer = lowest(ix + dx, iy + dy);
+            if (!layer || !solid(ix + dx, iy + dy)) continue;
+            evidence = true;
+            bound = std::min(*bound, *layer + rise * static_cast<float>(ring));
+          }
+        }
+      }
+      if (!evidence) return sc::SurfaceClass::object;
+    }
     if (!bound) return sc::SurfaceClass::object;
     if (p_.sensor_height > 0.0f) {
       const float sensor_z = world.z() - ray.z();
@@ -121,8 +141,8 @@ class BruteGround {
     }
     return t;
   }
-  /// The step rule's peak test on the lowest supported bin.
-  bool surface(int ix, int iy) const {
+  /// Points in the lowest supported bin and the one above, and in the 10 bins above them.
+  std::pair<double, double> peak_and_above(int ix, int iy) const {
     const auto all = bins(ix, iy);
     const auto b = lowest_brute(all, p_.support);
     auto count = [&all](std::int32_t bin) {
@@ -131,7 +151,17 @@ class BruteGround {
     };
     double above = 0.0;
     for (std::int32_t i = *b + 2; i < *b + 12; ++i) above += count(i);
-    return (count(*b) + count(*b + 1)) / 2.0 >= p_.step_peak_ratio * above / 10.0;
+    return {count(*b) + count(*b + 1), above};
+  }
+  /// The step rule's peak test on the lowest supported bin.
+  bool surface(int ix, int iy) const {
+    const auto [peak, above] = peak_and_above(ix, iy);
+    return peak / 2.0 >= p_.step_peak_ratio * above / 10.0;
+  }
+  /// The surface evidence rule: a surface with enough points, more than above it.
+  bool solid(int ix, int iy) const {
+    const auto [peak, above] = peak_and_above(ix, iy);
+    return surface(ix, iy) && peak >= p_.surface_min_points && peak > above;
   }
   /// Height the lowest ray reaches at horizontal distance d [m].
   float reach(float sensor_z, float d) const {
@@ -390,6 +420,8 @@ TEST_CASE("HeightMapGround decides as its rule computed from the live points (a 
     p.lowest_ray_elevation_deg = round % 4 == 1 ? -7.0f : -90.0f;
     p.step_height = round % 4 == 3 ? 0.0f : 0.2f;
     p.step_peak_ratio = round % 3 == 1 ? 0.5f : 2.0f;
+    p.surface_evidence = round % 5 != 2;
+    p.surface_min_points = 1 + static_cast<std::uint32_t>(round % 3);  // a sparse window: 300 points on 16 m^2
     p.detect_walls = false;  // the ground rule alone (walls: the test cases below)
     // Even rounds: the floor has a kerb 0.12 m high at x = 0.3.
     const float kerb = round % 2 == 0 ? 0.12f : 0.0f;
@@ -543,6 +575,68 @@ TEST_CASE("HeightMapGround where a level sensor cannot see level ground: a desk 
   CHECK(ramp > 0.85);
 }
 
+TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out of view keeps its bottom, sparse ground stays ground") {
+  // 33 m out, ground 1.5 m below the sensor: a box's face 1 m wide and 1.6 m
+  // tall, 200 points in the window (3 per 5 cm bin of a cell); and sparse
+  // ground, 6 points per 0.5 m cell, on its own or around the box.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  struct Outcome {
+    double ground_as_ground, box_as_ground, box_bottom_as_ground;
+  };
+  auto run = [&](bool evidence, bool ground_in_view) {
+    std::vector<Eigen::Vector3f> points;
+    std::vector<int> kind;  // 0 ground, 1 box
+    for (int i = 0; i < 200; ++i) {
+      points.emplace_back(33.0f, u(rng) - 0.5f, -1.5f + 1.6f * u(rng));
+      kind.push_back(1);
+    }
+    if (ground_in_view) {
+      for (int i = 0; i < 6 * 144; ++i) {  // [30, 36] x [-3, 3] m: 144 cells
+        const float x = 30.0f + 6.0f * u(rng), y = 6.0f * u(rng) - 3.0f;
+        if (x > 32.9f && x < 33.1f && std::fabs(y) < 0.5f) continue;  // under the box
+        points.emplace_back(x, y, -1.5f + 0.02f * (u(rng) - 0.5f));
+        kind.push_back(0);
+      }
+    }
+    std::vector<std::size_t> order(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    sc::HeightMapGround::Params p;
+    p.surface_evidence = evidence;
+    sc::HeightMapGround model(p);
+    // Measured on the second half (the first builds the map).
+    std::size_t counts[2] = {0, 0}, as_ground[2] = {0, 0}, bottom = 0, bottom_as_ground = 0;
+    for (std::size_t n = 0; n < order.size(); ++n) {
+      const std::size_t i = order[n];
+      const bool ground = model.classify(points[i], points[i]) == sc::SurfaceClass::ground;
+      if (2 * n < order.size()) continue;
+      ++counts[kind[i]];
+      as_ground[kind[i]] += ground;
+      if (kind[i] == 1 && points[i].z() < -1.4f) {
+        ++bottom;
+        bottom_as_ground += ground;
+      }
+    }
+    return Outcome{counts[0] ? static_cast<double>(as_ground[0]) / static_cast<double>(counts[0]) : 1.0,
+                   static_cast<double>(as_ground[1]) / static_cast<double>(counts[1]),
+                   static_cast<double>(bottom_as_ground) / static_cast<double>(bottom)};
+  };
+  const Outcome hidden_off = run(false, false), hidden_on = run(true, false);
+  const Outcome shown_off = run(false, true), shown_on = run(true, true);
+  INFO("foot out of view: box bottom 0.1 m as ground " << hidden_off.box_bottom_as_ground << " without evidence, "
+       << hidden_on.box_bottom_as_ground << " with; ground in view: ground as ground " << shown_off.ground_as_ground
+       << " / " << shown_on.ground_as_ground << ", box as ground " << shown_off.box_as_ground << " / "
+       << shown_on.box_as_ground);
+  // Without evidence the box's own bottom bounds the ground under it.
+  CHECK(hidden_off.box_bottom_as_ground > 0.3);
+  CHECK(hidden_on.box_as_ground == 0.0);
+  // Sparse ground in view is ground either way, and the box above its foot an object.
+  CHECK(shown_on.ground_as_ground > 0.9);
+  CHECK(shown_on.ground_as_ground > shown_off.ground_as_ground - 0.05);
+  CHECK(shown_on.box_as_ground < 0.06);
+}
+
 TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not") {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -600,6 +694,7 @@ TEST_CASE("HeightMapGround rejects parameters outside their ranges, naming them"
   CHECK(message(bad([](auto& p) { p.ground_tolerance = -0.1f; })).find("ground_tolerance") != std::string::npos);
   CHECK(message(bad([](auto& p) { p.max_slope_deg = 80.0f; })).find("max_slope_deg = 80") != std::string::npos);
   CHECK(message(bad([](auto& p) { p.support = 0; })).find("support") != std::string::npos);
+  CHECK(message(bad([](auto& p) { p.surface_min_points = 0; })).find("surface_min_points = 0") != std::string::npos);
   CHECK(message(bad([](auto& p) { p.ceiling_min_agreement = 0.0f; })).find("ceiling_min_agreement") !=
         std::string::npos);
   CHECK(message(bad([](auto& p) { p.walls.max_rms = 0.0f; })).find("WallModel: max_rms = 0") != std::string::npos);

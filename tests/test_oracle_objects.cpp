@@ -98,6 +98,8 @@ sc::HeightMapGround::Params random_ground(std::mt19937_64& rng) {
   g.detect_ceiling = rng() % 2 == 0;
   g.ceiling_clearance = 0.2f * static_cast<float>(rng() % 4);
   g.detect_walls = rng() % 4 != 0;
+  g.surface_evidence = rng() % 3 != 0;
+  g.surface_min_points = 1 + static_cast<std::uint32_t>(rng() % 5);
   return g;
 }
 

@@ -60,7 +60,15 @@ namespace streamclust {
 /// G that is a surface (peaked like a ceiling, `step_peak_ratio`: a kerb's
 /// face or a step's riser joins the ground, an object's bottom does not);
 /// with no layer within reach it is an object (a cold start costs
-/// coverage of the ground, never objects). Where the lowest ray passes above
+/// coverage of the ground, never objects). With `surface_evidence`, ground
+/// also needs a solid surface within reach: a lowest layer in the 3 x 3
+/// cells that is a surface (peaked, as for a step) holding
+/// `surface_min_points` in its two bins and more than the 0.5 m above them,
+/// else the nearest ring out to `search_radius` holding one (whose layers
+/// bound G too); with none, an object. A far object whose foot is behind a
+/// crest or too sparse to show has a few points of its own as its cells'
+/// lowest layers, which would bound G at its own bottom and take its lowest
+/// layer as ground; they are no solid surface. Where the lowest ray passes above
 /// level ground (a level Mid-360 out to 8 m), ground in view must have risen
 /// into view: the straight rise from the sensor's foot to the point is out
 /// of view one cell nearer the sensor, or that nearer cell holds points
@@ -88,7 +96,8 @@ namespace streamclust {
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
 /// ceiling candidate, at most 2 for a ground candidate out of view of level
-/// ground), a ring search only in cells without a neighbouring layer; with
+/// ground; up to 9 surface tests of 12 bins each for a ground candidate), a
+/// ring search only in cells without a neighbouring layer or solid surface; with
 /// walls, the wall model's voxel update and its refreshes. Memory: about
 /// 1 KiB per live cell plus the table, and the wall model's voxels (104
 /// bytes each). Thread safety: none.
@@ -123,6 +132,10 @@ class HeightMapGround {
     float ceiling_flatness = 0.1f;     ///< [m] a neighbour's highest layer this close agrees, [0, 2]
     float ceiling_min_agreement = 0.75f;  ///< fraction of the cells within two rings that agree, (0, 1]
     float ceiling_peak_ratio = 3.0f;   ///< points per bin of the layer over those of the 0.5 m below it, [0, 100]
+    /// Ground needs a solid surface within reach (see the class comment);
+    /// off: any lowest layer bounds the ground.
+    bool surface_evidence = true;
+    std::uint32_t surface_min_points = 3;  ///< points in a solid surface's two bins, [1, 1000]
     bool detect_walls = true;          ///< class points on large vertical planes as wall
     WallModel::Params walls;           ///< the wall model's (wall_model.hpp)
   };
@@ -161,6 +174,8 @@ class HeightMapGround {
           params.ceiling_peak_ratio, "[0, 100]");
     check(params.ceiling_min_agreement > 0.0f && params.ceiling_min_agreement <= 1.0f, "ceiling_min_agreement",
           params.ceiling_min_agreement, "(0, 1]");
+    check(params.surface_min_points >= 1 && params.surface_min_points <= 1000, "surface_min_points",
+          static_cast<float>(params.surface_min_points), "[1, 1000]");
     inverse_cell_ = 1.0f / params.cell_size;
     inverse_bin_ = 1.0f / params.bin_height;
     slope_ = std::tan(params.max_slope_deg * 0.01745329252f);
@@ -364,6 +379,35 @@ class HeightMapGround {
         }
       }
     }
+    if (bound && params_.surface_evidence) return with_surface_evidence(k, n, *bound);
+    return bound;
+  }
+
+  /// `bound` where a solid surface (solid_surface) is within reach of cell
+  /// k, nullopt where none is: a layer in k or its 8 neighbours, else the
+  /// nearest ring out to `search_radius` holding one, whose layers also
+  /// bound the ground as in ground_bound. A far object's sparse points, or
+  /// its bottom seen over a crest, make a lowest layer but no surface.
+  /// O(1) where a neighbour is solid; a ring search otherwise.
+  std::optional<float> with_surface_evidence(Key k, const Neighbourhood& n, float bound) const {
+    for (std::size_t i = 0; i < 9; ++i) {
+      const std::int32_t dx = static_cast<std::int32_t>(i % 3) - 1, dy = static_cast<std::int32_t>(i / 3) - 1;
+      if (n.layer[i] && solid_surface(k.ix + dx, k.iy + dy)) return bound;
+    }
+    bool evidence = false;
+    for (std::int32_t ring = 2; ring <= search_rings_ && !evidence; ++ring) {
+      const float allowance = rise_per_cell_ * static_cast<float>(ring);
+      for (std::int32_t dy = -ring; dy <= ring; ++dy) {
+        const bool edge_row = dy == -ring || dy == ring;
+        for (std::int32_t dx = -ring; dx <= ring; dx += edge_row ? 1 : 2 * ring) {
+          const std::optional<float> layer = lowest_layer(k.ix + dx, k.iy + dy);
+          if (!layer || !solid_surface(k.ix + dx, k.iy + dy)) continue;
+          evidence = true;
+          bound = std::min(bound, *layer + allowance);
+        }
+      }
+    }
+    if (!evidence) return std::nullopt;
     return bound;
   }
 
@@ -387,17 +431,34 @@ class HeightMapGround {
   bool is_surface(std::int32_t ix, std::int32_t iy) const {
     const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
     const std::int32_t b = *column.lowest_supported(params_.support);
-    return peaked(column, b, b + 1, b + 2, params_.step_peak_ratio);
+    return peak_and_span(column, b, b + 1, b + 2).peaked(params_.step_peak_ratio);
+  }
+  /// True when the lowest layer of cell (ix, iy) is a surface (is_surface)
+  /// with `surface_min_points` in its two bins and more than in the 0.5 m
+  /// above: a surface seen, not a few stray returns or an object's bottom
+  /// (at 35 m a Mid-360 puts about 0.1 returns a window into a ground cell,
+  /// so sparse far ground has too few points for a lowest layer at all).
+  bool solid_surface(std::int32_t ix, std::int32_t iy) const {
+    const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
+    const std::int32_t b = *column.lowest_supported(params_.support);
+    const PeakAndSpan counts = peak_and_span(column, b, b + 1, b + 2);
+    return counts.peak >= params_.surface_min_points && counts.peak > counts.span &&
+           counts.peaked(params_.step_peak_ratio);
   }
 
-  /// True when bins `b` and `next` hold `ratio` times the points per bin of
-  /// the kPeakSpan bins from `span_first` up (a surface's layer against the
-  /// side of what stands on it or hangs from it). O(kPeakSpan).
-  static bool peaked(const HeightColumn& column, std::int32_t b, std::int32_t next, std::int32_t span_first, float ratio) {
-    const double peak = static_cast<double>(column.count(b)) + column.count(next);
-    double span = 0.0;
-    for (std::int32_t i = span_first; i < span_first + kPeakSpan; ++i) span += column.count(i);
-    return peak / 2.0 >= ratio * span / kPeakSpan;
+  /// Points in a layer's two bins and in the kPeakSpan bins beside it.
+  struct PeakAndSpan {
+    double peak, span;
+    /// The two bins hold `ratio` times the points per bin of the span (a
+    /// surface's layer against the side of what stands on it or hangs from it).
+    bool peaked(float ratio) const { return peak / 2.0 >= ratio * span / kPeakSpan; }
+  };
+  /// Bins `b` and `next`, and the kPeakSpan bins from `span_first` up. O(kPeakSpan).
+  static PeakAndSpan peak_and_span(const HeightColumn& column, std::int32_t b, std::int32_t next,
+                                   std::int32_t span_first) {
+    PeakAndSpan counts{static_cast<double>(column.count(b)) + column.count(next), 0.0};
+    for (std::int32_t i = span_first; i < span_first + kPeakSpan; ++i) counts.span += column.count(i);
+    return counts;
   }
 
   /// How much a slope through cell k rises across a cell [m], from the
@@ -427,7 +488,7 @@ class HeightMapGround {
     // tall object's side does not (its points spread evenly over heights).
     const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)].heights;
     const std::int32_t b = *column.highest_supported(params_.support);
-    if (!peaked(column, b, b - 1, b - 2 - kPeakSpan, params_.ceiling_peak_ratio)) return false;
+    if (!peak_and_span(column, b, b - 1, b - 2 - kPeakSpan).peaked(params_.ceiling_peak_ratio)) return false;
     // The 24 cells within two rings; stops once the outcome is certain.
     constexpr int kCells = 24;
     const float needed = params_.ceiling_min_agreement * static_cast<float>(kCells);
