@@ -107,6 +107,11 @@ TEST_CASE("registry: a policy registered from outside is chosen, parsed, describ
   CHECK(contains(help, "gated: largest intensity difference"));
   CHECK(contains(help, "--patience N (default 3)"));
   CHECK_FALSE(contains(help, "bucket"));  // another slot's policy
+  // A tool whose defaults are a preset's prints those.
+  const std::string preset_help = Registry::help(reg::Slot::linkage, "gated", values);
+  CHECK(contains(preset_help, "(default gated)"));
+  CHECK(contains(preset_help, "--gap I (default 7.5)"));
+  CHECK(contains(preset_help, "--theta DEG (default 30)"));
 
   const auto options = Registry::options();
   REQUIRE(options.size() == 4);

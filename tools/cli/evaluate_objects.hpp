@@ -196,7 +196,7 @@ methods:
   --no-walls                        objects: no wall detection (walls clustered like objects)
 the objects engine's linkage (every other slot and parameter stays the objects preset's;
 --distance also sets the radius of a linkage with a --distance option):
-)") + ToolRegistry::help(Slot::linkage, objects_preset_linkage()) +
+)") + ToolRegistry::help(Slot::linkage, objects_preset_linkage(), objects_linkage_values()) +
          R"(verification:
   --verify                          objects: at every retrieval, the partition must equal the batch
                                     partition of its object points; exit 3 otherwise

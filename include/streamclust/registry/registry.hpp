@@ -210,6 +210,12 @@ class PolicyRegistry {
   /// `default_choice`: the tool's default (empty: the first registered);
   /// `column`: where the option help starts (the tool's help uses 36).
   static std::string help(Slot slot, const std::string& default_choice = {}, std::size_t column = 36) {
+    return help(slot, default_choice, Values{}, column);
+  }
+  /// As above, each option's default read from `defaults` (a tool whose
+  /// defaults are a preset's).
+  static std::string help(Slot slot, const std::string& default_choice, const Values& defaults,
+                          std::size_t column = 36) {
     std::string text;
     const auto all = names(slot);
     if (all.empty()) return text;
@@ -228,10 +234,12 @@ class PolicyRegistry {
       text += "        " + n + std::string(width + 2 - n.size(), ' ') + D::summary + "\n";
     });
     for_each([&](auto tag) {
-      using D = PolicyDescriptor<typename decltype(tag)::type>;
+      using P = typename decltype(tag)::type;
+      using D = PolicyDescriptor<P>;
       if (D::slot != slot) return;
       for (const auto& o : D::options()) {
-        std::string left = "  " + o.name + " " + o.metavar + " (default " + o.default_text() + ")";
+        std::string left =
+            "  " + o.name + " " + o.metavar + " (default " + o.format_number(o.value(defaults.template get<P>())) + ")";
         left += left.size() + 1 < column ? std::string(column - left.size(), ' ') : "\n" + std::string(column, ' ');
         text += left + D::name + ": " + o.help + "\n";
       }

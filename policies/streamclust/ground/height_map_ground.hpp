@@ -367,20 +367,32 @@ class HeightMapGround {
     // Rings beyond the first only while none held a layer: around a cell
     // with no neighbours (cold, or an object's top seen over a shadow) the
     // nearest layers bound it.
-    for (std::int32_t ring = 2; ring <= search_rings_ && !neighbour; ++ring) {
+    if (!neighbour) bound_from_rings(k, bound, [](std::int32_t, std::int32_t) { return true; });
+    if (bound && params_.surface_evidence) return with_surface_evidence(k, n, *bound);
+    return bound;
+  }
+
+  /// Searches the rings 2 to search_radius around cell k, nearest first, up
+  /// to the first holding a layer that `accept(ix, iy)` takes; each such
+  /// layer plus the slope's allowance for its ring lowers `bound`. True
+  /// when one was found. O(search_rings^2) lookups at most.
+  template <class Accept>
+  bool bound_from_rings(Key k, std::optional<float>& bound, Accept&& accept) const {
+    for (std::int32_t ring = 2; ring <= search_rings_; ++ring) {
       const float allowance = rise_per_cell_ * static_cast<float>(ring);
+      bool found = false;
       for (std::int32_t dy = -ring; dy <= ring; ++dy) {
         const bool edge_row = dy == -ring || dy == ring;
         for (std::int32_t dx = -ring; dx <= ring; dx += edge_row ? 1 : 2 * ring) {
           const std::optional<float> layer = lowest_layer(k.ix + dx, k.iy + dy);
-          if (!layer) continue;
-          neighbour = true;
+          if (!layer || !accept(k.ix + dx, k.iy + dy)) continue;
+          found = true;
           if (!bound || *layer + allowance < *bound) bound = *layer + allowance;
         }
       }
+      if (found) return true;
     }
-    if (bound && params_.surface_evidence) return with_surface_evidence(k, n, *bound);
-    return bound;
+    return false;
   }
 
   /// `bound` where a solid surface (solid_surface) is within reach of cell
@@ -390,25 +402,17 @@ class HeightMapGround {
   /// its bottom seen over a crest, make a lowest layer but no surface.
   /// O(1) where a neighbour is solid; a ring search otherwise.
   std::optional<float> with_surface_evidence(Key k, const Neighbourhood& n, float bound) const {
+    // The cell itself first: a ground point's own cell is most often solid.
+    if (n.layer[4] && solid_surface(k.ix, k.iy)) return bound;
     for (std::size_t i = 0; i < 9; ++i) {
       const std::int32_t dx = static_cast<std::int32_t>(i % 3) - 1, dy = static_cast<std::int32_t>(i / 3) - 1;
-      if (n.layer[i] && solid_surface(k.ix + dx, k.iy + dy)) return bound;
+      if (i != 4 && n.layer[i] && solid_surface(k.ix + dx, k.iy + dy)) return bound;
     }
-    bool evidence = false;
-    for (std::int32_t ring = 2; ring <= search_rings_ && !evidence; ++ring) {
-      const float allowance = rise_per_cell_ * static_cast<float>(ring);
-      for (std::int32_t dy = -ring; dy <= ring; ++dy) {
-        const bool edge_row = dy == -ring || dy == ring;
-        for (std::int32_t dx = -ring; dx <= ring; dx += edge_row ? 1 : 2 * ring) {
-          const std::optional<float> layer = lowest_layer(k.ix + dx, k.iy + dy);
-          if (!layer || !solid_surface(k.ix + dx, k.iy + dy)) continue;
-          evidence = true;
-          bound = std::min(bound, *layer + allowance);
-        }
-      }
+    std::optional<float> lowered = bound;
+    if (!bound_from_rings(k, lowered, [this](std::int32_t ix, std::int32_t iy) { return solid_surface(ix, iy); })) {
+      return std::nullopt;
     }
-    if (!evidence) return std::nullopt;
-    return bound;
+    return lowered;
   }
 
   /// The highest ground in cell k whose ground bound is `bound` [m]: the
