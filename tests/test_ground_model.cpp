@@ -588,7 +588,9 @@ TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out
     std::vector<Eigen::Vector3f> points;
     std::vector<int> kind;  // 0 ground, 1 box
     for (int i = 0; i < 200; ++i) {
-      points.emplace_back(33.0f, u(rng) - 0.5f, -1.5f + 1.6f * u(rng));
+      const float y = u(rng) - 0.5f;  // drawn in order: argument order is unspecified
+      const float z = -1.5f + 1.6f * u(rng);
+      points.emplace_back(33.0f, y, z);
       kind.push_back(1);
     }
     if (ground_in_view) {
@@ -605,36 +607,48 @@ TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out
     sc::HeightMapGround::Params p;
     p.surface_evidence = evidence;
     sc::HeightMapGround model(p);
-    // Measured on the second half (the first builds the map).
+    // Ground measured on the second half (the first builds the map); the
+    // box's bottom 0.1 m, 12 points or so, on all of it.
     std::size_t counts[2] = {0, 0}, as_ground[2] = {0, 0}, bottom = 0, bottom_as_ground = 0;
     for (std::size_t n = 0; n < order.size(); ++n) {
       const std::size_t i = order[n];
       const bool ground = model.classify(points[i], points[i]) == sc::SurfaceClass::ground;
-      if (2 * n < order.size()) continue;
-      ++counts[kind[i]];
-      as_ground[kind[i]] += ground;
       if (kind[i] == 1 && points[i].z() < -1.4f) {
         ++bottom;
         bottom_as_ground += ground;
       }
+      if (2 * n < order.size()) continue;
+      ++counts[kind[i]];
+      as_ground[kind[i]] += ground;
     }
     return Outcome{counts[0] ? static_cast<double>(as_ground[0]) / static_cast<double>(counts[0]) : 1.0,
                    static_cast<double>(as_ground[1]) / static_cast<double>(counts[1]),
                    static_cast<double>(bottom_as_ground) / static_cast<double>(bottom)};
   };
-  const Outcome hidden_off = run(false, false), hidden_on = run(true, false);
-  const Outcome shown_off = run(false, true), shown_on = run(true, true);
+  // Means over 8 draws (a dozen bottom points a draw).
+  auto mean_of = [&](bool evidence, bool ground_in_view) {
+    Outcome sum{0.0, 0.0, 0.0};
+    for (int draw = 0; draw < 8; ++draw) {
+      const Outcome o = run(evidence, ground_in_view);
+      sum = Outcome{sum.ground_as_ground + o.ground_as_ground / 8, sum.box_as_ground + o.box_as_ground / 8,
+                    sum.box_bottom_as_ground + o.box_bottom_as_ground / 8};
+    }
+    return sum;
+  };
+  const Outcome hidden_off = mean_of(false, false), hidden_on = mean_of(true, false);
+  const Outcome shown_off = mean_of(false, true), shown_on = mean_of(true, true);
   INFO("foot out of view: box bottom 0.1 m as ground " << hidden_off.box_bottom_as_ground << " without evidence, "
        << hidden_on.box_bottom_as_ground << " with; ground in view: ground as ground " << shown_off.ground_as_ground
        << " / " << shown_on.ground_as_ground << ", box as ground " << shown_off.box_as_ground << " / "
        << shown_on.box_as_ground);
-  // Without evidence the box's own bottom bounds the ground under it.
-  CHECK(hidden_off.box_bottom_as_ground > 0.3);
-  CHECK(hidden_on.box_as_ground == 0.0);
+  // Without evidence the box's own bottom bounds the ground under it; with
+  // it, only where a few of its points happen to pile up like a surface.
+  CHECK(hidden_off.box_bottom_as_ground > 0.5);
+  CHECK(hidden_on.box_bottom_as_ground < 0.15);
   // Sparse ground in view is ground either way, and the box above its foot an object.
   CHECK(shown_on.ground_as_ground > 0.9);
   CHECK(shown_on.ground_as_ground > shown_off.ground_as_ground - 0.05);
-  CHECK(shown_on.box_as_ground < 0.06);
+  CHECK(shown_on.box_as_ground < 0.1);  // its bottom 0.1 m of 1.6 at most
 }
 
 TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not") {
