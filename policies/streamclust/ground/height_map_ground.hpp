@@ -433,9 +433,7 @@ class HeightMapGround {
   /// above: its two bins hold `step_peak_ratio` times the points per bin of
   /// the 0.5 m above them (an object's bottom spreads its points upwards).
   bool is_surface(std::int32_t ix, std::int32_t iy) const {
-    const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
-    const std::int32_t b = *column.lowest_supported(params_.support);
-    return peak_and_span(column, b, b + 1, b + 2).peaked(params_.step_peak_ratio);
+    return lowest_layer_counts(ix, iy).peaked(params_.step_peak_ratio);
   }
   /// True when the lowest layer of cell (ix, iy) is a surface (is_surface)
   /// with `surface_min_points` in its two bins and more than in the 0.5 m
@@ -443,9 +441,7 @@ class HeightMapGround {
   /// (at 35 m a Mid-360 puts about 0.1 returns a window into a ground cell,
   /// so sparse far ground has too few points for a lowest layer at all).
   bool solid_surface(std::int32_t ix, std::int32_t iy) const {
-    const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
-    const std::int32_t b = *column.lowest_supported(params_.support);
-    const PeakAndSpan counts = peak_and_span(column, b, b + 1, b + 2);
+    const PeakAndSpan counts = lowest_layer_counts(ix, iy);
     return counts.peak >= params_.surface_min_points && counts.peak > counts.span &&
            counts.peaked(params_.step_peak_ratio);
   }
@@ -463,6 +459,13 @@ class HeightMapGround {
     PeakAndSpan counts{static_cast<double>(column.count(b)) + column.count(next), 0.0};
     for (std::int32_t i = span_first; i < span_first + kPeakSpan; ++i) counts.span += column.count(i);
     return counts;
+  }
+  /// The peak and span counts of the lowest supported layer of cell (ix, iy),
+  /// which must have one. O(kPeakSpan).
+  PeakAndSpan lowest_layer_counts(std::int32_t ix, std::int32_t iy) const {
+    const HeightColumn& column = cells_[cells_.find(ix, iy)].heights;
+    const std::int32_t b = *column.lowest_supported(params_.support);
+    return peak_and_span(column, b, b + 1, b + 2);
   }
 
   /// How much a slope through cell k rises across a cell [m], from the
