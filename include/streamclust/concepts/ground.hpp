@@ -16,6 +16,14 @@
 /// | `g.forget(world, class)`  | void                     | uncounts a point `classify` counted and classed `class` (it left the window) | O(1) |
 /// | `g.heap_bytes()`          | `std::size_t`            | heap held by the model [bytes]                                 | O(1)       |
 ///
+/// Optional, for what reads the window after a retrieval (object boxes,
+/// tracking: tracking/object_boxes.hpp); without it a box stands on its
+/// lowest point:
+///
+/// | expression                          | type                   | meaning                                      |
+/// |-------------------------------------|------------------------|----------------------------------------------|
+/// | `g.ground_height_near(x, y, radius)` | `std::optional<float>` | the ground's height around (x, y) [m], nullopt when none is seen within `radius` [m] |
+///
 /// `world` is the point in the world frame (+z up, against gravity) and
 /// `ray` the vector from the sensor to it (PlacedPoint, concepts/motion.hpp);
 /// the sensor is at `world - ray`. Every point `classify` counted is
@@ -51,6 +59,19 @@ struct is_ground_policy<
 
 template <class G>
 inline constexpr bool is_ground_policy_v = detail::is_ground_policy<G>::value;
+
+namespace detail {
+template <class G, class = void>
+struct has_ground_height : std::false_type {};
+template <class G>
+struct has_ground_height<G, std::void_t<decltype(std::declval<const G&>().ground_height_near(0.0f, 0.0f, 0.0f))>>
+    : std::true_type {};
+}  // namespace detail
+
+/// True when ground policy G tells the ground's height around a place
+/// (`ground_height_near`, the optional row above).
+template <class G>
+inline constexpr bool has_ground_height_v = detail::has_ground_height<G>::value;
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class G>

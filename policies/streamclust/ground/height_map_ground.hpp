@@ -214,6 +214,29 @@ class HeightMapGround {
     if (params_.detect_walls) walls_.forget(world, in_wall_lines(surface));
   }
 
+  /// The ground's height around (x, y) [m], for what reads the window after
+  /// a retrieval (an object box's bottom): the mean of the lowest layers that
+  /// are solid surfaces (solid_surface) in the square of cells within
+  /// `radius` [m] of (x, y) (at most 10 m), or nullopt when none is.
+  /// O((2 radius / cell_size + 1)^2) lookups.
+  std::optional<float> ground_height_near(float x, float y, float radius) const {
+    if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6f || std::abs(y) > 1e6f) return std::nullopt;
+    const Key k = key_of(Eigen::Vector3f(x, y, 0.0f));
+    const auto rings = static_cast<std::int32_t>(std::ceil(std::clamp(radius, 0.0f, 10.0f) * inverse_cell_));
+    double sum = 0.0;
+    int surfaces = 0;
+    for (std::int32_t iy = k.iy - rings; iy <= k.iy + rings; ++iy) {
+      for (std::int32_t ix = k.ix - rings; ix <= k.ix + rings; ++ix) {
+        const std::optional<float> layer = lowest_layer(ix, iy);
+        if (!layer || !solid_surface(ix, iy)) continue;
+        sum += static_cast<double>(*layer);
+        ++surfaces;
+      }
+    }
+    if (surfaces == 0) return std::nullopt;
+    return static_cast<float>(sum / surfaces);
+  }
+
   std::size_t heap_bytes() const { return cells_.heap_bytes() + walls_.heap_bytes(); }
   /// Cells holding window points.
   std::size_t live_cells() const { return cells_.size(); }

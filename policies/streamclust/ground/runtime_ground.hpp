@@ -14,6 +14,7 @@
 #include <streamclust/detail/sampled_timer.hpp>
 
 #include <cstddef>
+#include <optional>
 
 namespace streamclust {
 
@@ -50,6 +51,11 @@ class RuntimeGround {
   /// Time spent in the model since construction [us], estimated from one
   /// call in 16 (with `timed`; else 0).
   double elapsed_us() const { return timer_.elapsed_us(); }
+  /// HeightMapGround::ground_height_near when used, else nullopt.
+  std::optional<float> ground_height_near(float x, float y, float radius) const {
+    if (!used_) return std::nullopt;
+    return model_.ground_height_near(x, y, radius);
+  }
   std::size_t heap_bytes() const { return used_ ? model_.heap_bytes() : 0; }
   bool uses_height_map() const { return used_; }
 

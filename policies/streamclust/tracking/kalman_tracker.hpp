@@ -1,0 +1,432 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+/// \file
+/// KalmanTracker: a constant-velocity Kalman filter per object in the
+/// ground plane, fed by each retrieval's boxes and in-window velocities,
+/// associated by the components' stable ids first and by position second.
+
+#include <streamclust/concepts/tracker.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
+#include <streamclust/tracking/track.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace streamclust {
+
+/// Tracks objects over retrievals.
+///
+/// Per track a constant-velocity Kalman filter on (x, y, vx, vy) in the
+/// world frame: white acceleration of `acceleration_noise` (m/s^2)
+/// between retrievals; each observation measures the box centre (standard
+/// deviation by box quality: a partial view moves the centre) and, when the
+/// window showed it (window_velocity), the velocity with its standard error,
+/// its variance multiplied by the window's span over the time since the
+/// track's last update (successive windows share most of their points: their
+/// errors are not independent).
+/// Height, extent and heading are smoothed outside the filter.
+///
+/// Association, per retrieval: the tracks are predicted to its time. An
+/// observation whose box (grown by `group_margin`) holds the predictions of
+/// two or more confirmed tracks is a group (objects that touch share a
+/// component): those tracks are seen in it (its id, their points) and keep
+/// their predictions. An observation whose component id is a track's last one goes to that track
+/// when within its gate (`gate_distance` plus 3 standard deviations of the
+/// predicted position); the rest are paired by distance within the gates,
+/// nearest first (merges and splits renumber components; an object seen again
+/// after an occlusion has a new id). An observation left over with at least
+/// `birth_points` points starts a tentative track; `confirm_hits` hits confirm
+/// it. A track not seen coasts on its prediction: a tentative one is
+/// dropped after `tentative_coast_seconds`, a confirmed one after
+/// `coast_seconds`.
+///
+/// Moving or static: a track moves when its speed is at least
+/// `moving_speed` and three standard deviations; it is static again below
+/// half `moving_speed`. A static track reports zero velocity (a parked car's
+/// centre wanders as the view of it changes; that is not motion). A moving
+/// track's yaw is its direction of travel; a static one's the box's.
+///
+/// update(): O(tracks x observations) for the gating, O(tracks + observations)
+/// otherwise; no allocation once the vectors have grown. Thread safety: none.
+///
+/// \code
+///   streamclust::tracking::ObjectBoxes boxes;
+///   streamclust::KalmanTracker tracker;
+///   const auto& result = engine.retrieve();
+///   for (const auto& t : tracker.update(boxes.update(engine, result), result.time)) {
+///     if (t.state != streamclust::tracking::TrackState::tentative) publish(t.id, t.position, t.velocity);
+///   }
+/// \endcode
+class KalmanTracker {
+ public:
+  struct Params {
+    float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
+    std::size_t birth_points = 10;       ///< points an observation needs to start a track, [1, 1000000]
+    std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
+    double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
+    double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
+    float acceleration_noise = 0.5f;     ///< [m/s^2] white acceleration of the motion model (spectral density: its square, m^2/s^3), (0, 100]
+    float group_margin = 0.3f;           ///< [m] a box holding two confirmed tracks' predictions this far inside its edges is a group, [0, 10]
+    float position_noise = 0.15f;        ///< [m] centre of a box seen on two sides, (0, 10]
+    float partial_position_noise = 0.4f;  ///< [m] centre of any other box, (0, 10]
+    float initial_speed_noise = 3.0f;    ///< [m/s] velocity uncertainty of a new track without a window velocity, (0, 100]
+    float moving_speed = 0.4f;           ///< [m/s] speed above which a track can move, (0, 100]
+    float extent_smoothing = 0.3f;       ///< weight of a new box's extent, height and heading, (0, 1]
+
+    /// Throws std::invalid_argument naming the first setting out of range.
+    void validate() const {
+      check(gate_distance > 0.0f && gate_distance <= 100.0f, "gate_distance", gate_distance, "(0, 100] m");
+      check(birth_points >= 1 && birth_points <= 1000000, "birth_points", static_cast<double>(birth_points),
+            "[1, 1000000]");
+      check(confirm_hits >= 1 && confirm_hits <= 1000, "confirm_hits", confirm_hits, "[1, 1000]");
+      check(coast_seconds >= 0.0 && coast_seconds <= 100.0, "coast_seconds", coast_seconds, "[0, 100] s");
+      check(tentative_coast_seconds >= 0.0 && tentative_coast_seconds <= 100.0, "tentative_coast_seconds",
+            tentative_coast_seconds, "[0, 100] s");
+      check(acceleration_noise > 0.0f && acceleration_noise <= 100.0f, "acceleration_noise", acceleration_noise,
+            "(0, 100] m/s^2");
+      check(group_margin >= 0.0f && group_margin <= 10.0f, "group_margin", group_margin, "[0, 10] m");
+      check(position_noise > 0.0f && position_noise <= 10.0f, "position_noise", position_noise, "(0, 10] m");
+      check(partial_position_noise > 0.0f && partial_position_noise <= 10.0f, "partial_position_noise",
+            partial_position_noise, "(0, 10] m");
+      check(initial_speed_noise > 0.0f && initial_speed_noise <= 100.0f, "initial_speed_noise", initial_speed_noise,
+            "(0, 100] m/s");
+      check(moving_speed > 0.0f && moving_speed <= 100.0f, "moving_speed", moving_speed, "(0, 100] m/s");
+      check(extent_smoothing > 0.0f && extent_smoothing <= 1.0f, "extent_smoothing", extent_smoothing, "(0, 1]");
+    }
+
+   private:
+    static void check(bool ok, const char* name, double value, const char* allowed) {
+      if (!ok) {
+        throw std::invalid_argument(std::string("KalmanTracker::Params::") + name + " = " + std::to_string(value) +
+                                    " is outside " + allowed);
+      }
+    }
+  };
+  static constexpr bool enabled = true;
+
+  KalmanTracker() : KalmanTracker(Params{}) {}
+  /// Throws std::invalid_argument naming a parameter out of range.
+  explicit KalmanTracker(const Params& params) : params_(params) { params_.validate(); }
+
+  /// The tracks after the retrieval at `time` [s] whose objects are
+  /// `objects` (ObjectBoxes::update). Throws std::invalid_argument when
+  /// `time` is before the previous call's.
+  const std::vector<tracking::Track>& update(const std::vector<tracking::ObjectObservation>& objects, double time) {
+    if (has_time_ && time < time_) {
+      throw std::invalid_argument("KalmanTracker::update: time " + std::to_string(time) + " s is before the last (" +
+                                  std::to_string(time_) + " s)");
+    }
+    const double dt = has_time_ ? time - time_ : 0.0;
+    time_ = time;
+    has_time_ = true;
+    for (Filter& f : filters_) {
+      predict(f, dt);
+      f.seen = false;
+    }
+    associate(objects);
+    for (std::size_t i = 0; i < filters_.size(); ++i) {
+      if (track_of_[i] == kNone) continue;
+      const tracking::ObjectObservation& o = objects[track_of_[i]];
+      if (grouped_[i]) {
+        seen_in_group(filters_[i], o);
+      } else {
+        correct(filters_[i], o, dt);
+      }
+    }
+    // Births, then misses and deletions.
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      if (!taken_[o] && objects[o].box.points >= params_.birth_points) filters_.push_back(born(objects[o]));
+    }
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < filters_.size(); ++i) {
+      Filter& f = filters_[i];
+      if (!f.seen) {
+        f.track.cluster_id = kNoComponent;
+        f.track.points = 0;
+        const bool confirmed = f.track.hits >= params_.confirm_hits;
+        const double limit = confirmed ? params_.coast_seconds : params_.tentative_coast_seconds;
+        if (time - f.track.last_seen > limit) continue;
+      }
+      if (kept != i) filters_[kept] = std::move(f);
+      ++kept;
+    }
+    filters_.resize(kept);
+    tracks_.clear();
+    for (Filter& f : filters_) {
+      publish(f);
+      tracks_.push_back(f.track);
+    }
+    return tracks_;
+  }
+
+  const std::vector<tracking::Track>& tracks() const { return tracks_; }
+  const Params& params() const { return params_; }
+
+ private:
+  using Vector4 = Eigen::Matrix<double, 4, 1>;
+  using Matrix4 = Eigen::Matrix<double, 4, 4>;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  static constexpr float kPi = 3.14159265358979323846f;
+
+  struct Filter {
+    tracking::Track track;
+    Vector4 x = Vector4::Zero();  // x, y, vx, vy
+    Matrix4 p = Matrix4::Identity();
+    float box_yaw = 0.0f;  // the box's heading (a line, period pi), smoothed
+    bool seen = false;     // an observation went to it in this update
+  };
+
+  void predict(Filter& f, double dt) const {
+    if (dt <= 0.0) return;
+    Matrix4 a = Matrix4::Identity();
+    a(0, 2) = dt;
+    a(1, 3) = dt;
+    const double q = static_cast<double>(params_.acceleration_noise) * params_.acceleration_noise;
+    Matrix4 noise = Matrix4::Zero();
+    for (int k = 0; k < 2; ++k) {
+      noise(k, k) = q * dt * dt * dt / 3.0;
+      noise(k, k + 2) = noise(k + 2, k) = q * dt * dt / 2.0;
+      noise(k + 2, k + 2) = q * dt;
+    }
+    f.x = a * f.x;
+    f.p = a * f.p * a.transpose() + noise;
+  }
+
+  float position_sigma(const tracking::ObjectObservation& o) const {
+    return o.box.quality == tracking::BoxQuality::two_sides ? params_.position_noise : params_.partial_position_noise;
+  }
+
+  /// Gate radius of a filter [m].
+  double gate(const Filter& f) const {
+    return static_cast<double>(params_.gate_distance) + 3.0 * std::sqrt(std::max(0.0, f.p(0, 0) + f.p(1, 1)));
+  }
+  double distance(const Filter& f, const tracking::ObjectObservation& o) const {
+    return std::hypot(static_cast<double>(o.box.center.x()) - f.x(0), static_cast<double>(o.box.center.y()) - f.x(1));
+  }
+
+  /// True when the box of `o`, grown by group_margin, holds the filter's
+  /// predicted centre.
+  bool holds(const tracking::ObjectObservation& o, const Filter& f) const {
+    const double c = std::cos(static_cast<double>(o.box.yaw)), s = std::sin(static_cast<double>(o.box.yaw));
+    const double dx = f.x(0) - static_cast<double>(o.box.center.x()), dy = f.x(1) - static_cast<double>(o.box.center.y());
+    const double along = c * dx + s * dy, across = c * dy - s * dx;
+    const double margin = static_cast<double>(params_.group_margin);
+    return std::abs(along) <= 0.5 * static_cast<double>(o.box.length) + margin &&
+           std::abs(across) <= 0.5 * static_cast<double>(o.box.width) + margin;
+  }
+
+  /// Fills track_of_ (per filter: the observation, or kNone), grouped_ and taken_.
+  void associate(const std::vector<tracking::ObjectObservation>& objects) {
+    track_of_.assign(filters_.size(), kNone);
+    grouped_.assign(filters_.size(), false);
+    taken_.assign(objects.size(), false);
+    // By id: observations and filters both in component id order.
+    id_order_.clear();
+    for (std::size_t i = 0; i < filters_.size(); ++i) {
+      if (filters_[i].track.cluster_id != kNoComponent) id_order_.emplace_back(filters_[i].track.cluster_id, i);
+    }
+    std::sort(id_order_.begin(), id_order_.end());
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      const auto it = std::lower_bound(id_order_.begin(), id_order_.end(), std::make_pair(objects[o].id, std::size_t{0}));
+      if (it == id_order_.end() || it->first != objects[o].id) continue;
+      const std::size_t i = it->second;
+      if (distance(filters_[i], objects[o]) > gate(filters_[i])) continue;
+      track_of_[i] = o;
+      taken_[o] = true;
+    }
+    // Groups: a box holding the prediction of its own track (if any) and of
+    // confirmed tracks without an observation, none of which has another
+    // observation nearer than this one's centre within its gate.
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      members_.clear();
+      for (std::size_t i = 0; i < filters_.size(); ++i) {
+        if (track_of_[i] == o) members_.push_back(i);
+      }
+      const std::size_t own = members_.size();
+      for (std::size_t i = 0; i < filters_.size(); ++i) {
+        const Filter& f = filters_[i];
+        if (track_of_[i] != kNone || f.track.hits < params_.confirm_hits || !holds(objects[o], f)) continue;
+        const double here = distance(f, objects[o]);
+        bool nearer_elsewhere = false;
+        for (std::size_t q = 0; q < objects.size() && !nearer_elsewhere; ++q) {
+          const double d = distance(f, objects[q]);
+          nearer_elsewhere = q != o && !taken_[q] && d < here && d <= gate(f);
+        }
+        if (!nearer_elsewhere) members_.push_back(i);
+      }
+      if (members_.size() < 2 || members_.size() == own) continue;
+      for (std::size_t i : members_) {
+        track_of_[i] = o;
+        grouped_[i] = true;
+      }
+      taken_[o] = true;
+    }
+    // By position, nearest pairs first.
+    pairs_.clear();
+    for (std::size_t i = 0; i < filters_.size(); ++i) {
+      if (track_of_[i] != kNone) continue;
+      for (std::size_t o = 0; o < objects.size(); ++o) {
+        if (taken_[o]) continue;
+        const double d = distance(filters_[i], objects[o]);
+        if (d <= gate(filters_[i])) pairs_.push_back(Pair{d, i, o});
+      }
+    }
+    std::sort(pairs_.begin(), pairs_.end(), [](const Pair& a, const Pair& b) {
+      return a.d != b.d ? a.d < b.d : (a.filter != b.filter ? a.filter < b.filter : a.object < b.object);
+    });
+    for (const Pair& pr : pairs_) {
+      if (track_of_[pr.filter] != kNone || taken_[pr.object]) continue;
+      track_of_[pr.filter] = pr.object;
+      taken_[pr.object] = true;
+    }
+  }
+
+  /// A track seen in a group: its component and points, its prediction kept.
+  void seen_in_group(Filter& f, const tracking::ObjectObservation& o) const {
+    f.track.cluster_id = o.id;
+    f.track.points = o.box.points;
+    ++f.track.hits;
+    f.track.last_seen = time_;
+    f.seen = true;
+  }
+
+  /// The Kalman update with observation `o`, `dt` [s] after the last
+  /// retrieval, then the smoothed box.
+  void correct(Filter& f, const tracking::ObjectObservation& o, double dt) {
+    const double sp = position_sigma(o), sv = o.velocity.error;
+    const double span = o.time - o.time_begin;
+    const double overlap = dt > 0.0 ? std::max(1.0, span / std::max(dt, o.time - f.track.last_seen)) : 1.0;
+    Vector4 z, r;
+    z << o.box.center.x(), o.box.center.y(), o.velocity.velocity.x(), o.velocity.velocity.y();
+    r << sp * sp, sp * sp, sv * sv * overlap, sv * sv * overlap;
+    if (o.velocity.valid) {
+      kalman_update<4>(f, z, r);
+    } else {
+      kalman_update<2>(f, z, r);
+    }
+    smooth_box(f, o, false);
+    f.seen = true;
+    f.track.cluster_id = o.id;
+    f.track.points = o.box.points;
+    ++f.track.hits;
+    f.track.last_seen = time_;
+    f.track.box_quality = o.box.quality;
+  }
+
+  /// The Kalman update with the first M state components measured as
+  /// z.head<M>() with variances r.head<M>() (M = 2: the centre; 4: and the
+  /// velocity). Fixed sizes: no allocation.
+  template <int M>
+  static void kalman_update(Filter& f, const Vector4& z, const Vector4& r) {
+    Eigen::Matrix<double, M, M> s = f.p.template topLeftCorner<M, M>();
+    s.diagonal() += r.template head<M>();
+    const Eigen::Matrix<double, 4, M> k = f.p.template leftCols<M>() * s.inverse();
+    f.x += k * (z.template head<M>() - f.x.template head<M>());
+    f.p -= k * f.p.template topRows<M>();
+    f.p = (0.5 * (f.p + f.p.transpose())).eval();
+  }
+
+  /// A tentative track for observation `o`.
+  Filter born(const tracking::ObjectObservation& o) {
+    Filter f;
+    f.track.id = next_id_++;
+    f.track.first_seen = time_;
+    f.track.last_seen = time_;
+    f.track.cluster_id = o.id;
+    f.track.points = o.box.points;
+    f.track.hits = 1;
+    f.track.box_quality = o.box.quality;
+    const double sp = position_sigma(o);
+    const double sv = o.velocity.valid ? o.velocity.error : params_.initial_speed_noise;
+    f.x << o.box.center.x(), o.box.center.y(), o.velocity.valid ? o.velocity.velocity.x() : 0.0f,
+        o.velocity.valid ? o.velocity.velocity.y() : 0.0f;
+    f.p = Vector4(sp * sp, sp * sp, sv * sv, sv * sv).asDiagonal();
+    smooth_box(f, o, true);
+    f.seen = true;
+    return f;
+  }
+
+  /// Extent, height, centre height and heading, smoothed; on a two-sided
+  /// box the new extent counts, on a partial one only where it is larger.
+  void smooth_box(Filter& f, const tracking::ObjectObservation& o, bool first) const {
+    const float a = first ? 1.0f : params_.extent_smoothing;
+    tracking::Track& t = f.track;
+    const tracking::OrientedBox& b = o.box;
+    const bool whole = b.quality == tracking::BoxQuality::two_sides;
+    const auto blend = [&](float current, float seen) {
+      if (first) return seen;
+      return whole ? current + a * (seen - current) : std::max(current, current + a * (seen - current));
+    };
+    t.length = blend(t.length, b.length);
+    t.width = blend(t.width, b.width);
+    t.height = first ? b.height : t.height + a * (b.height - t.height);
+    t.position.z() = first ? b.center.z() : t.position.z() + a * (b.center.z() - t.position.z());
+    // Headings are lines: move towards the representative nearest the current one.
+    float seen = b.yaw;
+    if (!first) {
+      while (seen - f.box_yaw > 0.5f * kPi) seen -= kPi;
+      while (seen - f.box_yaw < -0.5f * kPi) seen += kPi;
+    }
+    f.box_yaw = first ? seen : f.box_yaw + a * (seen - f.box_yaw);
+  }
+
+  /// The filter's state into its Track.
+  void publish(Filter& f) const {
+    tracking::Track& t = f.track;
+    const bool seen = f.seen;
+    const bool confirmed = t.hits >= params_.confirm_hits;
+    t.state = !confirmed ? tracking::TrackState::tentative
+                         : (seen ? tracking::TrackState::confirmed : tracking::TrackState::coasting);
+    t.position.x() = static_cast<float>(f.x(0));
+    t.position.y() = static_cast<float>(f.x(1));
+    const double speed = std::hypot(f.x(2), f.x(3));
+    const double sigma = std::sqrt(0.5 * std::max(0.0, f.p(2, 2) + f.p(3, 3)));
+    t.speed_error = static_cast<float>(sigma);
+    if (t.moving) {
+      t.moving = speed >= 0.5 * static_cast<double>(params_.moving_speed);
+    } else {
+      t.moving = speed >= static_cast<double>(params_.moving_speed) && speed >= 3.0 * sigma;
+    }
+    if (t.moving) {
+      t.velocity = Eigen::Vector3f(static_cast<float>(f.x(2)), static_cast<float>(f.x(3)), 0.0f);
+      t.yaw = static_cast<float>(std::atan2(f.x(3), f.x(2)));
+    } else {
+      t.velocity = Eigen::Vector3f::Zero();
+      float yaw = std::fmod(f.box_yaw, kPi);  // a line's heading into [-pi/2, pi/2)
+      if (yaw >= 0.5f * kPi) yaw -= kPi;
+      if (yaw < -0.5f * kPi) yaw += kPi;
+      t.yaw = yaw;
+    }
+  }
+
+  struct Pair {
+    double d;
+    std::size_t filter, object;
+  };
+
+  Params params_;
+  std::vector<Filter> filters_;
+  std::vector<tracking::Track> tracks_;
+  std::vector<std::size_t> track_of_;
+  std::vector<bool> grouped_, taken_;
+  std::vector<std::size_t> members_;
+  std::vector<std::pair<ComponentId, std::size_t>> id_order_;
+  std::vector<Pair> pairs_;
+  std::uint64_t next_id_ = 1;
+  double time_ = 0.0;
+  bool has_time_ = false;
+};
+
+static_assert(is_tracker_policy_v<KalmanTracker>, "KalmanTracker must model the Tracker policy");
+
+}  // namespace streamclust

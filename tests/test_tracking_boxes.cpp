@@ -1,0 +1,370 @@
+// SPDX-License-Identifier: MIT
+// Oriented boxes and in-window velocities: the L-shape fit against an
+// exhaustive search of its criterion and against the true boxes of random
+// rectangles seen from one, two and four sides; the velocity from capture
+// times against the true motion; ObjectBoxes on an objects engine watching
+// a moving box on the ground.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/objects_presets.hpp>
+#include <streamclust/stream_clusterer.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
+#include <streamclust/tracking/oriented_box.hpp>
+#include <streamclust/tracking/window_velocity.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace sc = streamclust;
+namespace tr = streamclust::tracking;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+/// Difference of two headings of lines (period pi) [rad], in [0, pi/2].
+float heading_error(float a, float b) {
+  float d = std::fmod(std::abs(a - b), kPi);
+  return std::min(d, kPi - d);
+}
+
+/// A rectangle in the ground plane: centre, length along yaw, width across.
+struct Rect {
+  Eigen::Vector2f centre;
+  float length, width, yaw;
+  /// The point at (u, v) in the rectangle's frame, u along its length.
+  Eigen::Vector2f at(float u, float v) const {
+    const float c = std::cos(yaw), s = std::sin(yaw);
+    return centre + Eigen::Vector2f(c * u - s * v, s * u + c * v);
+  }
+};
+
+Rect random_rect(std::mt19937& rng) {
+  std::uniform_real_distribution<float> pos(-30.0f, 30.0f), len(1.0f, 5.0f), ratio(0.3f, 0.8f),
+      yaw(-0.5f * kPi, 0.5f * kPi);
+  Rect r;
+  const float x = pos(rng), y = pos(rng);
+  r.centre = Eigen::Vector2f(x, y);
+  r.length = len(rng);
+  r.width = r.length * ratio(rng);
+  r.yaw = yaw(rng);
+  return r;
+}
+
+/// Points on the given sides of `r` (0: u = -L/2, 1: u = +L/2, 2: v = -W/2,
+/// 3: v = +W/2), heights in [z0, z0 + h], noise `sigma` across the side.
+std::vector<Eigen::Vector3f> points_on_sides(const Rect& r, const std::vector<int>& sides, int per_side, float z0,
+                                             float h, float sigma, std::mt19937& rng) {
+  std::uniform_real_distribution<float> unit(-0.5f, 0.5f), up(0.0f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, sigma);
+  std::vector<Eigen::Vector3f> out;
+  for (int side : sides) {
+    for (int i = 0; i < per_side; ++i) {
+      const float along = unit(rng), across = noise(rng), z = z0 + h * up(rng);
+      Eigen::Vector2f p;
+      if (side < 2) {
+        p = r.at((side == 0 ? -0.5f : 0.5f) * r.length + across, along * r.width);
+      } else {
+        p = r.at(along * r.length, (side == 2 ? -0.5f : 0.5f) * r.width + across);
+      }
+      out.emplace_back(p.x(), p.y(), z);
+    }
+  }
+  return out;
+}
+
+/// The tightest box of `pts` at the rectangle's own heading: what a perfect
+/// heading gives (the sides' sampled ends fall short of the corners).
+Rect tight_at_heading(const std::vector<Eigen::Vector3f>& pts, const Rect& r) {
+  const float c = std::cos(r.yaw), s = std::sin(r.yaw);
+  float lo1 = 1e9f, hi1 = -1e9f, lo2 = 1e9f, hi2 = -1e9f;
+  for (const auto& p : pts) {
+    const float a = c * p.x() + s * p.y(), b = c * p.y() - s * p.x();
+    lo1 = std::min(lo1, a);
+    hi1 = std::max(hi1, a);
+    lo2 = std::min(lo2, b);
+    hi2 = std::max(hi2, b);
+  }
+  const float m1 = 0.5f * (lo1 + hi1), m2 = 0.5f * (lo2 + hi2);
+  return Rect{Eigen::Vector2f(c * m1 - s * m2, s * m1 + c * m2), hi1 - lo1, hi2 - lo2, r.yaw};
+}
+
+/// The fitted box is the rectangle's (heading within 4 deg: the criterion's
+/// own scatter at 2 cm of noise; extent within 0.1 m of the points' own
+/// extent at the true heading, its long side either way).
+bool matches(const tr::OrientedBox& b, const std::vector<Eigen::Vector3f>& pts, const Rect& r) {
+  const Rect t = tight_at_heading(pts, r);
+  const float long_side = std::max(t.length, t.width), short_side = std::min(t.length, t.width);
+  return heading_error(b.yaw, t.length >= t.width ? r.yaw : r.yaw + 0.5f * kPi) < 4.0f * kPi / 180.0f &&
+         std::abs(b.length - long_side) < 0.1f && std::abs(b.width - short_side) < 0.1f &&
+         (b.center.head<2>() - t.centre).norm() < 0.1f;
+}
+
+/// The closeness criterion's best score over every heading in 0.05 deg
+/// steps: the exhaustive search the fit's coarse-to-fine search stands for.
+double exhaustive_best_score(const std::vector<Eigen::Vector2f>& xy, float floor) {
+  double best = 0.0;
+  for (int i = 0; i < 1800; ++i) {
+    best = std::max(best, tr::detail::closeness_score(xy, static_cast<float>(i) * 0.05f * kPi / 180.0f, floor));
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("fit_oriented_box: the heading search finds the exhaustive search's best score") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Rect r = random_rect(rng);
+    const std::vector<int> sides = trial % 2 == 0 ? std::vector<int>{0, 2} : std::vector<int>{1, 2, 3};
+    const std::vector<Eigen::Vector3f> pts = points_on_sides(r, sides, 30, 0.0f, 1.0f, 0.02f, rng);
+    Eigen::Vector2f mean = Eigen::Vector2f::Zero();
+    for (const auto& p : pts) mean += p.head<2>();
+    mean /= static_cast<float>(pts.size());
+    std::vector<Eigen::Vector2f> xy;
+    for (const auto& p : pts) xy.push_back(p.head<2>() - mean);
+    const float theta = tr::detail::best_heading(xy, 0.01f);
+    const double found = tr::detail::closeness_score(xy, theta, 0.01f);
+    const double best = exhaustive_best_score(xy, 0.01f);
+    CAPTURE(trial);
+    CHECK(found >= 0.97 * best);
+  }
+}
+
+TEST_CASE("fit_oriented_box: random rectangles seen as an L, whole and from one side") {
+  std::mt19937 rng(11);
+  tr::BoxFitParams params;
+  tr::BoxFitScratch scratch;
+  int l_within = 0, whole_within = 0, side_within = 0;
+  constexpr int kTrials = 60;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const Rect r = random_rect(rng);
+    CAPTURE(trial);
+    // Two adjacent sides: heading, extent and centre are the rectangle's.
+    {
+      const auto pts = points_on_sides(r, {trial % 2, 2 + (trial / 2) % 2}, 40, -1.0f, 1.5f, 0.02f, rng);
+      const tr::OrientedBox b = tr::fit_oriented_box(pts, std::nullopt, params, scratch);
+      CHECK(b.quality == tr::BoxQuality::two_sides);
+      l_within += matches(b, pts, r);
+      CHECK(b.yaw >= -0.5f * kPi);
+      CHECK(b.yaw < 0.5f * kPi);
+      CHECK(b.length >= b.width);
+      CHECK(b.center.z() == doctest::Approx(-0.25f).epsilon(0.05));
+      CHECK(b.points == pts.size());
+    }
+    // All four sides.
+    {
+      const auto pts = points_on_sides(r, {0, 1, 2, 3}, 25, 0.0f, 1.0f, 0.02f, rng);
+      const tr::OrientedBox b = tr::fit_oriented_box(pts, std::nullopt, params, scratch);
+      whole_within += matches(b, pts, r);
+    }
+    // One long side: its heading, its length; the width is what shows.
+    {
+      const auto pts = points_on_sides(r, {2 + trial % 2}, 60, 0.0f, 1.0f, 0.02f, rng);
+      const tr::OrientedBox b = tr::fit_oriented_box(pts, std::nullopt, params, scratch);
+      CHECK(b.quality == tr::BoxQuality::one_side);
+      side_within += matches(b, pts, r) && b.width < 0.2f;
+    }
+  }
+  // Random draws can put few points near a corner: nearly all, not all.
+  CHECK(l_within >= kTrials - 2);
+  CHECK(whole_within >= kTrials - 2);
+  CHECK(side_within >= kTrials - 2);
+}
+
+TEST_CASE("fit_oriented_box: the bottom is the ground under the object when it is near its lowest point") {
+  std::mt19937 rng(3);
+  const Rect r{Eigen::Vector2f(10.0f, 5.0f), 4.0f, 1.8f, 0.3f};
+  const auto car = points_on_sides(r, {0, 2}, 50, -0.75f, 1.25f, 0.01f, rng);  // feet 0.25 m above the ground
+  tr::BoxFitParams params;
+  tr::BoxFitScratch scratch;
+  const tr::OrientedBox standing = tr::fit_oriented_box(car, -1.0f, params, scratch);
+  CHECK(standing.on_ground);
+  CHECK(standing.bottom() == doctest::Approx(-1.0f).epsilon(0.001));
+  CHECK(standing.height == doctest::Approx(1.5f).epsilon(0.02));
+  // A crown 2 m above the ground keeps its own bottom.
+  const auto crown = points_on_sides(r, {0, 2}, 50, 1.0f, 1.0f, 0.01f, rng);
+  const tr::OrientedBox hanging = tr::fit_oriented_box(crown, -1.0f, params, scratch);
+  CHECK_FALSE(hanging.on_ground);
+  CHECK(hanging.bottom() == doctest::Approx(1.0f).epsilon(0.01));
+  CHECK(hanging.height == doctest::Approx(1.0f).epsilon(0.02));
+  // No ground known: the lowest point.
+  const tr::OrientedBox unknown = tr::fit_oriented_box(car, std::nullopt, params, scratch);
+  CHECK_FALSE(unknown.on_ground);
+  const float lowest = std::min_element(car.begin(), car.end(), [](const auto& a, const auto& b) {
+                         return a.z() < b.z();
+                       })->z();
+  CHECK(unknown.bottom() == doctest::Approx(lowest).epsilon(0.001));
+}
+
+TEST_CASE("fit_oriented_box: few and scattered points are flagged; a single point is a minimal box") {
+  std::mt19937 rng(5);
+  tr::BoxFitParams params;
+  tr::BoxFitScratch scratch;
+  const Rect r{Eigen::Vector2f(3.0f, -2.0f), 2.0f, 1.0f, 0.0f};
+  const auto few = points_on_sides(r, {0, 2}, 3, 0.0f, 1.0f, 0.01f, rng);
+  CHECK(tr::fit_oriented_box(few, std::nullopt, params, scratch).quality == tr::BoxQuality::few_points);
+  // A ball of points (a bush): no side holds a quarter of them.
+  std::normal_distribution<float> blob(0.0f, 0.5f);
+  std::vector<Eigen::Vector3f> bush;
+  for (int i = 0; i < 400; ++i) bush.emplace_back(blob(rng), blob(rng), blob(rng));
+  CHECK(tr::fit_oriented_box(bush, std::nullopt, params, scratch).quality == tr::BoxQuality::scattered);
+  const tr::OrientedBox one = tr::fit_oriented_box({Eigen::Vector3f(1, 2, 3)}, std::nullopt, params, scratch);
+  CHECK(one.points == 1);
+  CHECK(one.length == params.min_size);
+  CHECK(one.center.x() == doctest::Approx(1.0f));
+  CHECK(one.center.y() == doctest::Approx(2.0f));
+  CHECK(tr::fit_oriented_box({}, std::nullopt, params, scratch).points == 0);
+}
+
+TEST_CASE("box, velocity and object settings out of range name themselves") {
+  tr::BoxFitParams fit;
+  fit.side_share = 0.0f;
+  CHECK_THROWS_WITH_AS(fit.validate(), doctest::Contains("BoxFitParams::side_share"), std::invalid_argument);
+  tr::WindowVelocityParams velocity;
+  velocity.min_slices = 2;
+  CHECK_THROWS_WITH_AS(velocity.validate(), doctest::Contains("WindowVelocityParams::min_slices"),
+                       std::invalid_argument);
+  tr::ObjectBoxParams objects;
+  objects.ground_margin = -1.0f;
+  CHECK_THROWS_WITH_AS(tr::ObjectBoxes{objects}, doctest::Contains("ObjectBoxParams::ground_margin"),
+                       std::invalid_argument);
+}
+
+namespace {
+
+/// Points of a 1.8 x 0.8 x 1.7 m box moving at `v` [m/s], seen from its
+/// sides at random over `seconds`, each side's points at random heights:
+/// the parts of an object show at different times, as in a scan.
+struct MovingBox {
+  Eigen::Vector2f start, v;
+  std::vector<Eigen::Vector3f> xyz;
+  std::vector<double> t;
+};
+
+MovingBox moving_box(Eigen::Vector2f v, double seconds, int points, std::mt19937& rng) {
+  MovingBox m{Eigen::Vector2f(12.0f, -3.0f), v, {}, {}};
+  std::uniform_real_distribution<double> time(0.0, seconds);
+  std::uniform_int_distribution<int> side(0, 3);
+  for (int i = 0; i < points; ++i) {
+    const double ti = time(rng);
+    const Rect r{m.start + v * static_cast<float>(ti), 1.8f, 0.8f, 0.4f};
+    const auto p = points_on_sides(r, {side(rng)}, 1, -1.0f, 1.7f, 0.02f, rng);
+    m.xyz.push_back(p.front());
+    m.t.push_back(100.0 + ti);
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("window_velocity: the motion within one window from the points' capture times") {
+  std::mt19937 rng(19);
+  tr::WindowVelocityParams params;
+  tr::WindowVelocityScratch scratch;
+  double sq_moving = 0.0, sq_static = 0.0;
+  int within_error = 0;
+  constexpr int kTrials = 40;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    std::uniform_real_distribution<float> speed(0.5f, 3.0f), dir(-kPi, kPi);
+    const float s = speed(rng), d = dir(rng);
+    const Eigen::Vector2f v(s * std::cos(d), s * std::sin(d));
+    const MovingBox m = moving_box(v, 0.5, 400, rng);
+    const tr::WindowVelocity w = tr::window_velocity(m.xyz, m.t, params, scratch);
+    REQUIRE(w.valid);
+    CHECK(w.slices == 5);
+    const float e = (w.velocity - v).norm();
+    sq_moving += static_cast<double>(e * e);
+    within_error += e <= 3.0f * std::sqrt(2.0f) * w.error;
+    const MovingBox still = moving_box(Eigen::Vector2f::Zero(), 0.5, 400, rng);
+    const tr::WindowVelocity ws = tr::window_velocity(still.xyz, still.t, params, scratch);
+    REQUIRE(ws.valid);
+    sq_static += static_cast<double>(ws.velocity.squaredNorm());
+  }
+  const double rmse_moving = std::sqrt(sq_moving / kTrials), rmse_static = std::sqrt(sq_static / kTrials);
+  CAPTURE(rmse_moving);
+  CAPTURE(rmse_static);
+  CHECK(rmse_moving < 0.35);
+  CHECK(rmse_static < 0.3);
+  // The standard error covers the error (3 sigma) nearly always.
+  CHECK(within_error >= kTrials - 3);
+  // Too short for three slices: no measurement.
+  const MovingBox brief = moving_box(Eigen::Vector2f(1.0f, 0.0f), 0.15, 100, rng);
+  CHECK_FALSE(tr::window_velocity(brief.xyz, brief.t, params, scratch).valid);
+  CHECK_THROWS_AS(tr::window_velocity(brief.xyz, {}, params, scratch), std::invalid_argument);
+}
+
+TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its box undone of the motion, on the "
+          "ground") {
+  // Sensor 1 m above level ground, at rest (world = sensor frame, ground at
+  // z = -1); a 1.8 x 0.8 x 1.7 m box 12 m out moving at 1.2 m/s; ground
+  // returns beyond 9 m, where a level Mid-360 sees the ground.
+  sc::ObjectsSetup setup;
+  setup.sensor_height = 1.0f;
+  sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> ground_r(9.0f, 20.0f), ground_a(-kPi, kPi);
+  std::uniform_int_distribution<int> side(0, 1);
+  const Eigen::Vector2f start(12.0f, -2.0f), v(0.0f, 1.2f);
+  constexpr float kYaw = 0.4f;
+  tr::ObjectBoxes boxes;
+  int checked = 0;
+  const double rate = 100000.0;  // points per second
+  double next_retrieval = 0.55;
+  for (int i = 0; i < 120000; ++i) {
+    const double t = static_cast<double>(i) / rate;
+    sc::Point p;
+    p.t = t;
+    if (i % 4 == 0) {  // the box's two sides facing the sensor
+      const Rect r{start + v * static_cast<float>(t), 1.8f, 0.8f, kYaw};
+      const auto q = points_on_sides(r, {side(rng) == 0 ? 0 : 2}, 1, -0.8f, 1.5f, 0.01f, rng);
+      p.x = q.front().x();
+      p.y = q.front().y();
+      p.z = q.front().z();
+    } else {
+      const float rr = ground_r(rng), a = ground_a(rng);
+      p.x = rr * std::cos(a);
+      p.y = rr * std::sin(a);
+      p.z = -1.0f;
+    }
+    engine.insert(p);
+    if (t < next_retrieval) continue;
+    next_retrieval += 0.05;
+    const sc::Clustering& result = engine.retrieve();
+    const auto& objects = boxes.update(engine, result);
+    // The box's component: the one whose box holds the box's true centre now.
+    const Eigen::Vector2f truth = Rect{start + v * static_cast<float>(result.time), 1.8f, 0.8f, kYaw}.centre;
+    const tr::ObjectObservation* seen = nullptr;
+    for (const auto& o : objects) {
+      if ((o.box.center.head<2>() - truth).norm() < 0.5f) seen = &o;
+    }
+    REQUIRE(seen != nullptr);
+    const auto summary = std::find_if(result.components.begin(), result.components.end(),
+                                      [&](const sc::ComponentSummary& c) { return c.id == seen->id; });
+    REQUIRE(summary != result.components.end());
+    CHECK(seen->box.points == summary->size);
+    CHECK(seen->velocity.valid);
+    CHECK((seen->velocity.velocity - v).norm() < 0.3f);
+    CHECK(seen->compensated);
+    // Undone of 0.5 s of motion (0.6 m), the box is the box.
+    CHECK(seen->box.length == doctest::Approx(1.8f).epsilon(0.1));
+    CHECK(seen->box.width == doctest::Approx(0.8f).epsilon(0.15));
+    CHECK(heading_error(seen->box.yaw, kYaw) < 3.0f * kPi / 180.0f);
+    CHECK(seen->box.on_ground);
+    CHECK(seen->box.bottom() == doctest::Approx(-1.0f).epsilon(0.05));
+    CHECK(seen->time == result.time);
+    ++checked;
+  }
+  CHECK(checked >= 10);
+  // A stale result is refused.
+  sc::Clustering stale = engine.last_result();
+  engine.insert(sc::Point{15.0f, 0.0f, 0.5f, 0.0f, 1.3});
+  engine.retrieve();
+  CHECK_THROWS_AS(boxes.update(engine, stale), std::logic_error);
+}

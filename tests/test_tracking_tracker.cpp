@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: MIT
+// KalmanTracker on observations with known truth: velocities converge,
+// static objects stay still, ids survive renumbered components, merges,
+// occlusions and shuffled ids; tentative tracks and coasting end as their
+// rules say; NullTracker tracks nothing.
+
+#include <doctest/doctest.h>
+
+#include <streamclust/tracking/kalman_tracker.hpp>
+#include <streamclust/tracking/null_tracker.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <vector>
+
+namespace sc = streamclust;
+namespace tr = streamclust::tracking;
+
+namespace {
+
+constexpr double kCycle = 0.05;  // 20 Hz retrievals
+
+/// An observed object at `centre` with component id `id`: a two-sided box
+/// of 100 points, and a window velocity `v` of standard error `v_error`
+/// when `v_error` > 0.
+tr::ObjectObservation observed(sc::ComponentId id, Eigen::Vector2f centre, Eigen::Vector2f v = {0, 0},
+                               float v_error = 0.0f, double time = 0.0) {
+  tr::ObjectObservation o;
+  o.id = id;
+  o.time = time;
+  o.box.center = Eigen::Vector3f(centre.x(), centre.y(), -0.2f);
+  o.box.length = 4.0f;
+  o.box.width = 1.8f;
+  o.box.height = 1.6f;
+  o.box.yaw = 0.3f;
+  o.box.quality = tr::BoxQuality::two_sides;
+  o.box.points = 100;
+  if (v_error > 0.0f) {
+    o.velocity.valid = true;
+    o.velocity.velocity = v;
+    o.velocity.error = v_error;
+    o.velocity.slices = 5;
+  }
+  return o;
+}
+
+const tr::Track* find_track(const std::vector<tr::Track>& tracks, std::uint64_t id) {
+  for (const tr::Track& t : tracks) {
+    if (t.id == id) return &t;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("KalmanTracker: a moving object's velocity converges; it moves and faces its way; its id holds") {
+  std::mt19937 rng(1);
+  std::normal_distribution<float> pos_noise(0.0f, 0.1f), vel_noise(0.0f, 0.2f);
+  sc::KalmanTracker tracker;
+  const Eigen::Vector2f start(5.0f, 2.0f), v(1.0f, -0.5f);
+  std::uint64_t id = 0;
+  int moving = 0, cycles = 0;
+  for (int c = 0; c < 80; ++c) {
+    const double t = c * kCycle;
+    const Eigen::Vector2f truth = start + v * static_cast<float>(t);
+    const auto& tracks = tracker.update(
+        {observed(7, truth + Eigen::Vector2f(pos_noise(rng), pos_noise(rng)),
+                  v + Eigen::Vector2f(vel_noise(rng), vel_noise(rng)), 0.2f, t)},
+        t);
+    REQUIRE(tracks.size() == 1);
+    const tr::Track& track = tracks.front();
+    if (c == 0) id = track.id;
+    CHECK(track.id == id);
+    CHECK(track.cluster_id == 7);
+    CHECK(track.state == (c < 2 ? tr::TrackState::tentative : tr::TrackState::confirmed));
+    if (c >= 20) {
+      ++cycles;
+      moving += track.moving;
+      CHECK((track.velocity.head<2>() - v).norm() < 0.2f);
+      CHECK((track.position.head<2>() - truth).norm() < 0.15f);
+      CHECK(std::abs(track.yaw - std::atan2(v.y(), v.x())) < 0.2f);
+      CHECK(track.length == doctest::Approx(4.0f));
+      CHECK(track.height == doctest::Approx(1.6f));
+    }
+  }
+  CHECK(moving == cycles);
+}
+
+TEST_CASE("KalmanTracker: a static object with a wandering centre is reported still") {
+  std::mt19937 rng(2);
+  std::normal_distribution<float> pos_noise(0.0f, 0.15f), vel_noise(0.0f, 0.15f);
+  sc::KalmanTracker tracker;
+  int still = 0, cycles = 0;
+  for (int c = 0; c < 200; ++c) {
+    const double t = c * kCycle;
+    const Eigen::Vector2f centre = Eigen::Vector2f(-8.0f, 3.0f) + Eigen::Vector2f(pos_noise(rng), pos_noise(rng));
+    tr::ObjectObservation o = observed(3, centre, Eigen::Vector2f(vel_noise(rng), vel_noise(rng)), 0.15f, t);
+    o.box.quality = c % 3 == 0 ? tr::BoxQuality::one_side : tr::BoxQuality::two_sides;
+    const auto& tracks = tracker.update({o}, t);
+    REQUIRE(tracks.size() == 1);
+    if (tracks.front().state != tr::TrackState::confirmed) continue;
+    ++cycles;
+    still += tracks.front().velocity.norm() < 0.2f && !tracks.front().moving;
+  }
+  CAPTURE(still);
+  CHECK(still >= cycles * 95 / 100);
+}
+
+TEST_CASE("KalmanTracker: new component ids, a merge and an occlusion keep each object's track") {
+  sc::KalmanTracker tracker;
+  // A moves along +x past B, 2.5 m beside it; for 0.5 s they are one
+  // component (B's id: the larger part keeps it; one box around both), then
+  // A is hidden for 0.6 s, then both come back with new ids.
+  const Eigen::Vector2f a0(-6.0f, -1.0f), va(1.5f, 0.0f), b(0.0f, 1.5f);
+  std::uint64_t track_a = 0, track_b = 0;
+  sc::ComponentId next_id = 100;
+  sc::ComponentId id_a = next_id++, id_b = next_id++;
+  for (int c = 0; c < 120; ++c) {
+    const double t = c * kCycle;
+    const Eigen::Vector2f a = a0 + va * static_cast<float>(t);
+    std::vector<tr::ObjectObservation> objects;
+    const bool merged = t >= 3.0 && t < 3.5, hidden = t >= 3.5 && t < 4.1;
+    if (c % 25 == 24) id_a = next_id++;  // renumbered now and then (splits elsewhere)
+    if (t >= 4.1 && id_b < 102) {
+      id_a = next_id++;
+      id_b = next_id++;
+    }
+    if (merged) {
+      tr::ObjectObservation both = observed(id_b, 0.5f * (a + b), va * 0.5f, 0.2f, t);
+      both.box.yaw = 0.0f;
+      both.box.length = 4.0f + std::abs(a.x() - b.x());
+      both.box.width = 1.8f + std::abs(a.y() - b.y());
+      objects.push_back(both);
+    } else {
+      if (!hidden) objects.push_back(observed(id_a, a, va, 0.2f, t));
+      objects.push_back(observed(id_b, b, {0, 0}, 0.2f, t));
+    }
+    std::sort(objects.begin(), objects.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
+    const auto& tracks = tracker.update(objects, t);
+    CAPTURE(t);
+    if (c == 10) {
+      REQUIRE(tracks.size() == 2);
+      for (const tr::Track& tk : tracks) (tk.cluster_id == id_a ? track_a : track_b) = tk.id;
+      REQUIRE(track_a != track_b);
+    }
+    if (c <= 10) continue;
+    const tr::Track* ta = find_track(tracks, track_a);
+    const tr::Track* tb = find_track(tracks, track_b);
+    REQUIRE(ta != nullptr);
+    REQUIRE(tb != nullptr);
+    CHECK((tb->position.head<2>() - b).norm() < 0.6f);
+    CHECK_FALSE(tb->moving);
+    if (hidden) {
+      CHECK(ta->state == tr::TrackState::coasting);
+      CHECK(ta->cluster_id == sc::kNoComponent);
+    }
+    if (!merged && !hidden) {
+      CHECK(ta->state == tr::TrackState::confirmed);
+      CHECK(ta->cluster_id == id_a);
+      CHECK((ta->position.head<2>() - a).norm() < 0.5f);
+    }
+    // No track is born of the merge or the return.
+    CHECK(tracks.size() == 2);
+  }
+}
+
+TEST_CASE("KalmanTracker: many objects under shuffled component ids keep their tracks (association by position)") {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> place(-40.0f, 40.0f), speed(-2.0f, 2.0f);
+  std::normal_distribution<float> noise(0.0f, 0.08f);
+  struct Truth {
+    Eigen::Vector2f p, v;
+  };
+  std::vector<Truth> truths;
+  while (truths.size() < 25) {  // 25 objects at least 5 m apart
+    const Truth cand{Eigen::Vector2f(place(rng), place(rng)), Eigen::Vector2f(speed(rng), speed(rng))};
+    const bool apart = std::all_of(truths.begin(), truths.end(),
+                                   [&](const Truth& t) { return (t.p - cand.p).norm() > 5.0f && (t.v - cand.v).norm() > 0.6f; });
+    if (apart) truths.push_back(cand);
+  }
+  sc::KalmanTracker tracker;
+  std::map<std::size_t, std::uint64_t> track_of_truth;
+  sc::ComponentId next_id = 1;
+  int switches = 0;
+  for (int c = 0; c < 40; ++c) {  // 2 s: objects close in by at most 2 x 2.8 x 2 m
+    const double t = c * kCycle;
+    std::vector<tr::ObjectObservation> objects;
+    std::vector<std::size_t> truth_of_id;
+    for (std::size_t k = 0; k < truths.size(); ++k) {
+      const Eigen::Vector2f p = truths[k].p + truths[k].v * static_cast<float>(t);
+      objects.push_back(observed(next_id++, p + Eigen::Vector2f(noise(rng), noise(rng)), truths[k].v, 0.2f, t));
+    }
+    const auto& tracks = tracker.update(objects, t);
+    REQUIRE(tracks.size() == truths.size());
+    for (const tr::Track& tk : tracks) {
+      const std::size_t k = static_cast<std::size_t>(tk.cluster_id - objects.front().id);
+      REQUIRE(k < truths.size());
+      const auto [it, fresh] = track_of_truth.emplace(k, tk.id);
+      if (!fresh && it->second != tk.id) {
+        ++switches;
+        it->second = tk.id;
+      }
+    }
+  }
+  CHECK(switches == 0);
+  CHECK(track_of_truth.size() == truths.size());
+}
+
+TEST_CASE("KalmanTracker: births, tentative tracks and coasting end by their rules") {
+  sc::KalmanTracker::Params params;
+  params.birth_points = 20;
+  sc::KalmanTracker tracker(params);
+  tr::ObjectObservation small = observed(1, {3, 3});
+  small.box.points = 19;
+  CHECK(tracker.update({small}, 0.0).empty());
+  // One sighting: tentative, dropped once unseen for more than 0.2 s.
+  CHECK(tracker.update({observed(2, {3, 3})}, 0.05).size() == 1);
+  CHECK(tracker.update({}, 0.2).size() == 1);
+  CHECK(tracker.update({}, 0.3).empty());
+  // Confirmed after three sightings, coasting up to 1 s, then gone.
+  for (int c = 0; c < 3; ++c) tracker.update({observed(3, {5, 5})}, 1.0 + c * kCycle);
+  REQUIRE(tracker.tracks().size() == 1);
+  CHECK(tracker.tracks().front().state == tr::TrackState::confirmed);
+  CHECK(tracker.update({}, 1.6).front().state == tr::TrackState::coasting);
+  CHECK(tracker.update({}, 2.05).size() == 1);
+  CHECK(tracker.update({}, 2.2).empty());
+  CHECK_THROWS_WITH_AS(tracker.update({}, 2.0), doctest::Contains("before the last"), std::invalid_argument);
+  sc::KalmanTracker::Params bad;
+  bad.gate_distance = 0.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("KalmanTracker::Params::gate_distance"),
+                       std::invalid_argument);
+}
+
+TEST_CASE("NullTracker tracks nothing") {
+  static_assert(!sc::NullTracker::enabled);
+  static_assert(sc::is_tracker_policy_v<sc::NullTracker> && sc::is_tracker_policy_v<sc::KalmanTracker>);
+  sc::NullTracker none;
+  CHECK(none.update({observed(1, {0, 0})}, 0.0).empty());
+  CHECK(none.tracks().empty());
+}
