@@ -213,7 +213,10 @@ TEST_CASE("fit_oriented_box: few and scattered points are flagged; a single poin
   // A ball of points (a bush): no side holds a quarter of them.
   std::normal_distribution<float> blob(0.0f, 0.5f);
   std::vector<Eigen::Vector3f> bush;
-  for (int i = 0; i < 400; ++i) bush.emplace_back(blob(rng), blob(rng), blob(rng));
+  for (int i = 0; i < 400; ++i) {
+    const float bx = blob(rng), by = blob(rng), bz = blob(rng);
+    bush.emplace_back(bx, by, bz);
+  }
   CHECK(tr::fit_oriented_box(bush, std::nullopt, params, scratch).quality == tr::BoxQuality::scattered);
   const tr::OrientedBox one = tr::fit_oriented_box({Eigen::Vector3f(1, 2, 3)}, std::nullopt, params, scratch);
   CHECK(one.points == 1);

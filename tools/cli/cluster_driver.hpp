@@ -24,6 +24,7 @@
 #include <streamclust/partition_compare.hpp>
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/stream_clusterer.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -129,6 +130,10 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   // would evict the clusterer's data from the caches and slow the next cycle.
   const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() ||
                            !o.mcap_path.empty() || !o.png_path.empty() || o.verify || o.cycle_windows;
+  // --tracks: the boxes of the components of 10 points or more (the tracker's births).
+  std::optional<tracking::ObjectBoxes> boxes;
+  if (outputs.tracking()) boxes.emplace(tracking::ObjectBoxParams{});
+  report.tracking = outputs.tracking();
   const std::vector<io::Record> no_points;
   const std::vector<std::int64_t> no_labels;
 
@@ -174,6 +179,12 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
         result = &engine->retrieve();
         c.retrieve_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - r0).count();
       });
+      if (boxes) {
+        const auto k0 = std::chrono::steady_clock::now();
+        outputs.track(boxes->update(*engine, *result), result->time);
+        c.tracking_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - k0).count();
+        outputs.write_tracks(cycle, cycle_time, reader->time_origin(), stage);
+      }
       const RetrievalStats& s = engine->last_stats();
       c.evicted = s.evicted;
       c.components = result->components.size();

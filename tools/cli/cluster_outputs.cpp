@@ -8,6 +8,8 @@
 #include <streamclust/io/birds_eye.hpp>
 #include <streamclust/io/png_writer.hpp>
 #include <streamclust/io/reader.hpp>
+#include <streamclust/io/tracks_csv.hpp>
+#include <streamclust/tracking/kalman_tracker.hpp>
 #include <streamclust/io/writers.hpp>
 
 #include <algorithm>
@@ -60,6 +62,12 @@ ClusterOutputs::ClusterOutputs(const ClusterOptions& o) : options_(o), selection
     if (!labels_file_) throw UsageError("--labels: cannot write '" + o.labels_path + "'");
     labels_file_ << "cycle,time,index,label\n";
   }
+  if (!o.tracks_path.empty()) {
+    tracks_file_.open(o.tracks_path);
+    if (!tracks_file_) throw UsageError("--tracks: cannot write '" + o.tracks_path + "'");
+    tracks_file_ << io::kTracksCsvHeader << '\n';
+    tracker_ = std::make_unique<KalmanTracker>();
+  }
   if (!o.mcap_path.empty()) {
     try {
       mcap_ = std::make_unique<McapOutput>(o.mcap_path);
@@ -88,6 +96,20 @@ void ClusterOutputs::on_window(const LabelledWindow& window, io::TimeOrigin orig
   }
 }
 
+const std::vector<tracking::Track>& ClusterOutputs::track(const std::vector<tracking::ObjectObservation>& objects,
+                                                          double time) {
+  return tracker_->update(objects, time);
+}
+
+void ClusterOutputs::write_tracks(std::uint64_t cycle, double time, io::TimeOrigin origin, Stage& stage) {
+  stage = Stage::writing;
+  tracks_rows_.clear();
+  io::append_track_rows(tracks_rows_, cycle, origin, time, tracker_->tracks());
+  tracks_file_ << tracks_rows_;
+  if (!tracks_file_) throw UsageError("--tracks: writing '" + options_.tracks_path + "' failed");
+  stage = Stage::clustering;
+}
+
 void ClusterOutputs::finish(const Report& report, io::TimeOrigin origin, std::ostream& out, Stage& stage) {
   const ClusterOptions& o = options_;
   stage = Stage::writing;
@@ -95,6 +117,10 @@ void ClusterOutputs::finish(const Report& report, io::TimeOrigin origin, std::os
   if (labels_file_.is_open()) {
     labels_file_.flush();
     if (!labels_file_) throw UsageError("--labels: writing '" + o.labels_path + "' failed");
+  }
+  if (tracks_file_.is_open()) {
+    tracks_file_.flush();
+    if (!tracks_file_) throw UsageError("--tracks: writing '" + o.tracks_path + "' failed");
   }
   if (!o.report_path.empty()) write_report_file(o.report_path, report, o.report_extra);
   if (have_selected_ && !o.ply_path.empty()) io::write_ply(o.ply_path, kept_.points, kept_.point_labels, true, origin);

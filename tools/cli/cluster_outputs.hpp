@@ -4,7 +4,8 @@
 /// \file
 /// What `streamclust cluster` reads and writes around the engine: its input,
 /// the labels file, `--ply` / `--pcd` / `--png` of the selected cycle,
-/// `--png` every N cycles, `--mcap`, the report file and the summary line.
+/// `--png` every N cycles, `--mcap`, `--tracks` (the tracker and its rows),
+/// the report file and the summary line.
 /// Compiled once (cli/cluster_outputs.cpp) rather than once per engine
 /// configuration: the driver's template (cli/cluster_driver.hpp) keeps only
 /// what depends on the engine, which halves the compile time of each of its
@@ -17,12 +18,18 @@
 #include <streamclust/io/point_reader.hpp>
 #include <streamclust/io/record.hpp>
 #include <streamclust/io/stream_time.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
+#include <streamclust/tracking/track.hpp>
 
 #include <cstdint>
 #include <fstream>
 #include <memory>
 #include <ostream>
 #include <vector>
+
+namespace streamclust {
+class KalmanTracker;
+}  // namespace streamclust
 
 namespace streamclust::cli {
 
@@ -73,6 +80,15 @@ class ClusterOutputs {
   /// is written and Stage::clustering on return. Throws UsageError.
   void on_window(const LabelledWindow& window, io::TimeOrigin origin, Stage& stage);
 
+  /// True with --tracks.
+  bool tracking() const { return tracker_ != nullptr; }
+  /// --tracks: the tracker's update with a cycle's objects (time [s]: the
+  /// retrieval's); the tracks, valid until the next call.
+  const std::vector<tracking::Track>& track(const std::vector<tracking::ObjectObservation>& objects, double time);
+  /// --tracks: the rows of the last track() update for cycle `cycle` at
+  /// stream time `time` [s]. Throws UsageError when the file fails.
+  void write_tracks(std::uint64_t cycle, double time, io::TimeOrigin origin, Stage& stage);
+
   /// After the last cycle (`stage` becomes Stage::writing): the labels of
   /// the last cycle (without --cycles), the report file, the point clouds
   /// and the picture of the last selected cycle, the MCAP file closed, and
@@ -84,6 +100,9 @@ class ClusterOutputs {
   CycleSelection selection_;
   std::ofstream labels_file_;
   std::unique_ptr<McapOutput> mcap_;  ///< every cycle, with --mcap
+  std::unique_ptr<KalmanTracker> tracker_;  ///< with --tracks
+  std::ofstream tracks_file_;
+  std::string tracks_rows_;
   LabelledWindow kept_;               ///< the last selected cycle
   bool have_selected_ = false;
 };

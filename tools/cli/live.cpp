@@ -232,7 +232,7 @@ run:
                                   and counted
   --reorder N                     packets held to undo network reordering (default 8, 4 ms)
   --no-status                     no status line on stderr
-outputs (besides those of cluster: --labels, --report, --mcap, --png, --png-every, ...):
+outputs (besides those of cluster: --labels, --report, --mcap, --tracks, --png, --png-every, ...):
   --foxglove [ADDR:]PORT          a Foxglove live view (WebSocket, protocol foxglove.websocket.v1):
                                   /streamclust/points (the window coloured by label),
                                   /streamclust/clusters (boxes with ids), /streamclust/raw (the
@@ -458,6 +458,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     c.ply_path = output_for("--ply", c.ply_path, p->id);
     c.pcd_path = output_for("--pcd", c.pcd_path, p->id);
     c.mcap_path = output_for("--mcap", c.mcap_path, p->id);
+    c.tracks_path = output_for("--tracks", c.tracks_path, p->id);
     c.png_path = output_for("--png", c.png_path, p->id);
     p->record_path = output_for("--record", o.record_path, p->id);
     if (!p->record_path.empty()) {

@@ -112,6 +112,10 @@ motion and structure removal (continuous mode; the objects presets turn --ground
   --pcd FILE        last selected cycle, with a label field
   --mcap FILE       every cycle for Foxglove: the window as a PointCloud coloured by label
                     and the clusters as boxes (SceneUpdate), at the stream's time
+  --tracks FILE     tracked objects every cycle, CSV cycle,time,track_id,cluster_id,x,y,z,vx,vy,vz,
+                    length,width,height,yaw,points,state: oriented boxes of the components of
+                    10 points or more, followed by a Kalman tracker (world frame of --poses or
+                    --mount, else the sensor's; m, m/s, rad; state tentative, confirmed, coasting)
   --png FILE        a bird's-eye picture of the last selected cycle: clusters coloured, boxes,
                     a metre scale
   --png-every N     instead, a picture of every N-th cycle: FILE_000000.png, FILE_0000NN.png, ...

@@ -106,6 +106,7 @@ struct ClusterOptions {
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
   std::string mcap_path;  ///< every cycle for Foxglove (tools/cli/mcap_output.hpp)
+  std::string tracks_path;  ///< tracked objects every cycle (CSV; tools/cli/tracks_output.hpp)
   std::string png_path;   ///< a bird's-eye picture of the last selected cycle
   std::uint64_t png_every = 0;  ///< > 0: a picture of every N-th cycle instead (FILE_<cycle>.png)
   bool all_cycles = false;
@@ -353,6 +354,8 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
       o.pcd_path = c.value();
     } else if (a == "--mcap") {
       o.mcap_path = c.value();
+    } else if (a == "--tracks") {
+      o.tracks_path = c.value();
     } else if (a == "--png") {
       o.png_path = c.value();
     } else if (a == "--png-every") {
@@ -400,6 +403,9 @@ inline ClusterOptions parse_cluster_options(const std::vector<std::string>& args
   if (o.connectivity_given && o.mode == Mode::frame)
     throw UsageError("--connectivity chooses the continuous engine's strategy: use --mode continuous");
   if (o.poses_topic && o.poses_path.empty()) throw UsageError("--poses-topic: names the odometry topic of --poses FILE");
+  if (!o.tracks_path.empty() && o.mode == Mode::frame) {
+    throw UsageError("--tracks follows the continuous engine's components over cycles: use --mode continuous");
+  }
   if (o.mode == Mode::frame && (o.ground || !o.poses_path.empty() || o.mount_deg)) {
     throw UsageError("--ground, --poses and --mount are stages of the continuous engine: use --mode continuous");
   }

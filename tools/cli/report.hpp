@@ -39,6 +39,7 @@ struct CycleReport {
   double batch_us = 0.0;      ///< frame mode: the batch clustering of the window [us]
   double ground_us = 0.0;     ///< of total_us: the ground model's updates and decisions (--ground) [us]
   double placement_us = 0.0;  ///< of total_us: placing points by poses or mount [us]
+  double tracking_us = 0.0;   ///< after total_us: the boxes and the tracker (--tracks) [us]
   /// The cycle's latency [us]: wall time of everything the clusterer did
   /// for it since the previous cycle (the inserts of the records in between,
   /// the eviction, the retrieval), reading the input excluded.
@@ -120,6 +121,7 @@ struct Report {
   RejectionCounts rejections{};
   bool ground = false;          ///< structure removal was on
   bool motion = false;          ///< points were placed by poses or a mount
+  bool tracking = false;        ///< objects were tracked (--tracks)
   float sensor_height = 0.0f;   ///< [m] the ground model's (0: unknown)
   bool estimated_mount = false, estimated_height = false;
   double estimated_roll_deg = 0.0, estimated_pitch_deg = 0.0;  ///< when estimated_mount
@@ -162,6 +164,7 @@ inline Json report_json(const Report& r) {
                     {"total", c.total_us}};
     if (r.ground) latency["ground"] = c.ground_us;
     if (r.motion) latency["placement"] = c.placement_us;
+    if (r.tracking) latency["tracking"] = c.tracking_us;
     Json cycle = {{"cycle", c.cycle},
                   {"time", number_text(io::format_time(r.time_origin, c.time))},
                   {"window_size", c.window},

@@ -38,7 +38,7 @@ struct ObjectObservation {
 
 /// Settings of ObjectBoxes.
 struct ObjectBoxParams {
-  std::size_t min_points = 5;  ///< components with fewer points get no box, [1, 100000]
+  std::size_t min_points = 10;  ///< components with fewer points get no box, [1, 100000]
   BoxFitParams fit;            ///< the box fit's (oriented_box.hpp)
   WindowVelocityParams velocity;  ///< the in-window velocity's (window_velocity.hpp)
   /// [m/s] a window velocity at least this fast and 3 standard errors from

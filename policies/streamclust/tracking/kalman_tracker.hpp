@@ -29,18 +29,24 @@ namespace streamclust {
 /// Per track a constant-velocity Kalman filter on (x, y, vx, vy) in the
 /// world frame: white acceleration of `acceleration_noise` (m/s^2)
 /// between retrievals; each observation measures the box centre (standard
-/// deviation by box quality: a partial view moves the centre) and, when the
+/// deviation by box quality: a partial view moves the centre; a centre
+/// outside the 99 % ellipse of the prediction counts with its noise raised by
+/// the excess, so a component that changes shape moves the track without
+/// making speed) and, when the
 /// window showed it (window_velocity), the velocity with its standard error,
 /// its variance multiplied by the window's span over the time since the
 /// track's last update (successive windows share most of their points: their
-/// errors are not independent).
+/// errors are not independent), its variance raised by the excess when it
+/// falls outside the 99 % ellipse of the filter's velocity. A new track
+/// starts at rest with `initial_speed_noise`; window velocities count from
+/// its second sighting.
 /// Height, extent and heading are smoothed outside the filter.
 ///
 /// Association, per retrieval: the tracks are predicted to its time. An
 /// observation whose box (grown by `group_margin`) holds the predictions of
-/// two or more confirmed tracks is a group (objects that touch share a
-/// component): those tracks are seen in it (its id, their points) and keep
-/// their predictions. An observation whose component id is a track's last one goes to that track
+/// two or more confirmed tracks, with an area at most twice theirs plus
+/// 1 m^2, is a group (objects that touch share a component): those tracks
+/// are seen in it (its id, their points) and keep their predictions. An observation whose component id is a track's last one goes to that track
 /// when within its gate (`gate_distance` plus 3 standard deviations of the
 /// predicted position); the rest are paired by distance within the gates,
 /// nearest first (merges and splits renumber components; an object seen again
@@ -50,9 +56,16 @@ namespace streamclust {
 /// dropped after `tentative_coast_seconds`, a confirmed one after
 /// `coast_seconds`.
 ///
+/// A static track takes a zero-velocity pseudo-measurement of standard
+/// deviation `moving_speed` at each update (a box centre that wanders as
+/// sides come into view builds no speed), and keeps its place in a group.
+///
 /// Moving or static: a track moves when its speed is at least
-/// `moving_speed` and three standard deviations; it is static again below
-/// half `moving_speed`. A static track reports zero velocity (a parked car's
+/// `moving_speed` and three standard deviations and its smoothed window
+/// velocity (the points' own motion) at least half `moving_speed` (no
+/// window velocity yet: static); it is
+/// static again below half `moving_speed`, or a quarter for the window
+/// velocity. A static track reports zero velocity (a parked car's
 /// centre wanders as the view of it changes; that is not motion). A moving
 /// track's yaw is its direction of travel; a static one's the box's.
 ///
@@ -176,6 +189,7 @@ class KalmanTracker {
   using Vector4 = Eigen::Matrix<double, 4, 1>;
   using Matrix4 = Eigen::Matrix<double, 4, 4>;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  static constexpr double kChi2Gate = 9.21;  // chi-square, 2 degrees of freedom, 99 %
   static constexpr float kPi = 3.14159265358979323846f;
 
   struct Filter {
@@ -183,6 +197,8 @@ class KalmanTracker {
     Vector4 x = Vector4::Zero();  // x, y, vx, vy
     Matrix4 p = Matrix4::Identity();
     float box_yaw = 0.0f;  // the box's heading (a line, period pi), smoothed
+    Eigen::Vector2f window_velocity = Eigen::Vector2f::Zero();  // the observations' in-window velocities, smoothed
+    bool has_window_velocity = false;
     bool seen = false;     // an observation went to it in this update
   };
 
@@ -265,6 +281,14 @@ class KalmanTracker {
         if (!nearer_elsewhere) members_.push_back(i);
       }
       if (members_.size() < 2 || members_.size() == own) continue;
+      // A group's box is about its members' size: a component spanning a room
+      // holds many predictions and is no group of them.
+      double members_area = 0.0;
+      for (std::size_t i : members_) {
+        members_area += static_cast<double>(filters_[i].track.length) * static_cast<double>(filters_[i].track.width);
+      }
+      const double area = static_cast<double>(objects[o].box.length) * static_cast<double>(objects[o].box.width);
+      if (area > 2.0 * members_area + 1.0) continue;
       for (std::size_t i : members_) {
         track_of_[i] = o;
         grouped_[i] = true;
@@ -293,6 +317,7 @@ class KalmanTracker {
 
   /// A track seen in a group: its component and points, its prediction kept.
   void seen_in_group(Filter& f, const tracking::ObjectObservation& o) const {
+    if (!f.track.moving) f.x.template tail<2>().setZero();  // a static member stays where it was
     f.track.cluster_id = o.id;
     f.track.points = o.box.points;
     ++f.track.hits;
@@ -303,16 +328,39 @@ class KalmanTracker {
   /// The Kalman update with observation `o`, `dt` [s] after the last
   /// retrieval, then the smoothed box.
   void correct(Filter& f, const tracking::ObjectObservation& o, double dt) {
-    const double sp = position_sigma(o), sv = o.velocity.error;
+    const double sp = position_sigma(o);
     const double span = o.time - o.time_begin;
     const double overlap = dt > 0.0 ? std::max(1.0, span / std::max(dt, o.time - f.track.last_seen)) : 1.0;
+    // A centre beyond the 99 % ellipse (the component changed: a merge, a
+    // split, a new side in view) counts as if on it: its noise is raised by
+    // the excess, so a jump of the box moves the track without making speed.
+    Eigen::Matrix2d s = f.p.template topLeftCorner<2, 2>();
+    s.diagonal().array() += sp * sp;
+    const Eigen::Vector2d innovation = o.box.center.template head<2>().cast<double>() - f.x.template head<2>();
+    const double d2 = innovation.dot(s.inverse() * innovation);
+    const double inflate = d2 > kChi2Gate ? d2 / kChi2Gate : 1.0;
     Vector4 z, r;
-    z << o.box.center.x(), o.box.center.y(), o.velocity.velocity.x(), o.velocity.velocity.y();
-    r << sp * sp, sp * sp, sv * sv * overlap, sv * sv * overlap;
+    z << o.box.center.x(), o.box.center.y(), 0.0, 0.0;
+    r << sp * sp * inflate, sp * sp * inflate, 0.0, 0.0;
+    kalman_update<2>(f, z, r);
+    if (!f.track.moving) {
+      // Static: a zero-velocity pseudo-measurement of `moving_speed`, so a box
+      // centre that wanders (a side coming into view) does not build speed.
+      const double sz = static_cast<double>(params_.moving_speed) * params_.moving_speed;
+      Eigen::Matrix2d s0 = f.p.template bottomRightCorner<2, 2>();
+      s0.diagonal().array() += sz;
+      const Eigen::Matrix<double, 4, 2> k0 = f.p.template rightCols<2>() * s0.inverse();
+      f.x -= k0 * f.x.template tail<2>();
+      f.p -= k0 * f.p.template bottomRows<2>();
+      f.p = (0.5 * (f.p + f.p.transpose())).eval();
+    }
     if (o.velocity.valid) {
-      kalman_update<4>(f, z, r);
-    } else {
-      kalman_update<2>(f, z, r);
+      measure_velocity(f, o, overlap);
+      f.window_velocity = f.has_window_velocity
+                              ? Eigen::Vector2f(f.window_velocity + params_.extent_smoothing *
+                                                                        (o.velocity.velocity - f.window_velocity))
+                              : o.velocity.velocity;
+      f.has_window_velocity = true;
     }
     smooth_box(f, o, false);
     f.seen = true;
@@ -336,6 +384,26 @@ class KalmanTracker {
     f.p = (0.5 * (f.p + f.p.transpose())).eval();
   }
 
+  /// The window velocity of `o` as a measurement of the filter's velocity,
+  /// its variance times `overlap`; beyond the 99 % ellipse (chi-square, 2
+  /// degrees of freedom: 9.21) its variance is raised by the excess, so it
+  /// counts as if on the ellipse (a component whose parts change within the
+  /// window shows a fast, tight, wrong velocity; a filter misled by a jumping
+  /// centre is pulled back by the points' own motion, bounded per update).
+  static void measure_velocity(Filter& f, const tracking::ObjectObservation& o, double overlap) {
+    const double rv = static_cast<double>(o.velocity.error) * o.velocity.error * overlap;
+    Eigen::Matrix2d s = f.p.template bottomRightCorner<2, 2>();
+    s.diagonal().array() += rv;
+    const Eigen::Vector2d innovation = o.velocity.velocity.cast<double>() - f.x.template tail<2>();
+    const double d2 = innovation.dot(s.inverse() * innovation);
+    if (d2 > kChi2Gate) s.diagonal().array() += rv * (d2 / kChi2Gate - 1.0);
+    // H selects the velocity: the gain is P's last two columns over S.
+    const Eigen::Matrix<double, 4, 2> k = f.p.template rightCols<2>() * s.inverse();
+    f.x += k * innovation;
+    f.p -= k * f.p.template bottomRows<2>();
+    f.p = (0.5 * (f.p + f.p.transpose())).eval();
+  }
+
   /// A tentative track for observation `o`.
   Filter born(const tracking::ObjectObservation& o) {
     Filter f;
@@ -347,10 +415,11 @@ class KalmanTracker {
     f.track.hits = 1;
     f.track.box_quality = o.box.quality;
     const double sp = position_sigma(o);
-    const double sv = o.velocity.valid ? o.velocity.error : params_.initial_speed_noise;
-    f.x << o.box.center.x(), o.box.center.y(), o.velocity.valid ? o.velocity.velocity.x() : 0.0f,
-        o.velocity.valid ? o.velocity.velocity.y() : 0.0f;
+    const double sv = params_.initial_speed_noise;
+    f.x << o.box.center.x(), o.box.center.y(), 0.0, 0.0;
     f.p = Vector4(sp * sp, sp * sp, sv * sv, sv * sv).asDiagonal();
+    if (o.velocity.valid) f.window_velocity = o.velocity.velocity;
+    f.has_window_velocity = o.velocity.valid;
     smooth_box(f, o, true);
     f.seen = true;
     return f;
@@ -392,10 +461,15 @@ class KalmanTracker {
     const double speed = std::hypot(f.x(2), f.x(3));
     const double sigma = std::sqrt(0.5 * std::max(0.0, f.p(2, 2) + f.p(3, 3)));
     t.speed_error = static_cast<float>(sigma);
+    // The points' own motion within the windows must agree: a static object
+    // whose component changes (occluded, merged, a side coming into view)
+    // moves its box centre, not its points.
+    const double moving = static_cast<double>(params_.moving_speed);
+    const double window_speed = static_cast<double>(f.window_velocity.norm());
     if (t.moving) {
-      t.moving = speed >= 0.5 * static_cast<double>(params_.moving_speed);
+      t.moving = speed >= 0.5 * moving && f.has_window_velocity && window_speed >= 0.25 * moving;
     } else {
-      t.moving = speed >= static_cast<double>(params_.moving_speed) && speed >= 3.0 * sigma;
+      t.moving = speed >= moving && speed >= 3.0 * sigma && f.has_window_velocity && window_speed >= 0.5 * moving;
     }
     if (t.moving) {
       t.velocity = Eigen::Vector3f(static_cast<float>(f.x(2)), static_cast<float>(f.x(3)), 0.0f);
