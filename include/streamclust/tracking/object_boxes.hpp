@@ -129,27 +129,28 @@ class ObjectBoxes {
       points_[s].clear();
       times_[s].clear();
     }
-    std::size_t pos = 0, cached = 0;
-    bool mismatch = false;
-    engine.for_each_point([&](const Sample& sample, std::uint64_t stream_index) {
-      if (pos >= result.points.size() || result.points[pos].stream_index != stream_index) {
-        mismatch = true;
-        return;
-      }
-      const ComponentId label = result.points[pos++].label;
-      if (cached >= comps.size() || comps[cached].id != label) {
-        const auto it = std::lower_bound(comps.begin(), comps.end(), label,
+    // Window positions: the result's points and the engine's ring, both
+    // oldest first; a point's sample is read only when its component is boxed.
+    const std::size_t n = result.points.size();
+    if (engine.size() != n) throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
+    std::size_t cached = 0;
+    for (std::size_t pos = 0; pos < n; ++pos) {
+      const PointLabel& p = result.points[pos];
+      if (cached >= comps.size() || comps[cached].id != p.label) {
+        const auto it = std::lower_bound(comps.begin(), comps.end(), p.label,
                                          [](const ComponentSummary& c, ComponentId id) { return c.id < id; });
-        if (it == comps.end() || it->id != label) return;
+        if (it == comps.end() || it->id != p.label) continue;
         cached = static_cast<std::size_t>(it - comps.begin());
       }
       const std::uint32_t slot = slot_of_[cached];
-      if (slot == kNoSlot) return;
+      if (slot == kNoSlot) continue;
+      const PointHandle h = engine.handle_at(pos);
+      if (engine.stream_index(h) != p.stream_index) {
+        throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
+      }
+      const Sample sample = engine.sample(h);
       points_[slot].push_back(sample.position);
       times_[slot].push_back(sample.time);
-    });
-    if (mismatch || pos != result.points.size()) {
-      throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
     }
   }
 
