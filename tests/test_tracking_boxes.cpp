@@ -229,14 +229,14 @@ TEST_CASE("fit_oriented_box: few and scattered points are flagged; a single poin
 TEST_CASE("box, velocity and object settings out of range name themselves") {
   tr::BoxFitParams fit;
   fit.side_share = 0.0f;
-  CHECK_THROWS_WITH_AS(fit.validate(), doctest::Contains("BoxFitParams::side_share"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(fit.validate(), doctest::Contains("BoxFitParams: side_share"), std::invalid_argument);
   tr::WindowVelocityParams velocity;
   velocity.min_slices = 2;
-  CHECK_THROWS_WITH_AS(velocity.validate(), doctest::Contains("WindowVelocityParams::min_slices"),
+  CHECK_THROWS_WITH_AS(velocity.validate(), doctest::Contains("WindowVelocityParams: min_slices"),
                        std::invalid_argument);
   tr::ObjectBoxParams objects;
   objects.ground_margin = -1.0f;
-  CHECK_THROWS_WITH_AS(tr::ObjectBoxes{objects}, doctest::Contains("ObjectBoxParams::ground_margin"),
+  CHECK_THROWS_WITH_AS(tr::ObjectBoxes{objects}, doctest::Contains("ObjectBoxParams: ground_margin"),
                        std::invalid_argument);
 }
 

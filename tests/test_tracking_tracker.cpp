@@ -243,7 +243,7 @@ TEST_CASE("KalmanTracker: births, tentative tracks and coasting end by their rul
   CHECK_THROWS_WITH_AS(tracker.update({}, 2.0), doctest::Contains("before the last"), std::invalid_argument);
   sc::KalmanTracker::Params bad;
   bad.gate_distance = 0.0f;
-  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("KalmanTracker::Params::gate_distance"),
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("KalmanTracker: gate_distance"),
                        std::invalid_argument);
 }
 

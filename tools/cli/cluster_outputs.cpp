@@ -8,8 +8,8 @@
 #include <streamclust/io/birds_eye.hpp>
 #include <streamclust/io/png_writer.hpp>
 #include <streamclust/io/reader.hpp>
-#include <streamclust/io/tracks_csv.hpp>
 #include <streamclust/tracking/kalman_tracker.hpp>
+#include <streamclust/tracking/tracks_csv.hpp>
 #include <streamclust/io/writers.hpp>
 
 #include <algorithm>
@@ -65,7 +65,7 @@ ClusterOutputs::ClusterOutputs(const ClusterOptions& o) : options_(o), selection
   if (!o.tracks_path.empty()) {
     tracks_file_.open(o.tracks_path);
     if (!tracks_file_) throw UsageError("--tracks: cannot write '" + o.tracks_path + "'");
-    tracks_file_ << io::kTracksCsvHeader << '\n';
+    tracks_file_ << tracking::kTracksCsvHeader << '\n';
     tracker_ = std::make_unique<KalmanTracker>();
   }
   if (!o.mcap_path.empty()) {
@@ -104,7 +104,7 @@ const std::vector<tracking::Track>& ClusterOutputs::track(const std::vector<trac
 void ClusterOutputs::write_tracks(std::uint64_t cycle, double time, io::TimeOrigin origin, Stage& stage) {
   stage = Stage::writing;
   tracks_rows_.clear();
-  io::append_track_rows(tracks_rows_, cycle, origin, time, tracker_->tracks());
+  tracking::append_track_rows(tracks_rows_, cycle, origin, time, tracker_->tracks());
   tracks_file_ << tracks_rows_;
   if (!tracks_file_) throw UsageError("--tracks: writing '" + options_.tracks_path + "' failed");
   stage = Stage::clustering;

@@ -12,6 +12,8 @@
 #include <streamclust/tracking/window_velocity.hpp>
 #include <streamclust/types.hpp>
 
+#include <streamclust/detail/parameter_check.hpp>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -52,10 +54,7 @@ struct ObjectBoxParams {
     fit.validate();
     velocity.validate();
     auto check = [](bool ok, const char* name, double value, const char* allowed) {
-      if (!ok) {
-        throw std::invalid_argument(std::string("ObjectBoxParams::") + name + " = " + std::to_string(value) +
-                                    " is outside " + allowed);
-      }
+      streamclust::detail::require_parameter(ok, "ObjectBoxParams", name, value, allowed);
     };
     check(min_points >= 1 && min_points <= 100000, "min_points", static_cast<double>(min_points), "[1, 100000]");
     check(compensate_speed >= 0.0f && compensate_speed <= 100.0f, "compensate_speed", compensate_speed,

@@ -8,6 +8,8 @@
 /// the two sides of a corner (Zhang et al., "Efficient L-Shape Fitting for
 /// Vehicle Detection Using Laser Scanners", IV 2017).
 
+#include <streamclust/detail/parameter_check.hpp>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -71,10 +73,7 @@ struct BoxFitParams {
   /// Throws std::invalid_argument naming the first setting out of range.
   void validate() const {
     auto check = [](bool ok, const char* name, double value, const char* allowed) {
-      if (!ok) {
-        throw std::invalid_argument(std::string("BoxFitParams::") + name + " = " + std::to_string(value) +
-                                    " is outside " + allowed);
-      }
+      streamclust::detail::require_parameter(ok, "BoxFitParams", name, value, allowed);
     };
     check(search_points >= 8 && search_points <= 100000, "search_points", static_cast<double>(search_points),
           "[8, 100000]");

@@ -8,6 +8,8 @@
 /// slices, fitted against their times, give the velocity and its standard
 /// error without a second retrieval.
 
+#include <streamclust/detail/parameter_check.hpp>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -30,10 +32,7 @@ struct WindowVelocityParams {
   /// Throws std::invalid_argument naming the first setting out of range.
   void validate() const {
     auto check = [](bool ok, const char* name, double value, const char* allowed) {
-      if (!ok) {
-        throw std::invalid_argument(std::string("WindowVelocityParams::") + name + " = " + std::to_string(value) +
-                                    " is outside " + allowed);
-      }
+      streamclust::detail::require_parameter(ok, "WindowVelocityParams", name, value, allowed);
     };
     check(slice_seconds > 0.0 && slice_seconds <= 10.0, "slice_seconds", slice_seconds, "(0, 10] s");
     check(slice_points >= 1 && slice_points <= 100000, "slice_points", static_cast<double>(slice_points),

@@ -7,6 +7,7 @@
 /// associated by the components' stable ids first and by position second.
 
 #include <streamclust/concepts/tracker.hpp>
+#include <streamclust/detail/parameter_check.hpp>
 #include <streamclust/tracking/object_boxes.hpp>
 #include <streamclust/tracking/track.hpp>
 
@@ -119,10 +120,7 @@ class KalmanTracker {
 
    private:
     static void check(bool ok, const char* name, double value, const char* allowed) {
-      if (!ok) {
-        throw std::invalid_argument(std::string("KalmanTracker::Params::") + name + " = " + std::to_string(value) +
-                                    " is outside " + allowed);
-      }
+      detail::require_parameter(ok, "KalmanTracker", name, value, allowed);
     }
   };
   static constexpr bool enabled = true;

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace streamclust::io {
+namespace streamclust::tracking {
 
 /// The header line of the tracks CSV, without its newline.
 inline constexpr const char* kTracksCsvHeader =
@@ -28,10 +28,10 @@ inline constexpr const char* kTracksCsvHeader =
 
 /// Appends the rows of `tracks` at cycle `cycle` and stream time `time` [s]
 /// to `out`. O(tracks).
-inline void append_track_rows(std::string& out, std::uint64_t cycle, TimeOrigin origin, double time,
-                              const std::vector<tracking::Track>& tracks) {
-  const std::string time_text = format_time(origin, time);
-  for (const tracking::Track& t : tracks) {
+inline void append_track_rows(std::string& out, std::uint64_t cycle, io::TimeOrigin origin, double time,
+                              const std::vector<Track>& tracks) {
+  const std::string time_text = io::format_time(origin, time);
+  for (const Track& t : tracks) {
     out += std::to_string(cycle);
     out += ',';
     out += time_text;
@@ -42,14 +42,14 @@ inline void append_track_rows(std::string& out, std::uint64_t cycle, TimeOrigin 
     for (const float v : {t.position.x(), t.position.y(), t.position.z(), t.velocity.x(), t.velocity.y(),
                           t.velocity.z(), t.length, t.width, t.height, t.yaw}) {
       out += ',';
-      detail::append_number(out, v);
+      io::detail::append_number(out, v);
     }
     out += ',';
     out += std::to_string(t.points);
     out += ',';
-    out += tracking::to_string(t.state);
+    out += to_string(t.state);
     out += '\n';
   }
 }
 
-}  // namespace streamclust::io
+}  // namespace streamclust::tracking
