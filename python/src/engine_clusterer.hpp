@@ -66,6 +66,13 @@ class EngineClusterer final : public ForwardingClusterer<StreamClusterer<Config>
  public:
   using ForwardingClusterer<StreamClusterer<Config>>::ForwardingClusterer;
   const Clustering& retrieve() override { return this->engine_.retrieve(); }
+  bool continuous() const override { return true; }
+  const std::vector<tracking::ObjectObservation>* objects(const Clustering& result) override {
+    return &boxes_.update(this->engine_, result);
+  }
+
+ private:
+  tracking::ObjectBoxes boxes_;
 };
 
 /// A FrameClusterer (each retrieval re-clusters the window from scratch,
@@ -110,6 +117,8 @@ class FrameEngineClusterer final : public ForwardingClusterer<FrameClusterer<Con
     ++result_.cycle;
     return result_;
   }
+  bool continuous() const override { return false; }
+  const std::vector<tracking::ObjectObservation>* objects(const Clustering&) override { return nullptr; }
 
  private:
   Clustering result_;

@@ -16,6 +16,7 @@
 #include "cli/options.hpp"
 
 #include <streamclust/clustering.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
 #include <streamclust/types.hpp>
 
 #include <cstdint>
@@ -39,6 +40,12 @@ class ErasedClusterer {
   virtual void complete_calibration() = 0;
   /// StreamClusterer::retrieve; the reference stays valid until the next call.
   virtual const Clustering& retrieve() = 0;
+  /// True for the continuous engine (stable component ids), false in frame mode.
+  virtual bool continuous() const = 0;
+  /// The observed objects of `result`, the last retrieve()'s
+  /// (tracking::ObjectBoxes); nullptr in frame mode (no stable components).
+  /// Valid until the next call.
+  virtual const std::vector<tracking::ObjectObservation>* objects(const Clustering& result) = 0;
   /// Points offered so far (the next point's stream index).
   virtual std::uint64_t offered() const = 0;
   /// Points in the window.

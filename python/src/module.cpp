@@ -24,6 +24,7 @@
 #include <streamclust/eval/report.hpp>
 #include <streamclust/io/error.hpp>
 #include <streamclust/io/reader.hpp>
+#include <streamclust/tracking/kalman_tracker.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -65,8 +66,16 @@ class Clusterer {
   /// `first_xyz`, `first_t`: None, or the stream's beginning, from which the
   /// mount and sensor height are estimated as the CLI does from its input's
   /// first window (ground without mount or sensor height).
-  Clusterer(const std::vector<std::string>& args, const py::handle& first_xyz, const py::handle& first_t)
-      : session_(make_engine(args, first_xyz, first_t)) {}
+  /// `tracks`: each retrieval also fits the objects' boxes and updates a
+  /// KalmanTracker (continuous mode only: ValueError otherwise).
+  Clusterer(const std::vector<std::string>& args, const py::handle& first_xyz, const py::handle& first_t, bool tracks)
+      : session_(make_engine(args, first_xyz, first_t)) {
+    if (!tracks) return;
+    if (!session_.engine().continuous()) {
+      throw py::value_error("tracks: tracking follows the continuous engine's components; not with mode=\"frame\"");
+    }
+    tracker_.emplace();
+  }
 
   py::object insert(const py::handle& xyz, const py::handle& t, const py::handle& intensity, bool want_reasons) {
     const PointBuffers points = point_buffers(xyz, t, intensity);
@@ -108,8 +117,11 @@ class Clusterer {
     if (time) session_.advance_to(*time);
     const Clustering& result = session_.retrieve(rows_);
     const std::uint64_t cycle = cycles_++;
+    const std::vector<tracking::Track>* tracks = nullptr;
+    if (tracker_) tracks = &tracker_->update(*session_.engine().objects(result), result.time);
     py::gil_scoped_acquire acquire;
     out = retrieval_tuple(cycle, time ? *time : result.time, rows_, result);
+    if (tracks) out = py::make_tuple(out[0], out[1], out[2], out[3], out[4], tracks_array(*tracks));
     return out;
   }
 
@@ -160,6 +172,7 @@ class Clusterer {
   std::mutex mutex_;
   WindowRows rows_;
   std::uint64_t cycles_ = 0;
+  std::optional<KalmanTracker> tracker_;  ///< with tracks=True
 };
 
 /// cluster_stream: the CLI driver's schedule (tools/cli/cluster_driver.hpp)
@@ -318,6 +331,8 @@ PYBIND11_MODULE(_streamclust, m) {
   namespace sp = streamclust::python;
   m.doc() = "streamclust's extension module; use the `streamclust` package (docs/python.md).";
   PYBIND11_NUMPY_DTYPE(sp::ComponentRecord, id, size, centroid, min, max, t_min, t_max);
+  PYBIND11_NUMPY_DTYPE(sp::TrackRecord, track_id, cluster_id, position, velocity, length, width, height, yaw, points,
+                       state, moving);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -339,8 +354,8 @@ PYBIND11_MODULE(_streamclust, m) {
   m.attr("REJECT_REASONS") = reasons;
 
   py::class_<sp::Clusterer>(m, "Clusterer")
-      .def(py::init<const std::vector<std::string>&, const py::handle&, const py::handle&>(), py::arg("args"),
-           py::arg("first_xyz") = py::none(), py::arg("first_t") = py::none())
+      .def(py::init<const std::vector<std::string>&, const py::handle&, const py::handle&, bool>(), py::arg("args"),
+           py::arg("first_xyz") = py::none(), py::arg("first_t") = py::none(), py::arg("tracks") = false)
       .def("insert", &sp::Clusterer::insert, py::arg("xyz"), py::arg("t"), py::arg("intensity") = py::none(),
            py::arg("reasons") = false)
       .def("advance_to", &sp::Clusterer::advance_to, py::arg("time"))

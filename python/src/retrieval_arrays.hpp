@@ -9,6 +9,7 @@
 #include "window_rows.hpp"
 
 #include <streamclust/clustering.hpp>
+#include <streamclust/tracking/track.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -33,6 +34,20 @@ struct ComponentRecord {
   double t_max;         ///< newest point [s]
 };
 
+/// One row of Retrieval.tracks (a numpy structured array; its dtype is
+/// registered when the module loads). The tracks CSV's columns.
+struct TrackRecord {
+  std::int64_t track_id;    ///< the track's own id
+  std::int64_t cluster_id;  ///< the component seen, -1 when none was
+  float position[3];        ///< box centre [m]
+  float velocity[3];        ///< [m/s]; 0 while static
+  float length, width, height;  ///< [m]
+  float yaw;                ///< [rad]
+  std::int64_t points;      ///< of the component seen (0 when none)
+  std::int8_t state;        ///< 0 tentative, 1 confirmed, 2 coasting
+  bool moving;
+};
+
 template <class T>
 py::array_t<T> copy_to_array(const std::vector<T>& v) {
   py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
@@ -54,6 +69,29 @@ inline py::array_t<ComponentRecord> components_array(const std::vector<Component
     }
     r.t_min = c.time_begin;
     r.t_max = c.time_end;
+    *out++ = r;
+  }
+  return a;
+}
+
+inline py::array_t<TrackRecord> tracks_array(const std::vector<tracking::Track>& tracks) {
+  py::array_t<TrackRecord> a(static_cast<py::ssize_t>(tracks.size()));
+  TrackRecord* out = a.mutable_data();
+  for (const tracking::Track& t : tracks) {
+    TrackRecord r{};
+    r.track_id = static_cast<std::int64_t>(t.id);
+    r.cluster_id = t.cluster_id == kNoComponent ? -1 : static_cast<std::int64_t>(t.cluster_id);
+    for (int k = 0; k < 3; ++k) {
+      r.position[k] = t.position[k];
+      r.velocity[k] = t.velocity[k];
+    }
+    r.length = t.length;
+    r.width = t.width;
+    r.height = t.height;
+    r.yaw = t.yaw;
+    r.points = static_cast<std::int64_t>(t.points);
+    r.state = static_cast<std::int8_t>(t.state);
+    r.moving = t.moving;
     *out++ = r;
   }
   return a;

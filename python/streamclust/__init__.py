@@ -20,10 +20,11 @@ import numpy as np
 from . import _streamclust
 from ._options import (POLICY_KEYWORDS, READ_KEYWORDS, SIMULATION_KEYWORDS, reraise_with_keywords,
                        to_arguments)
-from ._retrieval import CEILING, COMPONENT_DTYPE, GROUND, UNLABELLED, Retrieval
+from ._retrieval import CEILING, COMPONENT_DTYPE, GROUND, TRACK_DTYPE, TRACK_STATES, UNLABELLED, Retrieval
 
 __all__ = ["Clusterer", "Retrieval", "Simulation", "cluster_stream", "read", "simulate", "evaluate", "live",
-           "LiveStream", "LiveRetrieval", "REJECT_REASONS", "COMPONENT_DTYPE", "PRESETS", "UNLABELLED", "GROUND", "CEILING"]
+           "LiveStream", "LiveRetrieval", "REJECT_REASONS", "COMPONENT_DTYPE", "TRACK_DTYPE", "TRACK_STATES", "PRESETS",
+           "UNLABELLED", "GROUND", "CEILING"]
 
 #: Names of the rejection reason codes returned by ``insert(..., reasons=True)``
 #: (code i is REJECT_REASONS[i]; 0 is "accepted").
@@ -64,6 +65,9 @@ class Clusterer:
     window of its input: give ``first_window=(xyz, t)``, the stream's
     beginning (at least T_B seconds of it; read, not kept), for the same
     estimate, or ``mount`` (or ``poses``) and ``sensor_height``.
+    With ``tracks=True`` every retrieval also has ``tracks``: the objects'
+    oriented boxes followed by a Kalman tracker, as ``cluster --tracks``
+    (:data:`TRACK_DTYPE`; continuous mode only).
 
     Thread safety: calls from several threads are serialised (a mutex); the
     GIL is released while the engine works.
@@ -86,14 +90,16 @@ class Clusterer:
     plus the copy of the rows.
     """
 
-    def __init__(self, preset="carc-mid360", *, first_window=None, **options):
+    def __init__(self, preset="carc-mid360", *, first_window=None, tracks=False, **options):
         first_xyz = first_t = None
         if first_window is not None:
             try:
                 first_xyz, first_t = first_window
             except (TypeError, ValueError):
                 raise ValueError(f"first_window: expected a pair (xyz, t) of numpy arrays, got {first_window!r}") from None
-        self._engine = _call(_streamclust.Clusterer, _policy_arguments(preset, options), first_xyz, first_t)
+        if not isinstance(tracks, bool):
+            raise ValueError(f"tracks: expected True or False, got {tracks!r}")
+        self._engine = _call(_streamclust.Clusterer, _policy_arguments(preset, options), first_xyz, first_t, tracks)
 
     def insert(self, xyz, t, intensity=None, reasons=False):
         """Offers N points in stream order; returns the number accepted.

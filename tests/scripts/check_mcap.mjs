@@ -4,7 +4,8 @@
 // reader through the summary's chunk indexes), decodes every message from its
 // schema's ros2msg text (@foxglove/rosmsg + @foxglove/rosmsg2-serialization)
 // and prints what it found as JSON:
-//   {"profile", "messages", "indexed", "topics": {topic: {"schema", "messages"}},
+//   {"profile", "messages", "indexed", "topics": {topic: {"schema", "messages", "entities": [per
+//    SceneUpdate], "arrows": arrows in all, "cubes_turned": cubes with a turn about z}},
 //    "points": [points per PointCloud message], "entities": [entities per SceneUpdate],
 //    "first_log_time", "last_log_time"}
 // Usage: node check_mcap.mjs NPM_PREFIX FILE   (NPM_PREFIX holds node_modules with
@@ -37,7 +38,7 @@ for (let r; (r = stream.nextRecord()); ) {
     channels.set(r.id, r);
     const s = schemas.get(r.schemaId);
     readers.set(r.id, new MessageReader(parse(new TextDecoder().decode(s.data), { ros2: true })));
-    out.topics[r.topic] ??= { schema: s.name, messages: 0 };  // the summary repeats the channels
+    out.topics[r.topic] ??= { schema: s.name, messages: 0, entities: [], arrows: 0, cubes_turned: 0 };  // the summary repeats the channels
   }
   if (r.type === "Message") {
     const channel = channels.get(r.channelId);
@@ -47,7 +48,15 @@ for (let r; (r = stream.nextRecord()); ) {
     if (out.first_log_time === undefined) out.first_log_time = r.logTime.toString();
     out.last_log_time = r.logTime.toString();
     if (message.point_stride !== undefined) out.points.push(message.data.length / message.point_stride);
-    if (message.entities !== undefined) out.entities.push(message.entities.length);
+    if (message.entities !== undefined) {
+      const t = out.topics[channel.topic];
+      t.entities.push(message.entities.length);
+      for (const e of message.entities) {
+        t.arrows += e.arrows.length;
+        t.cubes_turned += e.cubes.filter((c) => Math.abs(c.pose.orientation.z) > 1e-9).length;
+      }
+      if (channel.topic === "/streamclust/clusters") out.entities.push(message.entities.length);
+    }
   }
 }
 if (!stream.done()) throw new Error("the stream reader did not reach the end of the file");

@@ -70,7 +70,7 @@ ClusterOutputs::ClusterOutputs(const ClusterOptions& o) : options_(o), selection
   }
   if (!o.mcap_path.empty()) {
     try {
-      mcap_ = std::make_unique<McapOutput>(o.mcap_path);
+      mcap_ = std::make_unique<McapOutput>(o.mcap_path, !o.tracks_path.empty());
     } catch (const std::runtime_error&) {
       throw UsageError("--mcap: cannot write '" + o.mcap_path + "'");
     }
@@ -107,6 +107,7 @@ void ClusterOutputs::write_tracks(std::uint64_t cycle, double time, io::TimeOrig
   tracking::append_track_rows(tracks_rows_, cycle, origin, time, tracker_->tracks());
   tracks_file_ << tracks_rows_;
   if (!tracks_file_) throw UsageError("--tracks: writing '" + options_.tracks_path + "' failed");
+  if (mcap_) mcap_->write_tracks(tracker_->tracks(), time, origin);
   stage = Stage::clustering;
 }
 

@@ -12,6 +12,7 @@
 /// | `/streamclust/points` | `foxglove_msgs/msg/PointCloud` | the window: x y z (float32), label (int32), red green blue alpha (uint8: the label's colour; ground brown, ceiling pale blue, unlabelled grey) |
 /// | `/streamclust/clusters` | `foxglove_msgs/msg/SceneUpdate` | one box per component (its axis-aligned extent, the label's colour) with its id above it; each update replaces the last |
 /// | `/streamclust/raw` | `foxglove_msgs/msg/PointCloud` | points as received: x y z intensity (float32) |
+/// | `/streamclust/tracks` | `foxglove_msgs/msg/SceneUpdate` | one oriented box per confirmed or coasting track (`--tracks`), its id and speed above it, an arrow of its velocity (1 s of travel) while it moves; each update replaces the last |
 ///
 /// Frame id `streamclust`. Not thread-safe; reuses its buffers (no allocation
 /// in steady state once they have grown).
@@ -21,11 +22,13 @@
 #include <streamclust/io/foxglove_messages.hpp>
 #include <streamclust/io/stream_time.hpp>
 #include <streamclust/io/writers.hpp>
+#include <streamclust/tracking/track.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -39,6 +42,7 @@ class FoxgloveFrames {
   static constexpr const char* kPointsTopic = "/streamclust/points";
   static constexpr const char* kClustersTopic = "/streamclust/clusters";
   static constexpr const char* kRawTopic = "/streamclust/raw";
+  static constexpr const char* kTracksTopic = "/streamclust/tracks";
   static constexpr const char* kPointCloudType = "foxglove_msgs/PointCloud";  // io::foxglove::ros2_definition key
   static constexpr const char* kSceneUpdateType = "foxglove_msgs/SceneUpdate";
   static constexpr const char* kPointCloudSchema = "foxglove_msgs/msg/PointCloud";  // schema name
@@ -89,6 +93,38 @@ class FoxgloveFrames {
     io::foxglove::write_scene_update(scene_, stamp, kFrame, boxes_);
   }
 
+  /// Builds tracks_update(): the confirmed and coasting `tracks` (tentative
+  /// ones are left out), stamped `log_ns`. O(tracks).
+  void build_tracks(const std::vector<tracking::Track>& tracks, std::uint64_t log_ns) {
+    track_boxes_.clear();
+    for (const tracking::Track& t : tracks) {
+      if (t.state == tracking::TrackState::tentative) continue;
+      io::foxglove::Box b;
+      b.id = "track " + std::to_string(t.id);
+      b.center = {t.position.x(), t.position.y(), t.position.z()};
+      b.size = {t.length, t.width, t.height};
+      b.yaw = t.yaw;
+      const auto c = label_display_color(static_cast<std::int64_t>(t.id));
+      const double alpha = t.state == tracking::TrackState::coasting ? 0.15 : 0.4;
+      b.color = io::foxglove::Color{c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, alpha};
+      const double speed = std::hypot(static_cast<double>(t.velocity.x()), static_cast<double>(t.velocity.y()));
+      char text[48];
+      std::snprintf(text, sizeof text, "%llu %.1f m/s", static_cast<unsigned long long>(t.id), speed);
+      b.text = text;
+      if (t.moving && speed > 0.0) {
+        b.arrow_length = speed;  // [m]: 1 s of travel
+        b.arrow_yaw = std::atan2(static_cast<double>(t.velocity.y()), static_cast<double>(t.velocity.x()));
+      }
+      b.metadata = {{"state", tracking::to_string(t.state)},
+                    {"cluster", t.cluster_id == kNoComponent ? std::string("-1") : std::to_string(t.cluster_id)},
+                    {"points", std::to_string(t.points)}};
+      track_boxes_.push_back(std::move(b));
+    }
+    io::foxglove::write_scene_update(tracks_, stamp_of(log_ns), kFrame, track_boxes_);
+  }
+  /// The last build_tracks()'s `foxglove_msgs/msg/SceneUpdate`.
+  const std::vector<std::uint8_t>& tracks_update() const { return tracks_.bytes(); }
+
   /// Builds raw_cloud(): `points` as received (x y z intensity), stamped `log_ns`. O(n).
   void build_raw(const std::vector<io::Record>& points, std::uint64_t log_ns) {
     data_.assign(points.size() * kRawStride, 0);
@@ -129,9 +165,9 @@ class FoxgloveFrames {
     return {static_cast<std::int32_t>(log_ns / 1000000000u), static_cast<std::uint32_t>(log_ns % 1000000000u)};
   }
 
-  io::CdrWriter cloud_, scene_, raw_;
+  io::CdrWriter cloud_, scene_, raw_, tracks_;
   std::vector<std::uint8_t> data_;
-  std::vector<io::foxglove::Box> boxes_;
+  std::vector<io::foxglove::Box> boxes_, track_boxes_;
   std::vector<ClusterBox> extents_;
 };
 

@@ -14,7 +14,9 @@
 #include <streamclust/io/cdr_writer.hpp>
 #include <streamclust/io/ros2_definitions.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -103,12 +105,12 @@ inline void put_vector(CdrWriter& w, double x, double y, double z) {
   w.f64(z);
 }
 /// A pose at (x, y, z) without rotation.
-inline void put_pose(CdrWriter& w, double x, double y, double z) {
+inline void put_pose(CdrWriter& w, double x, double y, double z, double yaw = 0.0) {
   put_vector(w, x, y, z);
+  w.f64(0);  // the quaternion of a turn by `yaw` [rad] about z
   w.f64(0);
-  w.f64(0);
-  w.f64(0);
-  w.f64(1);
+  w.f64(std::sin(0.5 * yaw));
+  w.f64(std::cos(0.5 * yaw));
 }
 inline void put_color(CdrWriter& w, Color c) {
   w.f64(c.r);
@@ -146,12 +148,18 @@ inline void write_point_cloud(CdrWriter& w, Stamp t, const std::string& frame_id
   w.bytes(data.data(), data.size());
 }
 
-/// One box of a scene update: an entity with one cube and, above it, its id as text.
+/// One box of a scene update: an entity with one cube turned by `yaw` about
+/// z, above it `text` (its id when empty), and an arrow from its centre when
+/// `arrow_length` > 0.
 struct Box {
   std::string id;
-  std::array<double, 3> center{}, size{};  ///< [m]
+  std::array<double, 3> center{}, size{};  ///< [m]; size along the box's own axes
   Color color;
   std::vector<std::pair<std::string, std::string>> metadata;
+  double yaw = 0.0;           ///< [rad] the cube's turn about z
+  std::string text;           ///< shown above the box; empty: the id
+  double arrow_length = 0.0;  ///< [m] 0: no arrow
+  double arrow_yaw = 0.0;     ///< [rad] the arrow's heading in the ground plane
 };
 
 /// Writes a `foxglove_msgs/SceneUpdate` that deletes every earlier entity
@@ -174,9 +182,18 @@ inline void write_scene_update(CdrWriter& w, Stamp t, const std::string& frame_i
       w.string(key);
       w.string(value);
     }
-    w.count(0);  // arrows
+    w.count(b.arrow_length > 0.0 ? 1 : 0);  // arrows
+    if (b.arrow_length > 0.0) {
+      const double head = std::min(0.3, 0.5 * b.arrow_length);
+      put_pose(w, b.center[0], b.center[1], b.center[2], b.arrow_yaw);
+      w.f64(b.arrow_length - head);  // shaft length [m]
+      w.f64(0.06);                   // shaft diameter [m]
+      w.f64(head);                   // head length [m]
+      w.f64(0.18);                   // head diameter [m]
+      put_color(w, Color{1, 1, 1, 0.9});
+    }
     w.count(1);  // cubes
-    put_pose(w, b.center[0], b.center[1], b.center[2]);
+    put_pose(w, b.center[0], b.center[1], b.center[2], b.yaw);
     put_vector(w, b.size[0], b.size[1], b.size[2]);
     put_color(w, b.color);
     w.count(0);  // spheres
@@ -189,7 +206,7 @@ inline void write_scene_update(CdrWriter& w, Stamp t, const std::string& frame_i
     w.f64(14.0);      // font size [px, scale invariant]
     w.boolean(true);
     put_color(w, Color{1, 1, 1, 1});
-    w.string(b.id);
+    w.string(b.text.empty() ? b.id : b.text);
     w.count(0);  // models
   }
 }
