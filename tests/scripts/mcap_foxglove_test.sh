@@ -44,3 +44,22 @@ need(all(n > 0 for n in r["points"]) and all(e > 0 for e in r["entities"]), "poi
 need(int(r["first_log_time"]) >= 1700000000 * 10**9, "log times in the stream's Unix time")
 print("mcap_foxglove: ok,", cycles, "cycles")
 PY
+
+# Walkers in the simulated office: moving tracks, so arrows are written and decoded.
+"$tool" simulate --sensor mid360 --scene office --seconds 2 --out "$work/office.csv" --quiet
+"$tool" cluster "$work/office.csv" --preset objects-mid360 --sensor-height 1.0 --quiet \
+  --mcap "$work/office.mcap" --tracks "$work/office_tracks.csv"
+json=$(node "$src/tests/scripts/check_mcap.mjs" "$prefix" "$work/office.mcap")
+python3 - "$json" "$work/office_tracks.csv" <<'PY'
+import csv, json, sys
+r = json.loads(sys.argv[1])
+rows = list(csv.DictReader(open(sys.argv[2])))
+def need(ok, what):
+    if not ok:
+        sys.exit("mcap_foxglove (office): " + what)
+tracks = r["topics"]["/streamclust/tracks"]
+moving = sum(1 for row in rows if row["state"] != "tentative" and (float(row["vx"]) != 0 or float(row["vy"]) != 0))
+need(moving > 0, "walkers tracked as moving")
+need(tracks["arrows"] == moving, "an arrow per moving track (%d, found %d)" % (moving, tracks["arrows"]))
+print("mcap_foxglove: office ok,", moving, "moving track rows with arrows")
+PY
