@@ -130,6 +130,9 @@ class ObjectBoxes {
     }
     // Window positions: the result's points and the engine's ring, both
     // oldest first; a point's sample is read only when its component is boxed.
+    // No component (an empty window, or the result of a retrieval while
+    // the engine calibrates, which holds no point): nothing to gather.
+    if (slot_component_.empty()) return;
     const std::size_t n = result.points.size();
     if (engine.size() != n) throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
     std::size_t cached = 0;
