@@ -330,30 +330,21 @@ class KalmanTracker {
     const double span = o.time - o.time_begin;
     const double overlap = dt > 0.0 ? std::max(1.0, span / std::max(dt, o.time - f.track.last_seen)) : 1.0;
     // A centre beyond the 99 % ellipse (the component changed: a merge, a
-    // split, a new side in view) counts as if on it: its noise is raised by
-    // the excess, so a jump of the box moves the track without making speed.
-    Eigen::Matrix2d s = f.p.template topLeftCorner<2, 2>();
-    s.diagonal().array() += sp * sp;
-    const Eigen::Vector2d innovation = o.box.center.template head<2>().cast<double>() - f.x.template head<2>();
-    const double d2 = innovation.dot(s.inverse() * innovation);
-    const double inflate = d2 > kChi2Gate ? d2 / kChi2Gate : 1.0;
-    Vector4 z, r;
-    z << o.box.center.x(), o.box.center.y(), 0.0, 0.0;
-    r << sp * sp * inflate, sp * sp * inflate, 0.0, 0.0;
-    kalman_update<2>(f, z, r);
+    // split, a new side in view) counts as if on it, so a jump of the box
+    // moves the track without making speed.
+    update_pair<0>(f, o.box.center.template head<2>().cast<double>(), sp * sp, true);
+    // Static: a zero-velocity pseudo-measurement of `moving_speed`, so a box
+    // centre that wanders (a side coming into view) does not build speed.
     if (!f.track.moving) {
-      // Static: a zero-velocity pseudo-measurement of `moving_speed`, so a box
-      // centre that wanders (a side coming into view) does not build speed.
-      const double sz = static_cast<double>(params_.moving_speed) * params_.moving_speed;
-      Eigen::Matrix2d s0 = f.p.template bottomRightCorner<2, 2>();
-      s0.diagonal().array() += sz;
-      const Eigen::Matrix<double, 4, 2> k0 = f.p.template rightCols<2>() * s0.inverse();
-      f.x -= k0 * f.x.template tail<2>();
-      f.p -= k0 * f.p.template bottomRows<2>();
-      f.p = (0.5 * (f.p + f.p.transpose())).eval();
+      update_pair<2>(f, Eigen::Vector2d::Zero(), static_cast<double>(params_.moving_speed) * params_.moving_speed, false);
     }
+    // The window velocity, its variance times the overlap of successive
+    // windows, robust like the centre (a component whose parts change within
+    // the window shows a fast, tight, wrong velocity; a filter misled by a
+    // jumping centre is pulled back by the points' own motion).
     if (o.velocity.valid) {
-      measure_velocity(f, o, overlap);
+      const double rv = static_cast<double>(o.velocity.error) * o.velocity.error * overlap;
+      update_pair<2>(f, o.velocity.velocity.cast<double>(), rv, true);
       f.window_velocity = f.has_window_velocity
                               ? Eigen::Vector2f(f.window_velocity + params_.extent_smoothing *
                                                                         (o.velocity.velocity - f.window_velocity))
@@ -369,36 +360,24 @@ class KalmanTracker {
     f.track.box_quality = o.box.quality;
   }
 
-  /// The Kalman update with the first M state components measured as
-  /// z.head<M>() with variances r.head<M>() (M = 2: the centre; 4: and the
-  /// velocity). Fixed sizes: no allocation.
-  template <int M>
-  static void kalman_update(Filter& f, const Vector4& z, const Vector4& r) {
-    Eigen::Matrix<double, M, M> s = f.p.template topLeftCorner<M, M>();
-    s.diagonal() += r.template head<M>();
-    const Eigen::Matrix<double, 4, M> k = f.p.template leftCols<M>() * s.inverse();
-    f.x += k * (z.template head<M>() - f.x.template head<M>());
-    f.p -= k * f.p.template topRows<M>();
-    f.p = (0.5 * (f.p + f.p.transpose())).eval();
-  }
-
-  /// The window velocity of `o` as a measurement of the filter's velocity,
-  /// its variance times `overlap`; beyond the 99 % ellipse (chi-square, 2
-  /// degrees of freedom: 9.21) its variance is raised by the excess, so it
-  /// counts as if on the ellipse (a component whose parts change within the
-  /// window shows a fast, tight, wrong velocity; a filter misled by a jumping
-  /// centre is pulled back by the points' own motion, bounded per update).
-  static void measure_velocity(Filter& f, const tracking::ObjectObservation& o, double overlap) {
-    const double rv = static_cast<double>(o.velocity.error) * o.velocity.error * overlap;
-    Eigen::Matrix2d s = f.p.template bottomRightCorner<2, 2>();
-    s.diagonal().array() += rv;
-    const Eigen::Vector2d innovation = o.velocity.velocity.cast<double>() - f.x.template tail<2>();
-    const double d2 = innovation.dot(s.inverse() * innovation);
-    if (d2 > kChi2Gate) s.diagonal().array() += rv * (d2 / kChi2Gate - 1.0);
-    // H selects the velocity: the gain is P's last two columns over S.
-    const Eigen::Matrix<double, 4, 2> k = f.p.template rightCols<2>() * s.inverse();
+  /// The Kalman update with state components At and At + 1 (0: the centre,
+  /// 2: the velocity) measured as `z`, each with variance `r`. With `robust`,
+  /// a measurement beyond the 99 % ellipse of the prediction (chi-square, 2
+  /// degrees of freedom: 9.21) has its variance raised by the excess: it
+  /// counts as if on the ellipse. Fixed sizes: no allocation.
+  template <int At>
+  static void update_pair(Filter& f, const Eigen::Vector2d& z, double r, bool robust) {
+    Eigen::Matrix2d s = f.p.template block<2, 2>(At, At);
+    s.diagonal().array() += r;
+    const Eigen::Vector2d innovation = z - f.x.template segment<2>(At);
+    if (robust) {
+      const double d2 = innovation.dot(s.inverse() * innovation);
+      if (d2 > kChi2Gate) s.diagonal().array() += r * (d2 / kChi2Gate - 1.0);
+    }
+    // H selects the pair: the gain is P's two columns at At over S.
+    const Eigen::Matrix<double, 4, 2> k = f.p.template middleCols<2>(At) * s.inverse();
     f.x += k * innovation;
-    f.p -= k * f.p.template bottomRows<2>();
+    f.p -= k * f.p.template middleRows<2>(At);
     f.p = (0.5 * (f.p + f.p.transpose())).eval();
   }
 
