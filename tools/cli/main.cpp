@@ -159,14 +159,19 @@ const char* simulate_help() {
   return R"(usage: streamclust simulate --out FILE [--sensor S] [--scene C] [--seconds S] [--seed N]
                             [--speed M/S] [--yaw-rate RAD/S] [--noise M] [--dropout P] [--max-range M]
                             [--burst START:LENGTH --burst-speed M/S --burst-yaw-rate RAD/S]
-                            [--mount ROLL,PITCH,YAW] [--trajectory FILE] [--class-column]
-                            [--start-time S]
+                            [--mount ROLL,PITCH,YAW] [--trajectory FILE] [--objects FILE]
+                            [--objects-rate HZ] [--class-column] [--start-time S]
 
 Writes a simulated point stream with its ground truth to FILE (.csv: columns
 x,y,z,intensity,t,label; .pcd: binary with a label field). label is the
 instance id of the object hit, 0 for structure (ground, walls, ceiling).
 Beside it, the sensor trajectory (TUM, 200 Hz, world from sensor) in
-FILE without its extension + .tum, or --trajectory FILE.
+FILE without its extension + .tum, or --trajectory FILE, and every object's
+box over time (the trackers' truth; CSV
+time,instance,label,moving,x,y,z,vx,vy,vz,length,width,height,yaw: world
+frame, box centre [m], velocity [m/s], extent [m], yaw [rad] of the length
+axis, moving 0/1; --objects-rate HZ rows per object per second, default 20) in
+FILE without its extension + .objects.csv, or --objects FILE.
 Points are in the sensor frame at capture time; no-returns are dropped.
 Deterministic for a given seed.
 
@@ -182,8 +187,8 @@ Deterministic for a given seed.
   --mount ROLL,PITCH,YAW                        the sensor's mount [deg] (pitch > 0 tilts it down,
                                                 roll 180 is upside down; default 0,0,0)
   --class-column                                CSV: a class column (0 object, 1 ground, 2 wall, 3 ceiling)
-  --start-time S                                whole seconds added to every time written, points
-                                                and trajectory (e.g. Unix time 1700000000; default 0)
+  --start-time S                                whole seconds added to every time written, points,
+                                                trajectory and objects (e.g. Unix time 1700000000; default 0)
 
 examples:
   streamclust simulate --sensor mid360 --scene office --seconds 2 --out office.csv

@@ -5,7 +5,8 @@
 /// `streamclust simulate`: writes a simulated stream with its ground truth
 /// (the `label` column/field is the id of the object hit: 0 for structure;
 /// optionally a `class` column with the SurfaceClass number) and, beside it,
-/// the sensor trajectory it used as a TUM file (200 Hz).
+/// the sensor trajectory it used as a TUM file (200 Hz) and every object's
+/// box and velocity over time (objects CSV, 20 Hz: the trackers' truth).
 /// Sensors: the Livox models of streamclust::sim (mid360, mid40, mid70, avia)
 /// and a 32-beam spinning sensor, on a tilted or upside-down mount if asked;
 /// scenes: office, forest, street, hills. The older stand-in (`--sensor
@@ -24,6 +25,7 @@
 #include <streamclust/sim/simulator.hpp>
 #include <streamclust/sim/synthetic_stream.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <fstream>
@@ -60,6 +62,8 @@ struct SimulateOptions {
   bool mount_given = false;      ///< --mount was on the command line
   std::string out;
   std::string trajectory;        ///< TUM output; "" = `out` without its extension + ".tum"
+  std::string objects;           ///< objects truth CSV; "" = `out` without its extension + ".objects.csv"
+  double objects_rate = 20.0;    ///< [Hz] rows per object per second in `objects`
   bool class_column = false;     ///< CSV: a `class` column (SurfaceClass number)
   /// --start-time S: whole seconds added to every written time (a recording's
   /// epoch times); the stream itself is simulated from 0.
@@ -69,6 +73,10 @@ struct SimulateOptions {
 
 /// Trajectory poses per second written beside a simulated stream.
 inline constexpr double kTrajectoryRateHz = 200.0;
+
+/// The header of the objects truth CSV written beside a simulated stream.
+inline constexpr const char* kObjectTruthCsvHeader =
+    "time,instance,label,moving,x,y,z,vx,vy,vz,length,width,height,yaw";
 
 /// Parses one option of the simulated scenario (sensor, scene, duration,
 /// seed, ego-motion, burst, noise, dropout, max range), shared by `simulate`
@@ -162,6 +170,11 @@ inline SimulateOptions parse_simulate_options(const std::vector<std::string>& ar
       o.out = c.value();
     } else if (a == "--trajectory") {
       o.trajectory = c.value();
+    } else if (a == "--objects") {
+      o.objects = c.value();
+    } else if (a == "--objects-rate") {
+      o.objects_rate = parse_positive(a, c.value());
+      if (o.objects_rate > 1000.0) throw UsageError("--objects-rate: at most 1000 Hz");
     } else if (a == "--class-column") {
       o.class_column = true;
     } else if (a == "--start-time") {
@@ -191,6 +204,11 @@ inline SimulateOptions parse_simulate_options(const std::vector<std::string>& ar
   }
   if (o.trajectory.empty()) o.trajectory = o.out.substr(0, o.out.size() - 4) + ".tum";
   if (o.trajectory == o.out) throw UsageError("--trajectory: must differ from --out");
+  if (o.sensor == "synthetic" && !o.objects.empty()) {
+    throw UsageError("--objects needs a simulated scene (the synthetic stand-in has no object trajectories)");
+  }
+  if (o.objects.empty() && o.sensor != "synthetic") o.objects = o.out.substr(0, o.out.size() - 4) + ".objects.csv";
+  if (o.objects == o.out || o.objects == o.trajectory) throw UsageError("--objects: must differ from --out and --trajectory");
   return o;
 }
 
@@ -322,6 +340,49 @@ inline void write_trajectory(const std::string& path, const std::vector<StampedP
   if (!file) throw std::runtime_error(path + ": write failed (disk full?)");
 }
 
+/// Writes every object of `scene` at times t0, t0 + 1 / rate, ... up to t1
+/// (included) as kObjectTruthCsvHeader rows, world frame (the trajectory's),
+/// times from `origin`: box centre [m], velocity [m/s], length, width,
+/// height [m], yaw [rad], moving 0/1. Throws std::runtime_error naming the
+/// file when it cannot be written. O(samples x objects).
+inline void write_object_truth(const std::string& path, const sim::Scene& scene, double t0, double t1, double rate,
+                               io::TimeOrigin origin) {
+  io::detail::OutFile file(path);
+  std::string s = kObjectTruthCsvHeader;
+  s += '\n';
+  const auto number = [&s](float v) {
+    io::detail::append_number(s, v);
+    s += ',';
+  };
+  for (std::uint64_t k = 0;; ++k) {
+    double t = t0 + static_cast<double>(k) / rate;
+    if (t > t1 + 1e-9) break;
+    t = std::min(t, t1);
+    for (const sim::ObjectInfo& info : scene.objects()) {
+      const sim::ObjectState state = scene.object_state(info.instance, t);
+      io::append_time(s, origin, t);
+      s += ',';
+      s += std::to_string(info.instance);
+      s += ',';
+      s += info.label;
+      s += state.moving ? ",1," : ",0,";
+      for (int i = 0; i < 3; ++i) number(state.box.center[i]);
+      for (int i = 0; i < 3; ++i) number(state.velocity[i]);
+      number(state.box.length);
+      number(state.box.width);
+      number(state.box.height);
+      io::detail::append_number(s, state.box.yaw);
+      s += '\n';
+    }
+    if (s.size() > (1u << 16)) {
+      file.write(s);
+      s.clear();
+    }
+  }
+  file.write(s);
+  file.close();
+}
+
 inline int run_simulate(const SimulateOptions& o, std::ostream& out) {
   const SimulatedStream stream = simulate_stream(o);
   const bool pcd = o.out.size() >= 4 && o.out.compare(o.out.size() - 4, 4, ".pcd") == 0;
@@ -333,10 +394,17 @@ inline int run_simulate(const SimulateOptions& o, std::ostream& out) {
     io::write_csv_points(o.out, stream.records, {}, o.start_time);
   }
   write_trajectory(o.trajectory, stream.trajectory, o.start_time);
+  if (!o.objects.empty()) {
+    const double t0 = stream.trajectory.empty() ? 0.0 : stream.trajectory.front().time;
+    const double t1 = stream.trajectory.empty() ? 0.0 : stream.trajectory.back().time;
+    write_object_truth(o.objects, sim::make_scene(o.scene, o.seed), t0, t1, o.objects_rate, o.start_time);
+  }
   if (!o.quiet) {
     out << "streamclust: simulated " << stream.records.size() << " points (" << o.seconds << " s, sensor "
         << o.sensor << ", scene " << o.scene << ", seed " << o.seed << ") -> " << o.out << ", trajectory -> "
-        << o.trajectory << "\n";
+        << o.trajectory;
+    if (!o.objects.empty()) out << ", objects -> " << o.objects;
+    out << "\n";
   }
   return kOk;
 }

@@ -118,6 +118,42 @@ class ShapeSet {
 
   /// Bounds of the bounded shapes; see `unbounded()`.
   const Aabb& bounds() const { return bounds_; }
+
+  /// The support function of the bounded shapes' footprint: the largest
+  /// u . (x, y) over their points for the horizontal unit direction `u` [m].
+  /// Exact for boxes, cylinders, spheres, ellipsoids and capsules;
+  /// rectangles and terrain count by their bounds' corners. O(shapes).
+  float reach(const Eigen::Vector2f& u) const {
+    float best = -std::numeric_limits<float>::infinity();
+    const auto take = [&](float v) { best = std::max(best, v); };
+    const auto corners = [&](const Aabb& b) {
+      if (b.lo.x() > b.hi.x()) return;
+      take(std::max(u.x() * b.lo.x(), u.x() * b.hi.x()) + std::max(u.y() * b.lo.y(), u.y() * b.hi.y()));
+    };
+    for (const Part<Plane>& p : planes_) corners(p.shape.bounds());
+    for (const Part<Box>& b : boxes_) {
+      const Box& x = b.shape;
+      const float along = u.x() * x.cos_yaw + u.y() * x.sin_yaw;   // u . box x axis
+      const float across = -u.x() * x.sin_yaw + u.y() * x.cos_yaw;  // u . box y axis
+      take(u.x() * x.center.x() + u.y() * x.center.y() + std::abs(along) * x.half.x() + std::abs(across) * x.half.y());
+    }
+    for (const Part<Cylinder>& c : cylinders_) take(u.x() * c.shape.x + u.y() * c.shape.y + c.shape.radius);
+    for (const Part<Sphere>& s : spheres_) take(u.dot(s.shape.center.head<2>()) + s.shape.radius);
+    for (const Part<Ellipsoid>& e : ellipsoids_) {
+      const Eigen::Vector2f scaled(u.x() * e.shape.radii.x(), u.y() * e.shape.radii.y());
+      take(u.dot(e.shape.center.head<2>()) + scaled.norm());
+    }
+    for (const Part<Capsule>& c : capsules_) take(u.x() * c.shape.x + u.y() * c.shape.y + c.shape.radius);
+    for (const Part<Terrain>& t : terrains_) corners(t.shape.bounds());
+    return best;
+  }
+
+  /// The headings of the boxes [rad] (candidate axes of a footprint).
+  std::vector<float> box_yaws() const {
+    std::vector<float> yaws;
+    for (const Part<Box>& b : boxes_) yaws.push_back(std::atan2(b.shape.sin_yaw, b.shape.cos_yaw));
+    return yaws;
+  }
   /// True when the set holds an infinite plane.
   bool unbounded() const { return unbounded_; }
   std::size_t size() const {
@@ -350,6 +386,61 @@ class Trajectory {
   float phase_ = 0.0f;
 };
 
+/// An object's box: a footprint rectangle turned by `yaw` about +z and a
+/// height range.
+struct ObjectBox {
+  Eigen::Vector3f center = Eigen::Vector3f::Zero();  ///< [m] box centre
+  float yaw = 0.0f;     ///< [rad] heading of the length axis
+  float length = 0.0f;  ///< [m] along yaw (>= width)
+  float width = 0.0f;   ///< [m]
+  float height = 0.0f;  ///< [m]
+};
+
+/// The smallest-area footprint of `shapes` among the headings of its boxes
+/// and 0 (a car's body, a desk's top, a round tree's axes), with the height
+/// range of its bounds; length >= width, yaw in (-pi/2, pi/2]. Empty set:
+/// a zero box. O(shapes x boxes).
+inline ObjectBox smallest_footprint(const ShapeSet& shapes) {
+  constexpr float kHalfPi = 1.57079632679489661923f;
+  ObjectBox best;
+  if (shapes.empty() || shapes.unbounded()) return best;
+  std::vector<float> yaws = shapes.box_yaws();
+  yaws.push_back(0.0f);
+  float best_area = std::numeric_limits<float>::infinity();
+  for (const float yaw : yaws) {
+    const Eigen::Vector2f u(std::cos(yaw), std::sin(yaw));
+    const Eigen::Vector2f v(-u.y(), u.x());
+    const float u_hi = shapes.reach(u), u_lo = -shapes.reach(-u);
+    const float v_hi = shapes.reach(v), v_lo = -shapes.reach(-v);
+    const float area = (u_hi - u_lo) * (v_hi - v_lo);
+    if (!(area < best_area - 1e-6f)) continue;
+    best_area = area;
+    const float cu = 0.5f * (u_hi + u_lo), cv = 0.5f * (v_hi + v_lo);
+    best.center.head<2>() = cu * u + cv * v;
+    best.yaw = yaw;
+    best.length = u_hi - u_lo;
+    best.width = v_hi - v_lo;
+  }
+  if (best.width > best.length) {
+    std::swap(best.width, best.length);
+    best.yaw += kHalfPi;
+  }
+  best.yaw = std::remainder(best.yaw, 2.0f * kHalfPi);  // the axis, not a direction: modulo pi
+  if (best.yaw <= -kHalfPi) best.yaw += 2.0f * kHalfPi;
+  const Aabb& b = shapes.bounds();
+  best.center.z() = 0.5f * (b.lo.z() + b.hi.z());
+  best.height = b.hi.z() - b.lo.z();
+  return best;
+}
+
+/// Ground truth of one object at one time (world frame).
+struct ObjectState {
+  int instance = 0;
+  bool moving = false;
+  ObjectBox box;                                     ///< a moving object's yaw: its heading plus its body's
+  Eigen::Vector3f velocity = Eigen::Vector3f::Zero();  ///< [m/s] of the box centre
+};
+
 /// What a scene knows about one of its objects (for tests, ground truth
 /// summaries and tools; not used when casting).
 struct ObjectInfo {
@@ -407,6 +498,7 @@ class Scene {
     statics_.push_back(Body{shapes.bounds(), shapes, id, SurfaceClass::object, id});
     infos_.push_back(ObjectInfo{id, std::move(label), false, shapes.bounds()});
     anchors_.push_back(shapes.bounds().center());
+    footprints_.push_back(smallest_footprint(shapes));
     return id;
   }
 
@@ -432,6 +524,7 @@ class Scene {
     }
     infos_.push_back(ObjectInfo{id, std::move(label), true, m.swept});
     anchors_.push_back(Eigen::Vector3f::Zero());
+    footprints_.push_back(smallest_footprint(local));  // in the object's frame
     movers_.push_back(std::move(m));
     return id;
   }
@@ -566,9 +659,33 @@ class Scene {
     }
     const auto k = static_cast<std::size_t>(instance - 1);
     if (!infos_[k].moving) return anchors_[k];
-    for (const Mover& m : movers_)
-      if (m.instance == instance) return m.trajectory.position(time);
-    return anchors_[k];  // unreachable
+    return mover(instance).trajectory.position(time);
+  }
+
+  /// The box and velocity of object `instance` at stream time `time` [s]:
+  /// a static object's smallest footprint (smallest_footprint), a moving
+  /// one's body footprint carried along its trajectory, its velocity by a
+  /// central difference over +-1 ms. Throws std::out_of_range for an
+  /// unknown id. O(trajectory points).
+  ObjectState object_state(int instance, double time) const {
+    const Eigen::Vector3f anchor = position(instance, time);  // checks the id
+    const auto k = static_cast<std::size_t>(instance - 1);
+    ObjectState state;
+    state.instance = instance;
+    state.moving = infos_[k].moving;
+    state.box = footprints_[k];
+    if (!state.moving) return state;
+    const Mover& m = mover(instance);
+    const ObjectPose pose = m.trajectory.pose(time);
+    const float c = m.face_motion ? pose.cos_yaw : 1.0f;
+    const float s = m.face_motion ? pose.sin_yaw : 0.0f;
+    const Eigen::Vector3f& local = footprints_[k].center;
+    state.box.center = anchor + Eigen::Vector3f(c * local.x() - s * local.y(), s * local.x() + c * local.y(), local.z());
+    state.box.yaw = std::remainder(footprints_[k].yaw + std::atan2(s, c), 6.283185307179586f);
+    constexpr double kStep = 1e-2;  // [s]
+    state.velocity = (m.trajectory.position(time + kStep) - m.trajectory.position(time - kStep)) /
+                     static_cast<float>(2.0 * kStep);
+    return state;
   }
 
  private:
@@ -589,6 +706,12 @@ class Scene {
     int instance = 0;
   };
 
+  const Mover& mover(int instance) const {
+    for (const Mover& m : movers_)
+      if (m.instance == instance) return m;
+    throw std::out_of_range("Scene: instance " + std::to_string(instance) + " does not move");
+  }
+
   static void check_object(const ShapeSet& shapes, const char* where) {
     if (shapes.empty() || shapes.unbounded()) {
       std::string msg("Scene::");
@@ -603,6 +726,7 @@ class Scene {
   std::vector<Mover> movers_;
   std::vector<ObjectInfo> infos_;
   std::vector<Eigen::Vector3f> anchors_;
+  std::vector<ObjectBox> footprints_;  // per object: world frame, a moving one's in its own frame
   std::optional<Terrain> ground_;
   int next_id_ = 1;
   std::int64_t structure_pieces_ = 0;
