@@ -153,7 +153,7 @@ function(streamclust_add_tool target)
   endif()
   add_library(${ARG_LIBRARY} STATIC
     "${_src}/cli/cluster.cpp" "${_src}/cli/cluster_outputs.cpp" "${_src}/cli/evaluate.cpp" "${_src}/cli/evaluate_objects.cpp"
-    "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/live.cpp" "${_src}/cli/main.cpp" "${_src}/cli/replay.cpp"
+    "${_src}/cli/evaluate_objects_options.cpp" "${_src}/cli/evaluate_tracks.cpp" "${_src}/cli/live.cpp" "${_src}/cli/main.cpp" "${_src}/cli/replay.cpp"
     ${_ros2_sources} ${_units})
   if(TARGET streamclust::ros2)
     target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::ros2)

@@ -2,9 +2,11 @@
 // `cluster --tracks`: the CSV's layout, its tracks tied to the cycle's
 // components, standing objects reported still and walkers moving (the
 // simulator's truth: the scene's moving objects), the partition unchanged
-// (--verify, labels equal with and without tracks), and its usage errors.
+// (--verify, labels equal with and without tracks), and its usage errors;
+// the simulator's objects truth and `evaluate --tracks`.
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <streamclust/sim/scenes.hpp>
 
@@ -15,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -165,4 +168,106 @@ TEST_CASE("cluster --tracks: frame mode and an unwritable file are usage errors 
       st::run_cli({"cluster", input, "--tracks", dir.path("missing/dir/t.csv"), "-q"});
   CHECK(unwritable.code == 2);
   CHECK(unwritable.err.find("--tracks: cannot write") != std::string::npos);
+}
+
+TEST_CASE("simulate writes each object's box and velocity over time beside the stream") {
+  const st::TempDir dir("cli_tracks", "truth");
+  const std::string input = dir.path("office.csv");
+  REQUIRE(st::run_cli({"simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "1", "--out", input, "-q"})
+              .code == 0);
+  std::ifstream file(dir.path("office.objects.csv"));
+  REQUIRE(file);
+  std::string line;
+  REQUIRE(std::getline(file, line));
+  CHECK(line == "time,instance,label,moving,x,y,z,vx,vy,vz,length,width,height,yaw");
+  const std::vector<streamclust::sim::ObjectInfo> objects = streamclust::sim::make_scene("office", 1).objects();
+  std::map<std::string, int> rows_at;
+  std::size_t rows = 0, moving_rows = 0;
+  while (std::getline(file, line)) {
+    const std::vector<std::string> f = split(line, ',');
+    REQUIRE(f.size() == 14);
+    ++rows;
+    ++rows_at[f[0]];
+    const int instance = std::stoi(f[1]);
+    REQUIRE(instance >= 1);
+    REQUIRE(instance <= static_cast<int>(objects.size()));
+    const bool moving = f[3] == "1";
+    CHECK(moving == objects[static_cast<std::size_t>(instance - 1)].moving);
+    CHECK(f[2] == objects[static_cast<std::size_t>(instance - 1)].label);
+    const double speed = std::hypot(std::stod(f[7]), std::stod(f[8]));
+    if (moving) {
+      ++moving_rows;
+      CHECK(speed > 0.3);  // the office's walkers: 0.8-1.5 m/s
+      CHECK(speed < 2.0);
+    } else {
+      CHECK(speed == 0.0);
+    }
+    CHECK(std::stod(f[10]) >= std::stod(f[11]));  // length >= width
+    CHECK(std::stod(f[12]) > 0.0);
+  }
+  // 20 rows per second for every object: about 21 times over 1 s.
+  CHECK(rows_at.size() >= 20);
+  CHECK(rows_at.size() <= 21);
+  for (const auto& [time, count] : rows_at) CHECK(count == static_cast<int>(objects.size()));
+  CHECK(moving_rows > 0);
+  CHECK(rows == rows_at.size() * objects.size());
+
+  const st::RunResult synthetic = st::run_cli({"simulate", "--sensor", "synthetic", "--scene", "room", "--out",
+                                               dir.path("room.csv"), "--objects", dir.path("room.objects.csv")});
+  CHECK(synthetic.code == 2);
+  CHECK(synthetic.err.find("--objects") != std::string::npos);
+}
+
+TEST_CASE("evaluate --tracks: every method scored against the truth; its usage errors") {
+  const st::TempDir dir("cli_tracks", "evaluate");
+  const std::string json = dir.path("office.json"), tracks = dir.path("tracks.csv");
+  const st::RunResult run = st::run_cli({"evaluate", "--tracks", "--sensor", "mid360", "--scene", "office",
+                                         "--duration", "1.5", "--json", json, "--tracks-out", tracks, "-q"});
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  std::ifstream f(json);
+  const nlohmann::json doc = nlohmann::json::parse(f);
+  REQUIRE(doc["methods"].size() == 3);
+  CHECK(doc["methods"][0]["method"] == "objects");
+  CHECK(doc["methods"][2]["method"] == "centroid");
+  CHECK(doc["moving_objects"].get<int>() > 0);
+  for (const auto& m : doc["methods"]) {
+    CAPTURE(m.dump());
+    CHECK(m["frames"].get<int>() >= 15);
+    CHECK(m["objects"].get<int>() > 5);
+    CHECK(m["mota"].get<double>() <= 1.0);
+    for (const char* rate : {"idf1", "recall", "precision", "still_share", "mean_bev_iou"}) {
+      CHECK(m[rate].get<double>() >= 0.0);
+      CHECK(m[rate].get<double>() <= 1.0);
+    }
+    CHECK(m["matches"].get<int>() + m["misses"].get<int>() == m["truth"].get<int>());
+    CHECK(m["velocity_samples"].get<int>() > 0);  // the walkers
+  }
+  // The objects tracker finds most rated objects and keeps the standing ones still.
+  const auto& objects = doc["methods"][0];
+  CHECK(objects["recall"].get<double>() > 0.8);
+  CHECK(objects["still_share"].get<double>() > 0.8);
+  // The tracks CSV: the cluster command's header, a row per track and scored retrieval.
+  std::ifstream csv(tracks);
+  std::string header;
+  REQUIRE(std::getline(csv, header));
+  CHECK(header == "cycle,time,track_id,cluster_id,x,y,z,vx,vy,vz,length,width,height,yaw,points,state");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(csv, line);) rows += line.empty() ? 0 : 1;
+  CHECK(rows > 100);
+
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"evaluate", "--tracks", "--method", "kalman"},
+        std::vector<std::string>{"evaluate", "--tracks", "--duration", "0.5"},
+        std::vector<std::string>{"evaluate", "--tracks", "--sensor", "spinning32"},
+        std::vector<std::string>{"evaluate", "--tracks", "--match-distance", "0"},
+        std::vector<std::string>{"evaluate", "--tracks", "--verify"}}) {
+    const st::RunResult r = st::run_cli(bad);
+    CAPTURE(bad.back());
+    CHECK(r.code == 2);
+    CHECK_FALSE(r.err.empty());
+  }
+  const st::RunResult help = st::run_cli({"evaluate", "--tracks", "--help"});
+  CHECK(help.code == 0);
+  CHECK(help.out.find("CLEAR MOT") != std::string::npos);
 }

@@ -137,6 +137,8 @@ TEST_CASE("eval track metrics: perfect tracking, a switch, misses, false positiv
     CHECK(m.mean_iou == doctest::Approx((0.8 / 1.2 + 1.0) / 2.0).epsilon(1e-4));
     CHECK(m.velocity_rmse == doctest::Approx(0.1).epsilon(1e-3));
     CHECK(m.velocity_samples == 10);
+    CHECK(m.steady_velocity_samples == 10);
+    CHECK(m.steady_velocity_rmse == doctest::Approx(0.1).epsilon(1e-3));
     CHECK(m.still_share == doctest::Approx(1.0));
   }
   SUBCASE("one object changes track half way: one switch, IDF1 one half") {
@@ -171,6 +173,34 @@ TEST_CASE("eval track metrics: perfect tracking, a switch, misses, false positiv
     car.box.length = 4.5f;
     acc.add_frame({car}, {report(1, 2.0f, 0.9f)});   // centre inside the footprint's end, off its centre
     acc.add_frame({car}, {report(1, 0.0f, 2.0f)});   // 1.5 m from the side: a false positive and a miss
+    const ev::TrackMetrics m = acc.result();
+    CHECK(m.matches == 1);
+    CHECK(m.misses == 1);
+    CHECK(m.false_positives == 1);
+  }
+  SUBCASE("a turn: the velocity error counts in the RMSE, not in the steady RMSE") {
+    ev::TrackMetricsAccumulator acc;
+    ev::TruthObjectState walker = truth(1, 0, 0, 100, -1.0f);
+    walker.steady = false;
+    acc.add_frame({walker}, {report(1, 0, 0, 1.0f)});
+    walker.steady = true;
+    acc.add_frame({walker}, {report(1, 0, 0, -1.0f)});
+    const ev::TrackMetrics m = acc.result();
+    CHECK(m.velocity_rmse == doctest::Approx(std::sqrt(2.0)));
+    CHECK(m.steady_velocity_rmse == doctest::Approx(0.0));
+    CHECK(m.steady_velocity_samples == 1);
+  }
+  SUBCASE("a track above the object (heights apart) does not match it; without heights it does") {
+    ev::TrackMetricsAccumulator acc;
+    ev::TruthObjectState person = truth(1, 0, 0);
+    person.bottom = 0.0f;
+    person.top = 1.7f;
+    ev::TrackReport patch = report(1, 0.1f, 0);
+    patch.bottom = 2.95f;
+    patch.top = 3.0f;
+    acc.add_frame({person}, {patch});
+    patch.bottom = patch.top = 0.0f;
+    acc.add_frame({person}, {patch});
     const ev::TrackMetrics m = acc.result();
     CHECK(m.matches == 1);
     CHECK(m.misses == 1);

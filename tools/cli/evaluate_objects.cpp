@@ -44,9 +44,10 @@ void simulate_at_height(Sensor sensor, const SimulateOptions& o, float height, S
   stream.trajectory = simulator.trajectory(stream.records.front().t, stream.records.back().t, kTrajectoryRateHz);
 }
 
-SimulatedStream simulate_objects_stream(const EvaluateObjectsOptions& o, float height) {
+}  // namespace
+
+SimulatedStream simulate_objects_stream(const SimulateOptions& s, float height) {
   SimulatedStream stream;
-  const SimulateOptions& s = o.scenario;
   try {
     if (s.sensor == "mid360") {
       simulate_at_height(sim::Mid360Model(sim::Mid360Model::Params{}), s, height, stream);
@@ -62,6 +63,8 @@ SimulatedStream simulate_objects_stream(const EvaluateObjectsOptions& o, float h
   }
   return stream;
 }
+
+namespace {
 
 using Clock = std::chrono::steady_clock;
 
@@ -142,7 +145,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   const ObjectsSensor& sensor = objects_sensor(o.scenario.sensor);
   ObjectsEvaluation e;
   e.height = effective_height(o);
-  const SimulatedStream stream = simulate_objects_stream(o, e.height);
+  const SimulatedStream stream = simulate_objects_stream(o.scenario, e.height);
   const std::vector<io::Record>& records = stream.records;
   e.records = records.size();
   for (const SurfaceClass c : stream.classes) {

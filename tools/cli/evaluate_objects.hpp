@@ -135,6 +135,12 @@ struct ObjectsEvaluation {
   std::vector<std::string> mismatches;  ///< one line per retrieval that differed
 };
 
+/// The stream of a Livox scenario (mid360, avia, mid40, mid70) with the
+/// sensor `height` above the ground at the start (the simulator keeps it
+/// over a terrain), in firing order with its classes and trajectory. Bad
+/// parameters and an empty stream are UsageErrors.
+SimulatedStream simulate_objects_stream(const SimulateOptions& scenario, float height);
+
 /// Simulates the scenario and runs the methods (tools/cli/evaluate_objects.cpp).
 ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o);
 

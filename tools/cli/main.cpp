@@ -7,6 +7,7 @@
 #include "cli/cluster.hpp"
 #include "cli/evaluate.hpp"
 #include "cli/evaluate_objects.hpp"
+#include "cli/evaluate_tracks.hpp"
 #include "cli/info.hpp"
 #include "cli/live.hpp"
 #include "cli/replay.hpp"
@@ -43,6 +44,8 @@ commands:
                   and score every retrieval against the ground truth
   evaluate --objects   the objects preset against C-ARC, Euclidean clustering and the
                   RANSAC + Euclidean frame pipeline: are the clusters objects?
+  evaluate --tracks    the tracker against the objects' truth boxes and velocities and
+                  against a centroid Kalman tracker: CLEAR MOT, IDF1, velocity error
 
 Run 'streamclust <command> --help' for the options of a command.
 Exit codes: 0 ok, 2 usage error, 3 verification mismatch, 4 input error,
@@ -201,6 +204,7 @@ examples:
 std::string evaluate_help() {
   std::string text = R"(usage: streamclust evaluate [scenario options] [method options] [--json FILE] [--series FILE]
        streamclust evaluate --objects [options]   (see streamclust evaluate --objects --help)
+       streamclust evaluate --tracks [options]    (see streamclust evaluate --tracks --help)
 
 Simulates a scenario with ground truth, clusters it with C-ARC (the continuous
 engine) and/or the frame baseline (Bogoslavskyi & Stachniss: overwrite range
@@ -340,6 +344,16 @@ int run_main(const std::vector<std::string>& args, std::ostream& out, std::ostre
       return run_simulate(parse_simulate_options(rest), out);
     }
     if (command == "evaluate") {
+      const auto tracks = std::find(rest.begin(), rest.end(), "--tracks");
+      if (tracks != rest.end()) {
+        if (help) {
+          out << evaluate_tracks_help();
+          return kOk;
+        }
+        std::vector<std::string> options(rest.begin(), tracks);
+        options.insert(options.end(), tracks + 1, rest.end());
+        return run_evaluate_tracks(parse_evaluate_tracks_options(options), out);
+      }
       const auto objects = std::find(rest.begin(), rest.end(), "--objects");
       if (objects != rest.end()) {
         if (help) {

@@ -19,6 +19,7 @@
 #include <streamclust/clustering.hpp>
 #include <streamclust/io/record.hpp>
 #include <streamclust/objects_presets.hpp>
+#include <streamclust/tracking/object_boxes.hpp>
 
 #include <cstddef>
 #include <memory>
@@ -41,6 +42,11 @@ class ObjectsEngine {
   /// The work since the previous call [ms].
   virtual double take_cost() = 0;
   virtual bool calibrating() const = 0;
+  /// The objects of the last retrieval with an oriented box and an
+  /// in-window velocity (tracking::ObjectBoxes, the engine's world frame);
+  /// none while calibrating. The reference stays valid until the next call.
+  /// O(window points).
+  virtual const std::vector<tracking::ObjectObservation>& boxes() = 0;
   /// The last retrieval against the batch clusterer on its object points
   /// (records: the stream the engine was fed; `outside`: labelled points
   /// outside the scored window): "" when equal, else what differs. Only for

@@ -64,6 +64,10 @@ class ObjectsEngineOf final : public ObjectsEngine {
     return c;
   }
   bool calibrating() const override { return !engine_ || engine_->calibrating(); }
+  const std::vector<tracking::ObjectObservation>& boxes() override {
+    if (!engine_) return no_boxes_;
+    return boxes_.update(*engine_, engine_->last_result());
+  }
 
   std::string verify(const std::vector<io::Record>& records, std::size_t outside) override {
     if (!verify_) throw std::logic_error("ObjectsEngine::verify: the engine was made without verify");
@@ -134,6 +138,8 @@ class ObjectsEngineOf final : public ObjectsEngine {
   std::optional<StreamClusterer<Config>> engine_;
   std::optional<BatchClusterer<Config>> batch_;
   Clustering empty_;  ///< the result before the first feed
+  tracking::ObjectBoxes boxes_;
+  std::vector<tracking::ObjectObservation> no_boxes_;
   double pending_ms_ = 0.0;  ///< work since the last take_cost [ms]
   std::vector<io::Record> window_;       ///< verify's scratch: the window's records
   std::vector<ComponentId> continuous_;  ///< verify's scratch: the engine's labels

@@ -12,7 +12,9 @@
 /// the window, *ignored* with fewer (but some): a track matched to an
 /// ignored object is neither right nor wrong. A track matches a truth
 /// object when its centre lies within `match_distance` of the object's
-/// footprint (a box seen from one side has its centre off the object's);
+/// footprint (a box seen from one side has its centre off the object's)
+/// and their height ranges overlap (when both are given: a patch of
+/// ceiling above a person is not the person);
 /// correspondences of the previous frame are kept while they hold, the rest
 /// are assigned with the least total centre distance (min_cost_assignment).
 /// - MOTA = 1 - (misses + false positives + id switches) / rated objects;
@@ -24,7 +26,9 @@
 ///   assignment of truth ids to track ids with the most frames in which the
 ///   pair is within `match_distance` (Ristani et al. 2016).
 /// - Velocity RMSE over the rated matches of moving objects [m/s], ground
-///   plane; still share: rated matches of static objects whose reported
+///   plane, and over those in steady motion (`steady`: the velocity has not
+///   changed over the window; a velocity measured over a window lags a turn
+///   made within it); still share: rated matches of static objects whose reported
 ///   speed is below `still_speed`.
 
 #include <streamclust/eval/assignment.hpp>
@@ -52,6 +56,8 @@ struct TruthObjectState {
   Eigen::Vector2f velocity = Eigen::Vector2f::Zero();  ///< [m/s]
   bool moving = false;
   std::size_t points = 0;  ///< its points in the frame's window
+  float bottom = 0.0f, top = 0.0f;  ///< [m] height range; top <= bottom: not given
+  bool steady = true;  ///< the velocity has been the same over the window (no turn, no start or stop)
 };
 
 /// One reported track in one frame.
@@ -59,6 +65,7 @@ struct TrackReport {
   std::uint64_t id = 0;
   Footprint box;
   Eigen::Vector2f velocity = Eigen::Vector2f::Zero();  ///< [m/s]
+  float bottom = 0.0f, top = 0.0f;  ///< [m] height range; top <= bottom: not given
 };
 
 /// Settings of the tracking metrics.
@@ -94,6 +101,8 @@ struct TrackMetrics {
   double precision = 0.0;
   double velocity_rmse = 0.0;        ///< [m/s] moving objects' rated matches
   std::size_t velocity_samples = 0;
+  double steady_velocity_rmse = 0.0;  ///< [m/s] those in steady motion
+  std::size_t steady_velocity_samples = 0;
   double still_share = 0.0;          ///< static objects' rated matches reported still
   std::size_t static_samples = 0;
 };
@@ -111,7 +120,11 @@ class TrackMetricsAccumulator {
     std::vector<long> match(n, -1);
     std::vector<char> track_taken(m, 0);
     const auto gated = [&](std::size_t g, std::size_t h) {
-      return truth[g].box.distance_to(tracks[h].box.center) <= options_.match_distance;
+      const TruthObjectState& a = truth[g];
+      const TrackReport& b = tracks[h];
+      const bool heights = a.top > a.bottom && b.top > b.bottom;
+      if (heights && (b.bottom > a.top || a.bottom > b.top)) return false;
+      return a.box.distance_to(b.box.center) <= options_.match_distance;
     };
     // The previous frame's correspondences that still hold.
     std::unordered_map<std::uint64_t, std::size_t> track_index;
@@ -170,8 +183,13 @@ class TrackMetricsAccumulator {
       centre_distance_ += static_cast<double>((object.box.center - track.box.center).norm());
       iou_ += static_cast<double>(footprint_iou(object.box, track.box));
       if (object.moving) {
-        velocity_squared_ += static_cast<double>((track.velocity - object.velocity).squaredNorm());
+        const auto squared = static_cast<double>((track.velocity - object.velocity).squaredNorm());
+        velocity_squared_ += squared;
         ++velocity_samples_;
+        if (object.steady) {
+          steady_velocity_squared_ += squared;
+          ++steady_velocity_samples_;
+        }
       } else {
         still_ += track.velocity.norm() < options_.still_speed ? 1u : 0u;
         ++static_samples_;
@@ -208,6 +226,9 @@ class TrackMetricsAccumulator {
     r.precision = ratio(static_cast<double>(matches_), static_cast<double>(tracks_));
     r.velocity_samples = velocity_samples_;
     r.velocity_rmse = std::sqrt(ratio(velocity_squared_, static_cast<double>(velocity_samples_)));
+    r.steady_velocity_samples = steady_velocity_samples_;
+    r.steady_velocity_rmse =
+        std::sqrt(ratio(steady_velocity_squared_, static_cast<double>(steady_velocity_samples_)));
     r.static_samples = static_samples_;
     r.still_share = ratio(static_cast<double>(still_), static_cast<double>(static_samples_));
     r.idf1 = ratio(2.0 * identity_true_positives(), static_cast<double>(truth_ + tracks_));
@@ -244,8 +265,9 @@ class TrackMetricsAccumulator {
 
   TrackMetricOptions options_;
   std::size_t frames_ = 0, truth_ = 0, tracks_ = 0, matches_ = 0, matches_before_ = 0, misses_ = 0,
-              false_positives_ = 0, id_switches_ = 0, velocity_samples_ = 0, static_samples_ = 0, still_ = 0;
-  double centre_distance_ = 0.0, iou_ = 0.0, velocity_squared_ = 0.0;
+              false_positives_ = 0, id_switches_ = 0, velocity_samples_ = 0, steady_velocity_samples_ = 0,
+              static_samples_ = 0, still_ = 0;
+  double centre_distance_ = 0.0, iou_ = 0.0, velocity_squared_ = 0.0, steady_velocity_squared_ = 0.0;
   std::set<std::int64_t> rated_ids_;
   std::unordered_map<std::int64_t, std::uint64_t> previous_;    ///< last frame's correspondences
   std::unordered_map<std::int64_t, std::uint64_t> last_match_;  ///< each rated object's last track

@@ -36,6 +36,7 @@ struct ObjectObservation {
   bool compensated = false;       ///< the points were moved to `time` along `velocity` before the box fit
   double time = 0.0;              ///< [s] the retrieval's time (its newest point)
   double time_begin = 0.0;        ///< [s] the component's oldest point
+  std::optional<float> ground_z;  ///< [m] the ground near the object, when the ground policy knows it
 };
 
 /// Settings of ObjectBoxes.
@@ -196,6 +197,7 @@ class ObjectBoxes {
       const std::optional<float> ground =
           ground_near(mid.x(), mid.y(), 0.5f * (hi - lo).maxCoeff() + params_.ground_margin);
       o.box = fit_oriented_box(xyz, ground, params_.fit, fit_scratch_);
+      o.ground_z = ground;
       observations_.push_back(o);
     }
     return observations_;
