@@ -255,7 +255,8 @@ class LiveRun {
 
   // A cycle of the schedule: the retrieval with its points, queued for
   // next(). Called with the GIL released; takes it.
-  void on_cycle(std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result) {
+  void on_cycle(std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result,
+                const std::vector<tracking::Track>* /*tracks: none, the live run tracks nothing*/) {
     const std::uint64_t offered = run_->offered();
     if (!rows.index.empty() && static_cast<std::uint64_t>(rows.index.front()) < base_)
       throw std::logic_error("live: a window row before the kept points");

@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -179,7 +180,8 @@ class Clusterer {
 /// over arrays. Cycle k here is the CLI's cycle k on the same stream.
 /// `args` include the retrieval rate (--rate).
 py::list cluster_stream(const std::vector<std::string>& args, const py::handle& xyz, const py::handle& t,
-                        const py::handle& intensity, const std::optional<std::vector<std::uint64_t>>& cycles) {
+                        const py::handle& intensity, const std::optional<std::vector<std::uint64_t>>& cycles,
+                        bool tracks) {
   const PointBuffers points = point_buffers(xyz, t, intensity);
   if (points.size == 0) throw py::value_error("xyz: no points (the CLI refuses an empty input too)");
   cli::ClusterOptions o = parse_python_options(args);
@@ -196,11 +198,21 @@ py::list cluster_stream(const std::vector<std::string>& args, const py::handle& 
   } else {
     resolve_setup(o, nullptr);
   }
-  ScheduledRun run(o);
-  auto keep = [&](std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result) {
+  std::optional<ScheduledRun> run_holder;
+  try {
+    run_holder.emplace(o, tracks);
+  } catch (const std::invalid_argument& e) {
+    py::gil_scoped_acquire acquire;
+    throw py::value_error(e.what());
+  }
+  ScheduledRun& run = *run_holder;
+  auto keep = [&](std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result,
+                  const std::vector<tracking::Track>* cycle_tracks) {
     if (all || std::binary_search(wanted.begin(), wanted.end(), cycle)) {
       py::gil_scoped_acquire acquire;
-      out.append(retrieval_tuple(cycle, time, rows, result));
+      py::tuple r = retrieval_tuple(cycle, time, rows, result);
+      if (cycle_tracks) r = py::make_tuple(r[0], r[1], r[2], r[3], r[4], tracks_array(*cycle_tracks));
+      out.append(r);
     }
   };
   run.feed(points, keep);
@@ -366,7 +378,7 @@ PYBIND11_MODULE(_streamclust, m) {
       .def_property_readonly("size", &sp::Clusterer::size)
       .def_property_readonly("grid", &sp::Clusterer::grid);
   m.def("cluster_stream", &sp::cluster_stream, py::arg("args"), py::arg("xyz"), py::arg("t"), py::arg("intensity"),
-        py::arg("cycles"));
+        py::arg("cycles"), py::arg("tracks") = false);
   py::class_<sp::LiveRun>(m, "LiveRun")
       .def(py::init([](const std::vector<std::string>& args, const std::string& source,
                        const std::vector<std::string>& lidars, bool configure,

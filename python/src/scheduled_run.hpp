@@ -11,6 +11,9 @@
 /// `cluster_stream` feeds one chunk; a live source feeds each chunk as it
 /// arrives.
 ///
+/// With `tracks`, each cycle also fits the objects' boxes and updates a
+/// KalmanTracker (continuous mode only), as `cluster --tracks`.
+///
 /// Not thread-safe (one caller at a time; the GIL need not be held).
 
 #include "window_rows.hpp"
@@ -20,21 +23,33 @@
 
 #include <streamclust/retrieval_schedule.hpp>
 #include <streamclust/acceptance.hpp>
+#include <streamclust/tracking/kalman_tracker.hpp>
 
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
+#include <vector>
 
 namespace streamclust::python {
 
 class ScheduledRun {
  public:
-  /// `o` resolved (resolve_setup); retrievals at `o.rate_hz`.
-  explicit ScheduledRun(const cli::ClusterOptions& o)
-      : session_(make_erased_clusterer(o)), schedule_(o.rate_hz), record_times_(cli::engine_time_order_params(o)) {}
+  /// `o` resolved (resolve_setup); retrievals at `o.rate_hz`. Throws
+  /// std::invalid_argument for `tracks` with the frame mode.
+  explicit ScheduledRun(const cli::ClusterOptions& o, bool tracks = false)
+      : session_(make_erased_clusterer(o)), schedule_(o.rate_hz), record_times_(cli::engine_time_order_params(o)) {
+    if (!tracks) return;
+    if (!session_.engine().continuous()) {
+      throw std::invalid_argument(
+          "tracks: tracking follows the continuous engine's components; not with mode=\"frame\"");
+    }
+    tracker_.emplace();
+  }
 
   /// Offers `points` (the stream's next ones, in order) and runs the cycles
-  /// they make due: `on_cycle(cycle, time, rows, result)` for each.
+  /// they make due: `on_cycle(cycle, time, rows, result, tracks)` for each
+  /// (`tracks`: the tracker's tracks, null without tracking).
   /// O(points) plus the cycles' work.
   template <class OnCycle>
   void feed(const PointBuffers& points, OnCycle&& on_cycle) {
@@ -78,7 +93,9 @@ class ScheduledRun {
   void run_cycle(double cycle_time, OnCycle& on_cycle) {
     session_.advance_to(cycle_time);  // as the CLI's run_cycle (a no-op after the scheduled advance)
     const Clustering& result = session_.retrieve(rows_);
-    on_cycle(cycle_, cycle_time, rows_, result);
+    const std::vector<tracking::Track>* tracks = nullptr;
+    if (tracker_) tracks = &tracker_->update(*session_.engine().objects(result), result.time);
+    on_cycle(cycle_, cycle_time, rows_, result, tracks);
     inserted_since_ = 0;
     ++cycle_;
   }
@@ -87,6 +104,7 @@ class ScheduledRun {
   WindowRows rows_;
   RetrievalSchedule schedule_;
   StreamTimeOrder record_times_;
+  std::optional<KalmanTracker> tracker_;  ///< with tracks
   std::uint64_t valid_times_ = 0, cycle_ = 0, inserted_since_ = 0;
   double first_time_ = 0.0;
 };

@@ -168,7 +168,7 @@ def _cycle_list(cycles):
     return [int(c) for c in items]
 
 
-def cluster_stream(xyz, t, intensity=None, *, preset, rate=20, cycles=None, **options):
+def cluster_stream(xyz, t, intensity=None, *, preset, rate=20, cycles=None, tracks=False, **options):
     """Clusters a whole stream on the CLI's retrieval schedule.
 
     Retrieves at t0 + k / rate of stream time (t0 the first finite time) and
@@ -179,11 +179,15 @@ def cluster_stream(xyz, t, intensity=None, *, preset, rate=20, cycles=None, **op
     estimated from the first window as the CLI does.
 
     cycles: None or "all" (every cycle), "last", a cycle number or a list of
-    them. Returns a list of :class:`Retrieval` (each with ``.cycle``).
+    them. tracks: as :class:`Clusterer` (each retrieval's ``tracks``, the
+    rows of ``streamclust cluster --tracks`` for its cycle). Returns a list
+    of :class:`Retrieval` (each with ``.cycle``).
     """
+    if not isinstance(tracks, bool):
+        raise ValueError(f"tracks: expected True or False, got {tracks!r}")
     args = _policy_arguments(preset, options) + to_arguments({"rate": ("--rate", "number")}, {"rate": rate}, "rate")
     wanted = _cycle_list(cycles)
-    out = _call(_streamclust.cluster_stream, args, xyz, t, intensity, wanted)
+    out = _call(_streamclust.cluster_stream, args, xyz, t, intensity, wanted, tracks)
     result = [Retrieval(*r) for r in out]
     if cycles == "last":
         result = result[-1:]

@@ -81,3 +81,44 @@ def test_tracks_are_off_by_default_and_need_the_continuous_mode():
         streamclust.Clusterer(preset="baseline", tracks=True)
     with pytest.raises(ValueError, match="tracks"):
         streamclust.Clusterer(preset="objects-mid360", tracks="yes")
+
+
+def test_cluster_stream_tracks_are_the_cli_tracks(tool, tmp_path):
+    """cluster_stream(tracks=True) cycle k carries the rows of
+    `streamclust cluster --tracks` for cycle k: the same ids, states and numbers."""
+    import csv
+    import subprocess
+    stream = tmp_path / "office.csv"
+    subprocess.run([tool, "simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "1.5", "--seed", "1",
+                    "--out", str(stream), "--quiet"], check=True)
+    rows = tmp_path / "tracks.csv"
+    subprocess.run([tool, "cluster", str(stream), "--preset", "objects-mid360", "--mount", "0,0,0",
+                    "--sensor-height", "1.0", "--rate", "20", "--tracks", str(rows), "--quiet"], check=True)
+    cli = {}
+    with open(rows) as f:
+        for row in csv.DictReader(f):
+            cli.setdefault(int(row["cycle"]), []).append(row)
+    data = streamclust.read(stream)
+    xyz = np.column_stack([data["x"], data["y"], data["z"]])
+    ours = streamclust.cluster_stream(xyz, data["t"], data["intensity"], preset="objects-mid360", rate=20,
+                                      mount=(0, 0, 0), sensor_height=1.0, tracks=True)
+    compared = 0
+    for r in ours:
+        theirs = cli.get(r.cycle, [])
+        assert len(r.tracks) == len(theirs), f"cycle {r.cycle}"
+        for track, row in zip(r.tracks, theirs):
+            assert int(track["track_id"]) == int(row["track_id"])
+            assert int(track["cluster_id"]) == int(row["cluster_id"])
+            assert streamclust.TRACK_STATES[track["state"]] == row["state"]
+            assert int(track["points"]) == int(row["points"])
+            for k, column in enumerate(("x", "y", "z")):
+                assert float(track["position"][k]) == pytest.approx(float(row[column]), abs=1e-4)
+            for k, column in enumerate(("vx", "vy", "vz")):
+                assert float(track["velocity"][k]) == pytest.approx(float(row[column]), abs=1e-4)
+            compared += 1
+    assert compared > 200
+    assert sum(len(v) for v in cli.values()) == compared
+    with pytest.raises(ValueError, match="tracks"):
+        streamclust.cluster_stream(xyz, data["t"], preset="baseline", tracks=True)
+    with pytest.raises(ValueError, match="tracks"):
+        streamclust.cluster_stream(xyz, data["t"], preset="objects-mid360", tracks=1)

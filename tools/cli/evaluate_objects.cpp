@@ -162,13 +162,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   setup.mount = mount;
   setup.sensor_height = e.height;
   setup.window_seconds = o.window_seconds;
-  if (o.poses) {
-    std::vector<StampedPose> vehicle;
-    vehicle.reserve(stream.trajectory.size());
-    const Pose unmount = mount.inverse();
-    for (const StampedPose& p : stream.trajectory) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
-    setup.trajectory = std::make_shared<const PoseTrajectory>(std::move(vehicle));
-  }
+  if (o.poses) setup.trajectory = vehicle_trajectory(stream.trajectory, mount);
   // Its linkage slot is the chosen linkage (the preset's by default).
   std::unique_ptr<ObjectsEngine> objects;
   // The paper's preset, sensor frame.

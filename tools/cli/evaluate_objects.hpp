@@ -29,12 +29,14 @@
 #include "cli/structure_planes.hpp"
 
 #include <streamclust/eval/object_average.hpp>
+#include <streamclust/motion/trajectory.hpp>
 #include <streamclust/eval/range_coverage.hpp>
 
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -140,6 +142,22 @@ struct ObjectsEvaluation {
 /// over a terrain), in firing order with its classes and trajectory. Bad
 /// parameters and an empty stream are UsageErrors.
 SimulatedStream simulate_objects_stream(const SimulateOptions& scenario, float height);
+
+/// The vehicle's trajectory of a simulated stream: its sensor poses with the
+/// mount taken off (what odometry would give). O(poses).
+inline std::shared_ptr<const PoseTrajectory> vehicle_trajectory(const std::vector<StampedPose>& sensor_poses,
+                                                                const Pose& mount) {
+  std::vector<StampedPose> vehicle;
+  vehicle.reserve(sensor_poses.size());
+  const Pose unmount = mount.inverse();
+  for (const StampedPose& p : sensor_poses) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
+  return std::make_shared<const PoseTrajectory>(std::move(vehicle));
+}
+
+/// The checks of an evaluation's scenario no single option makes: a Livox
+/// model of the objects preset, ego-motion within bounds, and a duration
+/// with one retrieval after the first window. Throws UsageError.
+void validate_objects_scenario(const SimulateOptions& scenario, double window_seconds, double rate_hz);
 
 /// Simulates the scenario and runs the methods (tools/cli/evaluate_objects.cpp).
 ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o);

@@ -127,20 +127,23 @@ EvaluateObjectsOptions parse_evaluate_objects_options(const std::vector<std::str
       throw UsageError("unknown option '" + a + "' (see streamclust evaluate --objects --help)");
     }
   }
-  validate_simulation_options(o.scenario);
-  objects_sensor(o.scenario.sensor);  // throws for the others
-  if (!(o.scenario.speed >= -10.0f && o.scenario.speed <= 10.0f)) throw UsageError("--speed: expected [-10, 10] m/s");
-  if (!(o.scenario.yaw_rate >= -5.0f && o.scenario.yaw_rate <= 5.0f)) {
+  validate_objects_scenario(o.scenario, o.window_seconds, o.rate_hz);
+  if (o.verify && !o.run_objects) throw UsageError("--verify checks the objects method: add it to --method");
+  return o;
+}
+
+void validate_objects_scenario(const SimulateOptions& scenario, double window_seconds, double rate_hz) {
+  validate_simulation_options(scenario);
+  objects_sensor(scenario.sensor);  // throws for the others
+  if (!(scenario.speed >= -10.0f && scenario.speed <= 10.0f)) throw UsageError("--speed: expected [-10, 10] m/s");
+  if (!(scenario.yaw_rate >= -5.0f && scenario.yaw_rate <= 5.0f)) {
     throw UsageError("--yaw-rate: expected [-5, 5] rad/s");
   }
-  if (o.verify && !o.run_objects) throw UsageError("--verify checks the objects method: add it to --method");
-  const double period = 1.0 / o.rate_hz;
-  if (o.scenario.seconds < o.window_seconds + period) {
+  const double period = 1.0 / rate_hz;
+  if (scenario.seconds < window_seconds + period) {
     throw UsageError("--duration: at least one retrieval after the first window is needed: expected >= T_B + 1/rate = " +
-                     std::to_string(o.window_seconds + period) + " s, got " + std::to_string(o.scenario.seconds) +
-                     " s");
+                     std::to_string(window_seconds + period) + " s, got " + std::to_string(scenario.seconds) + " s");
   }
-  return o;
 }
 
 }  // namespace streamclust::cli

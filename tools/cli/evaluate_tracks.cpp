@@ -122,13 +122,7 @@ TracksEvaluation evaluate_tracks(const EvaluateTracksOptions& o) {
   setup.mount = mount;
   setup.sensor_height = e.height;
   setup.window_seconds = o.window_seconds;
-  {
-    std::vector<StampedPose> vehicle;
-    vehicle.reserve(stream.trajectory.size());
-    const Pose unmount = mount.inverse();
-    for (const StampedPose& p : stream.trajectory) vehicle.push_back(StampedPose{p.time, p.pose * unmount});
-    setup.trajectory = std::make_shared<const PoseTrajectory>(std::move(vehicle));
-  }
+  setup.trajectory = vehicle_trajectory(stream.trajectory, mount);
   std::unique_ptr<ObjectsEngine> objects;
   if (o.run_objects || o.run_objects_centroid) {
     try {
@@ -480,18 +474,7 @@ EvaluateTracksOptions parse_evaluate_tracks_options(const std::vector<std::strin
       throw UsageError("unknown option '" + a + "' (see streamclust evaluate --tracks --help)");
     }
   }
-  validate_simulation_options(o.scenario);
-  objects_sensor(o.scenario.sensor);  // throws for the others
-  if (!(o.scenario.speed >= -10.0f && o.scenario.speed <= 10.0f)) throw UsageError("--speed: expected [-10, 10] m/s");
-  if (!(o.scenario.yaw_rate >= -5.0f && o.scenario.yaw_rate <= 5.0f)) {
-    throw UsageError("--yaw-rate: expected [-5, 5] rad/s");
-  }
-  const double period = 1.0 / o.rate_hz;
-  if (o.scenario.seconds < o.window_seconds + period) {
-    throw UsageError("--duration: at least one retrieval after the first window is needed: expected >= T_B + 1/rate = " +
-                     std::to_string(o.window_seconds + period) + " s, got " + std::to_string(o.scenario.seconds) +
-                     " s");
-  }
+  validate_objects_scenario(o.scenario, o.window_seconds, o.rate_hz);
   return o;
 }
 

@@ -90,11 +90,9 @@ namespace streamclust {
 /// when that layer is a surface seen from below (its two bins hold
 /// `ceiling_peak_ratio` times the points per bin of the 0.5 m below them:
 /// the top of a cabinet's side does not), level and wide: at least
-/// `ceiling_min_agreement` of the cells within two rings that hold a layer
-/// (at least 8 of the 24) have a highest layer within `ceiling_flatness` of
-/// it (a tree's crown is curved and a slope rises: both fail this; a
-/// ceiling passes, also at the edge of the field of view, where half the
-/// cells around hold nothing).
+/// `ceiling_min_agreement` of the cells within two rings have a highest
+/// layer within `ceiling_flatness` of it (a tree's crown is curved and a
+/// slope rises: both fail this; a ceiling passes).
 ///
 /// Cost per point: one column update and 9 layer lookups (25 more for a
 /// ceiling candidate, at most 2 for a ground candidate out of view of level
@@ -523,21 +521,22 @@ class HeightMapGround {
     const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)].heights;
     const std::int32_t b = *column.highest_supported(params_.support);
     if (!peak_and_span(column, b, b - 1, b - 2 - kPeakSpan).peaked(params_.ceiling_peak_ratio)) return false;
-    // The cells within two rings that hold a layer (at the edge of the
-    // field of view half of them hold none): enough of them, and most agree.
+    // The 24 cells within two rings; stops once the outcome is certain.
     constexpr int kCells = 24;
+    const float needed = params_.ceiling_min_agreement * static_cast<float>(kCells);
     int agreeing = 0;
-    int known = 0;
+    int left = kCells;
     for (std::int32_t dy = -2; dy <= 2; ++dy) {
       for (std::int32_t dx = -2; dx <= 2; ++dx) {
         if (dx == 0 && dy == 0) continue;
+        --left;
         const std::optional<float> other = highest_layer(k.ix + dx, k.iy + dy);
-        if (!other) continue;
-        ++known;
-        if (std::fabs(*other - *top) <= params_.ceiling_flatness) ++agreeing;
+        if (other && std::fabs(*other - *top) <= params_.ceiling_flatness) ++agreeing;
+        if (static_cast<float>(agreeing) >= needed) return true;
+        if (static_cast<float>(agreeing + left) < needed) return false;
       }
     }
-    return known >= kCells / 3 && static_cast<float>(agreeing) >= params_.ceiling_min_agreement * static_cast<float>(known);
+    return false;
   }
 
   /// Bins below a ceiling layer its peak is compared with.
