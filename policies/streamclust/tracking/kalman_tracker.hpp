@@ -46,19 +46,13 @@ namespace streamclust {
 /// Association, per retrieval: the tracks are predicted to its time. An
 /// observation whose box (grown by `group_margin`) holds the predictions of
 /// two or more confirmed tracks, with an area at most twice theirs plus
-/// 1 m^2, is a group (objects that touch share a component): when one of
-/// those tracks moves, they are all seen in it (its id, their points) and
-/// keep their predictions; when none moves, the group is one object seen
-/// whole after its parts (an object coming into view side by side): the
-/// track seen most often takes the observation and the others end. An observation whose component id is a track's last one goes to that track
+/// 1 m^2, is a group (objects that touch share a component): those tracks
+/// are seen in it (its id, their points) and keep their predictions. An observation whose component id is a track's last one goes to that track
 /// when within its gate (`gate_distance` plus 3 standard deviations of the
 /// predicted position); the rest are paired by distance within the gates,
 /// nearest first (merges and splits renumber components; an object seen again
 /// after an occlusion has a new id). An observation left over with at least
-/// `birth_points` points, and standing on the ground or near it (its
-/// lowest point at most `birth_clearance` above the ground under it, when
-/// the ground is known: no track for ceiling fixtures, overhanging foliage
-/// or remnants of structure), starts a tentative track; `confirm_hits` hits confirm
+/// `birth_points` points starts a tentative track; `confirm_hits` hits confirm
 /// it. A track not seen coasts on its prediction: a tentative one is
 /// dropped after `tentative_coast_seconds`, a confirmed one after
 /// `coast_seconds`.
@@ -92,7 +86,6 @@ class KalmanTracker {
   struct Params {
     float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
     std::size_t birth_points = 10;       ///< points an observation needs to start a track, [1, 1000000]
-    float birth_clearance = 1.0f;        ///< [m] an observation lower above the ground than this can start a track, (0, 1000]
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
@@ -107,7 +100,6 @@ class KalmanTracker {
     /// Throws std::invalid_argument naming the first setting out of range.
     void validate() const {
       check(gate_distance > 0.0f && gate_distance <= 100.0f, "gate_distance", gate_distance, "(0, 100] m");
-      check(birth_clearance > 0.0f && birth_clearance <= 1000.0f, "birth_clearance", birth_clearance, "(0, 1000] m");
       check(birth_points >= 1 && birth_points <= 1000000, "birth_points", static_cast<double>(birth_points),
             "[1, 1000000]");
       check(confirm_hits >= 1 && confirm_hits <= 1000, "confirm_hits", confirm_hits, "[1, 1000]");
@@ -164,12 +156,11 @@ class KalmanTracker {
     }
     // Births, then misses and deletions.
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      if (!taken_[o] && can_start(objects[o])) filters_.push_back(born(objects[o]));
+      if (!taken_[o] && objects[o].box.points >= params_.birth_points) filters_.push_back(born(objects[o]));
     }
     std::size_t kept = 0;
     for (std::size_t i = 0; i < filters_.size(); ++i) {
       Filter& f = filters_[i];
-      if (i < absorbed_.size() && absorbed_[i]) continue;  // merged into another track of the same object
       if (!f.seen) {
         f.track.cluster_id = kNoComponent;
         f.track.points = 0;
@@ -225,12 +216,6 @@ class KalmanTracker {
     f.p = a * f.p * a.transpose() + noise;
   }
 
-  /// Enough points, and not floating above the ground (when known).
-  bool can_start(const tracking::ObjectObservation& o) const {
-    if (o.box.points < params_.birth_points) return false;
-    return !o.ground_z || o.box.bottom() - *o.ground_z <= params_.birth_clearance;
-  }
-
   float position_sigma(const tracking::ObjectObservation& o) const {
     return o.box.quality == tracking::BoxQuality::two_sides ? params_.position_noise : params_.partial_position_noise;
   }
@@ -258,7 +243,6 @@ class KalmanTracker {
   void associate(const std::vector<tracking::ObjectObservation>& objects) {
     track_of_.assign(filters_.size(), kNone);
     grouped_.assign(filters_.size(), false);
-    absorbed_.assign(filters_.size(), false);
     taken_.assign(objects.size(), false);
     // By id: observations and filters both in component id order.
     id_order_.clear();
@@ -285,9 +269,7 @@ class KalmanTracker {
       const std::size_t own = members_.size();
       for (std::size_t i = 0; i < filters_.size(); ++i) {
         const Filter& f = filters_[i];
-        if (track_of_[i] != kNone || absorbed_[i] || f.track.hits < params_.confirm_hits || !holds(objects[o], f)) {
-          continue;
-        }
+        if (track_of_[i] != kNone || f.track.hits < params_.confirm_hits || !holds(objects[o], f)) continue;
         const double here = distance(f, objects[o]);
         bool nearer_elsewhere = false;
         for (std::size_t q = 0; q < objects.size() && !nearer_elsewhere; ++q) {
@@ -305,21 +287,6 @@ class KalmanTracker {
       }
       const double area = static_cast<double>(objects[o].box.length) * static_cast<double>(objects[o].box.width);
       if (area > 2.0 * members_area + 1.0) continue;
-      const bool any_moving =
-          std::any_of(members_.begin(), members_.end(), [&](std::size_t i) { return filters_[i].track.moving; });
-      if (!any_moving) {
-        // One standing object seen whole: the most seen track continues.
-        const std::size_t keep = *std::max_element(members_.begin(), members_.end(), [&](std::size_t a, std::size_t b) {
-          const auto ha = filters_[a].track.hits, hb = filters_[b].track.hits;
-          return ha != hb ? ha < hb : filters_[a].track.id > filters_[b].track.id;
-        });
-        for (std::size_t i : members_) {
-          track_of_[i] = i == keep ? o : kNone;
-          absorbed_[i] = i != keep;
-        }
-        taken_[o] = true;
-        continue;
-      }
       for (std::size_t i : members_) {
         track_of_[i] = o;
         grouped_[i] = true;
@@ -329,7 +296,7 @@ class KalmanTracker {
     // By position, nearest pairs first.
     pairs_.clear();
     for (std::size_t i = 0; i < filters_.size(); ++i) {
-      if (track_of_[i] != kNone || absorbed_[i]) continue;
+      if (track_of_[i] != kNone) continue;
       for (std::size_t o = 0; o < objects.size(); ++o) {
         if (taken_[o]) continue;
         const double d = distance(filters_[i], objects[o]);
@@ -502,7 +469,7 @@ class KalmanTracker {
   std::vector<Filter> filters_;
   std::vector<tracking::Track> tracks_;
   std::vector<std::size_t> track_of_;
-  std::vector<bool> grouped_, absorbed_, taken_;
+  std::vector<bool> grouped_, taken_;
   std::vector<std::size_t> members_;
   std::vector<std::pair<ComponentId, std::size_t>> id_order_;
   std::vector<Pair> pairs_;
