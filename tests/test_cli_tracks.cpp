@@ -222,7 +222,7 @@ TEST_CASE("evaluate --tracks: every method scored against the truth; its usage e
   const st::TempDir dir("cli_tracks", "evaluate");
   const std::string json = dir.path("office.json"), tracks = dir.path("tracks.csv");
   const st::RunResult run = st::run_cli({"evaluate", "--tracks", "--sensor", "mid360", "--scene", "office",
-                                         "--duration", "1.5", "--json", json, "--tracks-out", tracks, "-q"});
+                                         "--duration", "2.5", "--json", json, "--tracks-out", tracks, "-q"});
   INFO(run.err);
   REQUIRE(run.code == 0);
   std::ifstream f(json);
@@ -243,7 +243,9 @@ TEST_CASE("evaluate --tracks: every method scored against the truth; its usage e
     CHECK(m["matches"].get<int>() + m["misses"].get<int>() == m["truth"].get<int>());
     CHECK(m["velocity_samples"].get<int>() > 0);  // the walkers
   }
-  // The objects tracker finds most rated objects and keeps the standing ones still.
+  // The objects tracker finds most rated objects and keeps the standing ones
+  // still (2 s scored: its births wait for three sightings of 30 points
+  // standing on the ground, which costs the first retrievals' recall).
   const auto& objects = doc["methods"][0];
   CHECK(objects["recall"].get<double>() > 0.8);
   CHECK(objects["still_share"].get<double>() > 0.8);

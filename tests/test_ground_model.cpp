@@ -575,6 +575,40 @@ TEST_CASE("HeightMapGround where a level sensor cannot see level ground: a desk 
   CHECK(ramp > 0.85);
 }
 
+TEST_CASE("HeightMapGround::ground_height_near: layers bounded from the sensor; where it cannot see level ground, the ground under it") {
+  // A sensor at the origin 1 m above the floor (z = -1), lowest ray 7 deg
+  // down: level floor shows from 8.1 m on. Overhead, 1.2-1.8 m out, a
+  // patch of ceiling 2 m up: the only layer of its cells.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Eigen::Vector3f> patch;
+  for (int i = 0; i < 3000; ++i) patch.emplace_back(1.2f + 0.6f * u(rng), 0.6f * u(rng) - 0.3f, 2.0f + 0.01f * u(rng));
+  sc::HeightMapGround::Params p;
+  p.sensor_height = 1.0f;
+  p.lowest_ray_elevation_deg = -7.0f;
+  sc::HeightMapGround model(p);
+  classify_all(model, patch);
+  // The patch's layer is no ground: at most the 15 deg cone from the foot
+  // (-1 + tan(15 deg) x 1.8 m = -0.52 m).
+  const std::optional<float> under_patch = model.ground_height_near(1.5f, 0.0f, 0.3f);
+  REQUIRE(under_patch);
+  CHECK(*under_patch <= -0.5f);
+  // Nothing seen 4.2 m out, inside the blind zone: the floor under the sensor.
+  const std::optional<float> blind = model.ground_height_near(3.0f, 3.0f, 0.5f);
+  REQUIRE(blind);
+  CHECK(*blind == doctest::Approx(-1.0f));
+  // Nothing seen 20 m out, where the floor would show: unknown.
+  CHECK_FALSE(model.ground_height_near(20.0f, 0.0f, 0.5f));
+
+  // Without the sensor's height the layer is all there is.
+  sc::HeightMapGround unplaced;
+  classify_all(unplaced, patch);
+  const std::optional<float> layer = unplaced.ground_height_near(1.5f, 0.0f, 0.3f);
+  REQUIRE(layer);
+  CHECK(*layer == doctest::Approx(2.0f).epsilon(0.02));
+  CHECK_FALSE(unplaced.ground_height_near(3.0f, 3.0f, 0.5f));
+}
+
 TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out of view keeps its bottom, sparse ground stays ground") {
   // 33 m out, ground 1.5 m below the sensor: a box's face 1 m wide and 1.6 m
   // tall, 200 points in the window (3 per 5 cm bin of a cell); and sparse

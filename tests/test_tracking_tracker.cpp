@@ -247,6 +247,53 @@ TEST_CASE("KalmanTracker: births, tentative tracks and coasting end by their rul
                        std::invalid_argument);
 }
 
+TEST_CASE("KalmanTracker: what floats above the ground or lies in a tracked object's box starts no track") {
+  sc::KalmanTracker tracker;  // birth_clearance 1 m, group_margin 0.3 m
+  // A car standing on the ground (its box's bottom at z = -1), confirmed.
+  const auto standing = [](sc::ComponentId id, Eigen::Vector2f centre) {
+    tr::ObjectObservation o = observed(id, centre);
+    o.ground_z = -1.0f;
+    o.box.on_ground = true;
+    return o;
+  };
+  for (int c = 0; c < 3; ++c) tracker.update({standing(1, {0, 0})}, c * kCycle);
+  REQUIRE(tracker.tracks().size() == 1);
+  // A patch of ceiling 3 m above the ground; the same 0.5 m above it.
+  tr::ObjectObservation ceiling = observed(2, {10, 10});
+  ceiling.ground_z = -1.0f;
+  ceiling.box.center.z() = 2.1f;
+  ceiling.box.height = 0.2f;
+  tr::ObjectObservation low = ceiling;
+  low.id = 3;
+  low.box.center = Eigen::Vector3f(-10.0f, 10.0f, -0.4f);
+  // A piece of the car beside its component (centre inside its 4 x 1.8 m
+  // box), and one 1 m beyond the box's end.
+  tr::ObjectObservation part = observed(4, {1.5f, 0.4f});
+  part.box.length = part.box.width = 0.5f;
+  tr::ObjectObservation beyond = part;
+  beyond.id = 5;
+  beyond.box.center.head<2>() = Eigen::Vector2f(2.0f * std::cos(0.3f), 2.0f * std::sin(0.3f)) +
+                                Eigen::Vector2f(1.3f * std::cos(0.3f), 1.3f * std::sin(0.3f));
+  // The ground unknown: no rule.
+  tr::ObjectObservation unknown = ceiling;
+  unknown.id = 6;
+  unknown.box.center.head<2>() = Eigen::Vector2f(-10.0f, -10.0f);
+  unknown.ground_z.reset();
+  for (int c = 3; c < 6; ++c) tracker.update({standing(1, {0, 0}), ceiling, low, part, beyond, unknown}, c * kCycle);
+  std::map<sc::ComponentId, std::size_t> tracks_of;
+  for (const tr::Track& t : tracker.tracks()) ++tracks_of[t.cluster_id];
+  CHECK(tracks_of[1] == 1);
+  CHECK(tracks_of.count(2) == 0);  // floats 3 m above the ground
+  CHECK(tracks_of[3] == 1);        // 0.5 m: within the clearance
+  CHECK(tracks_of.count(4) == 0);  // a part of the car
+  CHECK(tracks_of[5] == 1);
+  CHECK(tracks_of[6] == 1);
+  CHECK(tracker.tracks().size() == 4);
+  sc::KalmanTracker::Params bad;
+  bad.birth_clearance = 0.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_clearance"), std::invalid_argument);
+}
+
 TEST_CASE("NullTracker tracks nothing") {
   static_assert(!sc::NullTracker::enabled);
   static_assert(sc::is_tracker_policy_v<sc::NullTracker> && sc::is_tracker_policy_v<sc::KalmanTracker>);

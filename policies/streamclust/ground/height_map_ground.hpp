@@ -197,6 +197,8 @@ class HeightMapGround {
     cells_[c].heights.add(h.bin, h.fraction);
     const WallModel::Entry wall = params_.detect_walls ? walls_.enter(world) : WallModel::Entry{};
     const SurfaceClass surface = decide(k, world, ray, wall.on_wall);
+    sensor_ = world - ray;
+    has_sensor_ = true;
     if (surface == SurfaceClass::ground) ++cells_[c].ground_points;
     if (params_.detect_walls && in_wall_lines(surface)) walls_.add_to_line(wall, world);
     return surface;
@@ -217,8 +219,13 @@ class HeightMapGround {
   /// The ground's height around (x, y) [m], for what reads the window after
   /// a retrieval (an object box's bottom): the mean of the lowest layers that
   /// are solid surfaces (solid_surface) in the square of cells within
-  /// `radius` [m] of (x, y) (at most 10 m), or nullopt when none is; a wide
-  /// square is sampled on a grid of at most 5 x 5 of its cells.
+  /// `radius` [m] of (x, y) (at most 10 m), each bounded from the last
+  /// point's sensor as the classification bounds it (a ceiling patch over a
+  /// floor out of view is no ground); when none is, in the zone near
+  /// the sensor where its field of view cannot reach level ground, the
+  /// ground under the sensor (sensor_height, lowest_ray_elevation_deg; the
+  /// level the classification takes there), else nullopt. A wide square is
+  /// sampled on a grid of at most 5 x 5 of its cells.
   /// At most 25 lookups.
   std::optional<float> ground_height_near(float x, float y, float radius) const {
     if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6f || std::abs(y) > 1e6f) return std::nullopt;
@@ -231,11 +238,17 @@ class HeightMapGround {
       for (std::int32_t ix = k.ix - rings; ix <= k.ix + rings; ix += stride) {
         const std::optional<float> layer = lowest_layer(ix, iy);
         if (!layer || !solid_surface(ix, iy)) continue;
-        sum += static_cast<double>(*layer);
+        float ground = *layer;
+        if (has_sensor_ && params_.sensor_height > 0.0f) {
+          const float cx = (static_cast<float>(ix) + 0.5f) * params_.cell_size - sensor_.x();
+          const float cy = (static_cast<float>(iy) + 0.5f) * params_.cell_size - sensor_.y();
+          ground = bounded_from_sensor(ground, sensor_.z(), std::hypot(cx, cy));
+        }
+        sum += static_cast<double>(ground);
         ++surfaces;
       }
     }
-    if (surfaces == 0) return std::nullopt;
+    if (surfaces == 0) return blind_ground_near(x, y, radius);
     return static_cast<float>(sum / surfaces);
   }
 
@@ -250,6 +263,31 @@ class HeightMapGround {
   struct Key {
     std::int32_t ix, iy;
   };
+
+  /// A ground bound `bound` [m] `distance` [m] from a sensor at height
+  /// `sensor_z` [m] with sensor_height known: a layer no higher than the
+  /// lowest ray reaches there is where the field of view cuts an object off,
+  /// not a surface (the ground is hidden below it, taken as level with the
+  /// ground under the sensor), and the ground rises at most max_slope from
+  /// the ground under the sensor (the cone). O(1).
+  float bounded_from_sensor(float bound, float sensor_z, float distance) const {
+    const float foot = sensor_z - params_.sensor_height;
+    if (bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(bound, foot);
+    return std::min(bound, foot + slope_ * distance);
+  }
+
+  /// Where no surface is seen: the ground under the last point's sensor
+  /// when (x, y), or the square of `radius` around it, reaches into the
+  /// zone that sensor cannot see level ground in (nearer than sensor_height
+  /// over the lowest ray's downward slope), as decide() takes it there; else
+  /// nullopt. Needs sensor_height and lowest_ray_elevation_deg. O(1).
+  std::optional<float> blind_ground_near(float x, float y, float radius) const {
+    if (!has_sensor_ || params_.sensor_height <= 0.0f || lowest_ray_slope_ <= -1e29f) return std::nullopt;
+    const float distance = std::hypot(x - sensor_.x(), y - sensor_.y()) - std::max(radius, 0.0f);
+    const bool blind = lowest_ray_slope_ >= 0.0f || distance * -lowest_ray_slope_ < params_.sensor_height;
+    if (!blind) return std::nullopt;
+    return sensor_.z() - params_.sensor_height;
+  }
 
   static void check(bool ok, const char* name, float value, const char* allowed) {
     detail::require_parameter(ok, "HeightMapGround", name, static_cast<double>(value), allowed);
@@ -296,13 +334,7 @@ class HeightMapGround {
     if (sensor_known) {
       sensor_z = world.z() - ray.z();
       distance = std::sqrt(ray.x() * ray.x() + ray.y() * ray.y());
-      const float foot = sensor_z - params_.sensor_height;
-      // A layer no higher than the lowest ray reaches here is where the field
-      // of view cuts an object off, not a surface: the ground is hidden below
-      // it, taken as level with the ground under the sensor.
-      if (*bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(*bound, foot);
-      // The cone from the ground under the sensor.
-      bound = std::min(*bound, foot + slope_ * distance);
+      bound = bounded_from_sensor(*bound, sensor_z, distance);
     }
     if (world.z() > surface_top(k, *bound, n) + params_.ground_tolerance) return SurfaceClass::object;
     return !sensor_known || rises_into_view(k, world, ray, sensor_z, distance) ? SurfaceClass::ground : SurfaceClass::object;
@@ -555,6 +587,8 @@ class HeightMapGround {
   float inverse_bin_ = 20.0f;
   float slope_ = 0.27f;
   float lowest_ray_slope_ = -1e30f;
+  Eigen::Vector3f sensor_ = Eigen::Vector3f::Zero();  // the last classified point's sensor, world frame
+  bool has_sensor_ = false;
   float rise_per_cell_ = 0.13f;
   float early_margin_ = 0.16f;
   std::int32_t search_rings_ = 4;

@@ -52,7 +52,10 @@ namespace streamclust {
 /// predicted position); the rest are paired by distance within the gates,
 /// nearest first (merges and splits renumber components; an object seen again
 /// after an occlusion has a new id). An observation left over with at least
-/// `birth_points` points starts a tentative track; `confirm_hits` hits confirm
+/// `birth_points` points, not floating more than `birth_clearance` above
+/// the ground under it (when known) and not centred in the box of a
+/// confirmed track seen in this update (grown by `group_margin`: a part of
+/// that object), starts a tentative track; `confirm_hits` hits confirm
 /// it. A track not seen coasts on its prediction: a tentative one is
 /// dropped after `tentative_coast_seconds`, a confirmed one after
 /// `coast_seconds`.
@@ -85,7 +88,8 @@ class KalmanTracker {
  public:
   struct Params {
     float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
-    std::size_t birth_points = 10;       ///< points an observation needs to start a track, [1, 1000000]
+    std::size_t birth_points = 30;       ///< points an observation needs to start a track, [1, 1000000]
+    float birth_clearance = 1.0f;        ///< [m] an observation whose lowest point is this far above the ground under it starts no track, (0, 1000]
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
@@ -102,6 +106,7 @@ class KalmanTracker {
       check(gate_distance > 0.0f && gate_distance <= 100.0f, "gate_distance", gate_distance, "(0, 100] m");
       check(birth_points >= 1 && birth_points <= 1000000, "birth_points", static_cast<double>(birth_points),
             "[1, 1000000]");
+      check(birth_clearance > 0.0f && birth_clearance <= 1000.0f, "birth_clearance", birth_clearance, "(0, 1000] m");
       check(confirm_hits >= 1 && confirm_hits <= 1000, "confirm_hits", confirm_hits, "[1, 1000]");
       check(coast_seconds >= 0.0 && coast_seconds <= 100.0, "coast_seconds", coast_seconds, "[0, 100] s");
       check(tentative_coast_seconds >= 0.0 && tentative_coast_seconds <= 100.0, "tentative_coast_seconds",
@@ -156,7 +161,10 @@ class KalmanTracker {
     }
     // Births, then misses and deletions.
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      if (!taken_[o] && objects[o].box.points >= params_.birth_points) filters_.push_back(born(objects[o]));
+      if (taken_[o] || objects[o].box.points < params_.birth_points || floating(objects[o]) || part_of_track(objects[o])) {
+        continue;
+      }
+      filters_.push_back(born(objects[o]));
     }
     std::size_t kept = 0;
     for (std::size_t i = 0; i < filters_.size(); ++i) {
@@ -214,6 +222,34 @@ class KalmanTracker {
     }
     f.x = a * f.x;
     f.p = a * f.p * a.transpose() + noise;
+  }
+
+  /// True when `o`'s lowest point is more than birth_clearance above the
+  /// ground under it (ObjectObservation::ground_z, when known): a tree's
+  /// crown, a patch of ceiling, an overhang. The objects tracked stand on
+  /// the ground.
+  bool floating(const tracking::ObjectObservation& o) const {
+    if (!o.ground_z || o.box.on_ground) return false;
+    const float bottom = o.box.center.z() - 0.5f * o.box.height;
+    return bottom - *o.ground_z > params_.birth_clearance;
+  }
+
+  /// True when the centre of `o` lies in the box of a confirmed track seen
+  /// in this update, grown by group_margin: a part of a tracked object that
+  /// its component lost (a side beyond a shadow, a limb, a trunk below its
+  /// crown), no object of its own.
+  bool part_of_track(const tracking::ObjectObservation& o) const {
+    const double margin = static_cast<double>(params_.group_margin);
+    for (const Filter& f : filters_) {
+      if (!f.seen || f.track.hits < params_.confirm_hits) continue;
+      const double c = std::cos(static_cast<double>(f.box_yaw)), s = std::sin(static_cast<double>(f.box_yaw));
+      const double dx = static_cast<double>(o.box.center.x()) - f.x(0), dy = static_cast<double>(o.box.center.y()) - f.x(1);
+      if (std::abs(c * dx + s * dy) <= 0.5 * static_cast<double>(f.track.length) + margin &&
+          std::abs(c * dy - s * dx) <= 0.5 * static_cast<double>(f.track.width) + margin) {
+        return true;
+      }
+    }
+    return false;
   }
 
   float position_sigma(const tracking::ObjectObservation& o) const {
