@@ -239,13 +239,9 @@ class KalmanTracker {
   /// its component lost (a side beyond a shadow, a limb, a trunk below its
   /// crown), no object of its own.
   bool part_of_track(const tracking::ObjectObservation& o) const {
-    const double margin = static_cast<double>(params_.group_margin);
     for (const Filter& f : filters_) {
       if (!f.seen || f.track.hits < params_.confirm_hits) continue;
-      const double c = std::cos(static_cast<double>(f.box_yaw)), s = std::sin(static_cast<double>(f.box_yaw));
-      const double dx = static_cast<double>(o.box.center.x()) - f.x(0), dy = static_cast<double>(o.box.center.y()) - f.x(1);
-      if (std::abs(c * dx + s * dy) <= 0.5 * static_cast<double>(f.track.length) + margin &&
-          std::abs(c * dy - s * dx) <= 0.5 * static_cast<double>(f.track.width) + margin) {
+      if (in_grown_box(o.box.center.x(), o.box.center.y(), f.x(0), f.x(1), f.box_yaw, f.track.length, f.track.width)) {
         return true;
       }
     }
@@ -267,12 +263,18 @@ class KalmanTracker {
   /// True when the box of `o`, grown by group_margin, holds the filter's
   /// predicted centre.
   bool holds(const tracking::ObjectObservation& o, const Filter& f) const {
-    const double c = std::cos(static_cast<double>(o.box.yaw)), s = std::sin(static_cast<double>(o.box.yaw));
-    const double dx = f.x(0) - static_cast<double>(o.box.center.x()), dy = f.x(1) - static_cast<double>(o.box.center.y());
-    const double along = c * dx + s * dy, across = c * dy - s * dx;
+    return in_grown_box(f.x(0), f.x(1), o.box.center.x(), o.box.center.y(), o.box.yaw, o.box.length, o.box.width);
+  }
+
+  /// True when the point (px, py) lies in the box centred at (cx, cy) with
+  /// heading `yaw` [rad], `length` along it and `width` across [m], grown
+  /// by group_margin on every side.
+  bool in_grown_box(double px, double py, double cx, double cy, float yaw, float length, float width) const {
+    const double c = std::cos(static_cast<double>(yaw)), s = std::sin(static_cast<double>(yaw));
+    const double dx = px - cx, dy = py - cy;
     const double margin = static_cast<double>(params_.group_margin);
-    return std::abs(along) <= 0.5 * static_cast<double>(o.box.length) + margin &&
-           std::abs(across) <= 0.5 * static_cast<double>(o.box.width) + margin;
+    return std::abs(c * dx + s * dy) <= 0.5 * static_cast<double>(length) + margin &&
+           std::abs(c * dy - s * dx) <= 0.5 * static_cast<double>(width) + margin;
   }
 
   /// Fills track_of_ (per filter: the observation, or kNone), grouped_ and taken_.
