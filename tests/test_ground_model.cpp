@@ -575,24 +575,30 @@ TEST_CASE("HeightMapGround where a level sensor cannot see level ground: a desk 
   CHECK(ramp > 0.85);
 }
 
-TEST_CASE("HeightMapGround::ground_height_near: layers bounded from the sensor; where it cannot see level ground, the ground under it") {
+TEST_CASE("HeightMapGround::ground_height_near: only cells holding ground; where it cannot see level ground, the ground under it") {
   // A sensor at the origin 1 m above the floor (z = -1), lowest ray 7 deg
-  // down: level floor shows from 8.1 m on. Overhead, 1.2-1.8 m out, a
-  // patch of ceiling 2 m up: the only layer of its cells.
+  // down: level floor shows from 8.1 m on. Overhead, 1.2-1.8 m and
+  // 4.0-4.6 m out, patches of ceiling 2 m up: the only layer of their cells.
   std::mt19937_64 rng(21);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   std::vector<Eigen::Vector3f> patch;
-  for (int i = 0; i < 3000; ++i) patch.emplace_back(1.2f + 0.6f * u(rng), 0.6f * u(rng) - 0.3f, 2.0f + 0.01f * u(rng));
+  for (const float near_edge : {1.2f, 4.0f}) {
+    for (int i = 0; i < 3000; ++i) patch.emplace_back(near_edge + 0.6f * u(rng), 0.6f * u(rng) - 0.3f, 2.0f + 0.01f * u(rng));
+  }
   sc::HeightMapGround::Params p;
   p.sensor_height = 1.0f;
   p.lowest_ray_elevation_deg = -7.0f;
   sc::HeightMapGround model(p);
   classify_all(model, patch);
-  // The patch's layer is no ground: at most the 15 deg cone from the foot
-  // (-1 + tan(15 deg) x 1.8 m = -0.52 m).
-  const std::optional<float> under_patch = model.ground_height_near(1.5f, 0.0f, 0.3f);
-  REQUIRE(under_patch);
-  CHECK(*under_patch <= -0.5f);
+  // A ceiling is no ground, even bounded by the 15 deg cone from the foot
+  // (which would allow -0.52 m at 1.8 m and 0.23 m at 4.6 m): under both
+  // patches, in the blind zone, the floor under the sensor.
+  for (const float x : {1.5f, 4.3f}) {
+    const std::optional<float> under_patch = model.ground_height_near(x, 0.0f, 0.3f);
+    INFO("patch at " << x << " m");
+    REQUIRE(under_patch);
+    CHECK(*under_patch == doctest::Approx(-1.0f));
+  }
   // Nothing seen 4.2 m out, inside the blind zone: the floor under the sensor.
   const std::optional<float> blind = model.ground_height_near(3.0f, 3.0f, 0.5f);
   REQUIRE(blind);

@@ -374,6 +374,33 @@ TEST_CASE("ros2msg MarkerArray: DELETEALL, then a cube and a label per box") {
                   std::invalid_argument);
 }
 
+TEST_CASE("ros2msg MarkerArray: an arrow per box with one, after the cubes and labels, in its own namespace") {
+  msg::BoxMarker still{4, {1.0, 2.0, 0.5}, {0.5, 0.4, 1.7}, 0.2, {0.5f, 0.25f, 1.0f, 0.4f}, "4 0.0 m/s"};
+  msg::BoxMarker walking = still;
+  walking.id = 9;
+  walking.arrow_length = 1.25;
+  walking.arrow_yaw = -1.0;
+  io::CdrWriter w;
+  msg::write_marker_array(w, msg::Header{1, 2, "map"}, "tracks", {walking, still});
+  const Decoded d("visualization_msgs/MarkerArray", w);
+  REQUIRE(d.has("markers.5.id"));
+  CHECK_FALSE(d.has("markers.6.id"));
+  const std::string arrow = "markers.5.";
+  CHECK(d.text(arrow + "ns") == "tracks_velocity");
+  CHECK(d.integer(arrow + "id") == 18);
+  CHECK(d.integer(arrow + "type") == 0);
+  CHECK(d.integer(arrow + "action") == 0);
+  CHECK(d.real(arrow + "pose.position.x") == 1.0);
+  CHECK(d.real(arrow + "pose.orientation.z") == doctest::Approx(std::sin(-0.5)).epsilon(1e-15));
+  CHECK(d.real(arrow + "pose.orientation.w") == doctest::Approx(std::cos(-0.5)).epsilon(1e-15));
+  CHECK(d.real(arrow + "scale.x") == 1.25);
+  CHECK(d.real(arrow + "scale.y") == msg::kArrowShaft);
+  CHECK(d.real(arrow + "scale.z") == msg::kArrowHead);
+  CHECK(d.real(arrow + "color.b") == 1.0);
+  CHECK(d.real(arrow + "color.a") == 1.0);
+  for (int m = 1; m < 5; ++m) CHECK(d.text("markers." + std::to_string(m) + ".ns") == "tracks");
+}
+
 TEST_CASE("ros2msg Detection3DArray: header, one hypothesis, box and id per detection") {
   const std::vector<msg::Detection> detections = {
       {"17", "object", 0.875, {3.0, 4.0, 0.5}, {1.0, 2.0, 1.25}, 0.4},

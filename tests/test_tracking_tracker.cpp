@@ -258,14 +258,15 @@ TEST_CASE("KalmanTracker: what floats above the ground or lies in a tracked obje
   };
   for (int c = 0; c < 3; ++c) tracker.update({standing(1, {0, 0})}, c * kCycle);
   REQUIRE(tracker.tracks().size() == 1);
-  // A patch of ceiling 3 m above the ground; the same 0.5 m above it.
+  // Something 3 m above the ground (its bottom; a lamp hung from the
+  // ceiling); the same 0.5 m above it.
   tr::ObjectObservation ceiling = observed(2, {10, 10});
   ceiling.ground_z = -1.0f;
-  ceiling.box.center.z() = 2.1f;
-  ceiling.box.height = 0.2f;
+  ceiling.box.center.z() = 2.3f;
+  ceiling.box.height = 0.6f;
   tr::ObjectObservation low = ceiling;
   low.id = 3;
-  low.box.center = Eigen::Vector3f(-10.0f, 10.0f, -0.4f);
+  low.box.center = Eigen::Vector3f(-10.0f, 10.0f, -0.2f);
   // A piece of the car beside its component (centre inside its 4 x 1.8 m
   // box), and one 1 m beyond the box's end.
   tr::ObjectObservation part = observed(4, {1.5f, 0.4f});
@@ -292,6 +293,69 @@ TEST_CASE("KalmanTracker: what floats above the ground or lies in a tracked obje
   sc::KalmanTracker::Params bad;
   bad.birth_clearance = 0.0f;
   CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_clearance"), std::invalid_argument);
+}
+
+TEST_CASE("KalmanTracker: where the ground is unknown, a crown above its trunk's foot starts no track") {
+  sc::KalmanTracker tracker;  // birth_clearance 1 m, birth_neighbourhood 3 m
+  const auto piece = [](sc::ComponentId id, Eigen::Vector2f centre, float bottom, float height) {
+    tr::ObjectObservation o = observed(id, centre);
+    o.box.length = o.box.width = 1.0f;
+    o.box.height = height;
+    o.box.center.z() = bottom + 0.5f * height;
+    return o;  // ground_z unknown
+  };
+  // A tree seen as two components 25 m out: its trunk from the foot up, its
+  // crown 2 m to the side from 2.5 m up; a second crown alone 10 m away.
+  const std::vector<tr::ObjectObservation> seen{piece(1, {25, 0}, -1.0f, 3.0f), piece(2, {25, 2}, 1.5f, 4.0f),
+                                                 piece(3, {25, 12}, 1.5f, 4.0f)};
+  for (int c = 0; c < 3; ++c) tracker.update(seen, c * kCycle);
+  std::map<sc::ComponentId, std::size_t> tracks_of;
+  for (const tr::Track& t : tracker.tracks()) ++tracks_of[t.cluster_id];
+  CHECK(tracks_of[1] == 1);
+  CHECK(tracks_of.count(2) == 0);  // 2.5 m above the trunk's foot 2 m away
+  CHECK(tracks_of[3] == 1);        // nothing near to stand for the ground
+  sc::KalmanTracker::Params bad;
+  bad.birth_neighbourhood = -1.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_neighbourhood"), std::invalid_argument);
+}
+
+TEST_CASE("KalmanTracker: what is shaped like structure starts no track; what is shaped like an object does") {
+  sc::KalmanTracker tracker;  // birth_max_length 10 m, birth_flatness 0.1
+  const auto shaped = [](sc::ComponentId id, float x, float length, float width, float height) {
+    tr::ObjectObservation o = observed(id, {x, 0.0f});
+    o.box.length = length;
+    o.box.width = width;
+    o.box.height = height;
+    return o;
+  };
+  const std::vector<tr::ObjectObservation> seen{
+      shaped(1, 0, 12.0f, 0.3f, 3.0f),   // a stretch of wall: too long
+      shaped(2, 20, 6.0f, 4.0f, 0.3f),   // a patch of ground or ceiling: flat
+      shaped(3, 40, 4.8f, 1.8f, 1.5f),   // a car
+      shaped(4, 60, 0.5f, 0.4f, 1.7f),   // a person
+      shaped(5, 80, 3.0f, 0.3f, 0.35f),  // a fallen log, barely not flat
+      shaped(6, 100, 9.5f, 2.5f, 3.5f),  // a bus under 10 m
+      shaped(7, 120, 0.6f, 0.05f, 1.2f),  // a piece of facade seen flat
+      shaped(8, 140, 0.15f, 0.06f, 2.5f),  // a post seen from one side
+      shaped(9, 160, 0.3f, 0.1f, 1.7f),   // a person seen from the side
+  };
+  for (int c = 0; c < 3; ++c) tracker.update(seen, c * kCycle);
+  std::map<sc::ComponentId, std::size_t> tracks_of;
+  for (const tr::Track& t : tracker.tracks()) ++tracks_of[t.cluster_id];
+  CHECK(tracks_of.count(1) == 0);
+  CHECK(tracks_of.count(2) == 0);
+  CHECK(tracks_of.count(7) == 0);
+  for (const sc::ComponentId id : {3, 4, 5, 6, 8, 9}) CHECK(tracks_of[id] == 1);
+  for (const tr::Track& t : tracker.tracks()) CHECK(t.state == tr::TrackState::confirmed);
+  sc::KalmanTracker::Params bad;
+  bad.birth_flatness = 1.5f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_flatness"), std::invalid_argument);
+  bad = {};
+  bad.birth_min_width = -0.1f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_min_width"), std::invalid_argument);
+  bad = {};
+  bad.birth_max_length = -1.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_max_length"), std::invalid_argument);
 }
 
 TEST_CASE("NullTracker tracks nothing") {

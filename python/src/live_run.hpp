@@ -97,13 +97,17 @@ inline LiveSourceOptions live_source_options(const std::string& source, const st
 class LiveRun {
  public:
   /// `args`: policy arguments with --rate; parsed before connecting, so a
-  /// bad option raises ValueError without touching the network.
-  LiveRun(const std::vector<std::string>& args, LiveSourceOptions source) : options_(parse_python_options(args)) {
+  /// bad option raises ValueError without touching the network. `tracks`:
+  /// each retrieval also carries the tracker's tracks (as Clusterer's).
+  LiveRun(const std::vector<std::string>& args, LiveSourceOptions source, bool tracks = false)
+      : options_(parse_python_options(args)), tracks_(tracks) {
+    if (tracks_ && options_.mode == cli::Mode::frame)
+      throw py::value_error("tracks: tracking follows the continuous engine's components; not with mode=\"frame\"");
     // Poses count from the time origin and ground estimates need the first
     // window: those runs are set up when the first points come.
     if (options_.poses_path.empty() && !needs_first_window(options_)) {
       resolve_setup(options_, nullptr);
-      run_.emplace(options_);
+      run_.emplace(options_, tracks_);
     }
     py::gil_scoped_release release;
     source_ = std::make_unique<LiveSource>(source);
@@ -116,7 +120,8 @@ class LiveRun {
   LiveRun& operator=(const LiveRun&) = delete;
 
   /// The next retrieval as a tuple (cycle, time, index, labels, components,
-  /// xyz, t, intensity, new_xyz, new_t, new_intensity, counters), or None
+  /// xyz, t, intensity, new_xyz, new_t, new_intensity, counters, tracks
+  /// (None without tracking)), or None
   /// when the stream ended. GIL held on entry.
   py::object next() {
     const std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
@@ -237,7 +242,7 @@ class LiveRun {
       } else {
         resolve_setup(options_, nullptr);
       }
-      run_.emplace(options_);
+      run_.emplace(options_, tracks_);
     }
     if (fed_ == stored_end()) return;
     run_->feed(buffers(fed_, stored_end()), [this](auto&&... a) { on_cycle(a...); });
@@ -256,7 +261,7 @@ class LiveRun {
   // A cycle of the schedule: the retrieval with its points, queued for
   // next(). Called with the GIL released; takes it.
   void on_cycle(std::uint64_t cycle, double time, const WindowRows& rows, const Clustering& result,
-                const std::vector<tracking::Track>* /*tracks: none, the live run tracks nothing*/) {
+                const std::vector<tracking::Track>* tracks) {
     const std::uint64_t offered = run_->offered();
     if (!rows.index.empty() && static_cast<std::uint64_t>(rows.index.front()) < base_)
       throw std::logic_error("live: a window row before the kept points");
@@ -284,7 +289,8 @@ class LiveRun {
       std::memcpy(new_intensity.mutable_data(), fresh.intensity32, fresh.size * sizeof(float));
     }
     ready_.push_back(py::make_tuple(retrieval[0], retrieval[1], retrieval[2], retrieval[3], retrieval[4], xyz, t,
-                                    intensity, new_xyz, new_t, new_intensity, counters_dict()));
+                                    intensity, new_xyz, new_t, new_intensity, counters_dict(),
+                                    tracks ? py::object(tracks_array(*tracks)) : py::none()));
     new_from_ = offered;
     keep_from_ = rows.index.empty() ? offered : std::min<std::uint64_t>(offered, static_cast<std::uint64_t>(rows.index.front()));
   }
@@ -309,6 +315,7 @@ class LiveRun {
   }
 
   cli::ClusterOptions options_;
+  bool tracks_ = false;  ///< retrievals carry the tracker's tracks
   std::optional<ScheduledRun> run_;
   std::unique_ptr<LiveSource> source_;
   std::mutex mutex_;

@@ -383,13 +383,16 @@ PYBIND11_MODULE(_streamclust, m) {
       .def(py::init([](const std::vector<std::string>& args, const std::string& source,
                        const std::vector<std::string>& lidars, bool configure,
                        const std::optional<std::string>& discovery_address, double wait, double duration,
-                       double idle_exit, std::size_t queue, std::size_t reorder) {
+                       double idle_exit, std::size_t queue, std::size_t reorder, bool tracks) {
              return std::make_unique<sp::LiveRun>(
-                 args, sp::live_source_options(source, lidars, configure, discovery_address, wait, duration,
-                                               idle_exit, queue, reorder));
+                 args,
+                 sp::live_source_options(source, lidars, configure, discovery_address, wait, duration, idle_exit,
+                                         queue, reorder),
+                 tracks);
            }),
            py::arg("args"), py::arg("source"), py::arg("lidars"), py::arg("configure"), py::arg("discovery_address"),
-           py::arg("wait"), py::arg("duration"), py::arg("idle_exit"), py::arg("queue"), py::arg("reorder"))
+           py::arg("wait"), py::arg("duration"), py::arg("idle_exit"), py::arg("queue"), py::arg("reorder"),
+           py::arg("tracks") = false)
       .def("next", &sp::LiveRun::next)
       .def("close", &sp::LiveRun::close)
       .def("counters", &sp::LiveRun::counters)

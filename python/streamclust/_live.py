@@ -11,7 +11,7 @@ from ._retrieval import Retrieval
 class LiveRetrieval(Retrieval):
     """One retrieval of a live source: a :class:`Retrieval` with the points.
 
-    Attributes (besides cycle, time, index, labels, components)
+    Attributes (besides cycle, time, index, labels, components, tracks)
     ----------------------------------------------------------
     xyz : numpy.ndarray, float32 (M, 3)
         Position of each row [m, the LiDAR's frame] (rows as ``index``).
@@ -31,8 +31,8 @@ class LiveRetrieval(Retrieval):
     __slots__ = ("xyz", "t", "intensity", "new_xyz", "new_t", "new_intensity", "counters")
 
     def __init__(self, cycle, time, index, labels, components, xyz, t, intensity, new_xyz, new_t, new_intensity,
-                 counters):
-        super().__init__(cycle, time, index, labels, components)
+                 counters, tracks=None):
+        super().__init__(cycle, time, index, labels, components, tracks)
         self.xyz = xyz
         self.t = t
         self.intensity = intensity
@@ -120,7 +120,7 @@ class LiveStream:
 
 
 def live(source, preset="carc-mid360", *, lidar=None, configure=False, discovery_address=None, duration=None,
-         idle_exit=None, wait=10.0, queue=4096, reorder=8, rate=20, **options):
+         idle_exit=None, wait=10.0, queue=4096, reorder=8, rate=20, tracks=False, **options):
     """Clusters a Livox LiDAR's stream as it arrives (``streamclust live``).
 
     source: ``"livox-sdk2://[HOST_IP][:PORT]"`` (Mid-360, HAP; points on
@@ -136,10 +136,12 @@ def live(source, preset="carc-mid360", *, lidar=None, configure=False, discovery
     the first packet (then ConnectionError or TimeoutError). queue: packets
     between the receiver thread and the engine (when full, whole packets
     are dropped and counted); reorder: packets held to undo reordering.
-    rate: retrievals per second of stream time. preset and options: as
-    :class:`Clusterer` (with ``ground=True`` the mount and sensor height not
-    given are estimated from the first window, as :func:`cluster_stream`
-    does).
+    rate: retrievals per second of stream time. preset, tracks and
+    options: as :class:`Clusterer` (with ``ground=True`` the mount and
+    sensor height not given are estimated from the first window, as
+    :func:`cluster_stream` does; with ``tracks=True`` each retrieval's
+    ``tracks`` are the tracked objects, the rows of ``streamclust live
+    --tracks`` for its cycle).
 
     Returns a :class:`LiveStream` yielding :class:`LiveRetrieval` objects on
     the schedule of :func:`cluster_stream`; when the stream ends (duration,
@@ -161,6 +163,8 @@ def live(source, preset="carc-mid360", *, lidar=None, configure=False, discovery
         raise ValueError("lidar: one LiDAR per live source (make one per LiDAR)")
     if not isinstance(configure, bool):
         raise ValueError(f"configure: expected True or False, got {configure!r}")
+    if not isinstance(tracks, bool):
+        raise ValueError(f"tracks: expected True or False, got {tracks!r}")
     if discovery_address is not None and not isinstance(discovery_address, str):
         raise ValueError(f"discovery_address: expected a dotted IPv4 address, got {discovery_address!r}")
     args = (["--preset", preset] + to_arguments(POLICY_KEYWORDS, options, "live")
@@ -170,7 +174,7 @@ def live(source, preset="carc-mid360", *, lidar=None, configure=False, discovery
         run = _call(_streamclust.LiveRun, args, source, lidars, configure, discovery_address,
                     _seconds("wait", wait, False), _seconds("duration", duration, True),
                     _seconds("idle_exit", idle_exit, True), _count("queue", queue, 2, 1 << 20),
-                    _count("reorder", reorder, 0, 1024))
+                    _count("reorder", reorder, 0, 1024), tracks)
     except ValueError as e:
         message = str(e)
         if message.startswith("SOURCE: "):

@@ -130,6 +130,27 @@ def test_sdk2_configure_finds_the_lidar_by_serial_objects_preset_equals_offline(
     check_offline_labels(retrievals, **options)
 
 
+def test_tracks_equal_cluster_stream_tracks_over_the_received_points(tool):
+    """live(tracks=True): every retrieval's tracks are cluster_stream's
+    (tracks=True) over the same points, row for row."""
+    url = "livox-sdk2://127.0.0.1:48451"
+    options = dict(preset="objects-mid360", mount=(0, 0, 0), sensor_height=1.0)
+    with streamclust.live(url, idle_exit=0.5, wait=20, tracks=True, **options) as stream:  # bound: replay may start
+        sender = replay(tool, "--simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "2.5", "--to",
+                        url, "--device-address", "127.0.0.36", "-q")
+        retrievals = collect(stream)
+    finish(sender)
+    xyz, t, intensity = received(retrievals)
+    offline = streamclust.cluster_stream(xyz, t, intensity, tracks=True, **options)
+    assert [r.cycle for r in retrievals] == [r.cycle for r in offline]
+    for live_r, off in zip(retrievals, offline):
+        assert live_r.tracks.dtype == streamclust.TRACK_DTYPE
+        assert np.array_equal(live_r.tracks, off.tracks), f"cycle {live_r.cycle}"
+    states = np.concatenate([r.tracks["state"] for r in retrievals])
+    assert np.count_nonzero(states == streamclust.TRACK_STATES.index("confirmed")) > 100
+    assert len(retrievals[-1].tracks) > 0
+
+
 def test_leaving_the_loop_stops_the_receiver_and_the_lidar(tool):
     # SDK1: breaking out stops sampling; the emulated LiDAR then stops sending long before its 20 s end.
     url = "livox-sdk1://127.0.0.1:36000"
@@ -181,6 +202,10 @@ def test_bad_sources_and_options_raise_value_error_before_connecting():
         streamclust.live("livox-sdk2://127.0.0.1:48601", window_time=-1)
     with pytest.raises(ValueError, match="time_origin"):
         streamclust.live("livox-sdk2://127.0.0.1:48601", time_origin=0)
+    with pytest.raises(ValueError, match="tracks: expected True or False"):
+        streamclust.live("livox-sdk2://127.0.0.1:48601", tracks=1)
+    with pytest.raises(ValueError, match="tracks: tracking follows the continuous engine"):
+        streamclust.live("livox-sdk2://127.0.0.1:48601", mode="frame", tracks=True)
 
 
 def test_silence_past_wait_raises_timeout_error_naming_the_endpoint():

@@ -19,6 +19,7 @@ import path from "node:path";
 import readline from "node:readline";
 import { spawn } from "node:child_process";
 import { createRequire } from "node:module";
+import { checks } from "./node_checks.mjs";
 
 const [prefix, serve] = process.argv.slice(2);
 const require = createRequire(path.join(path.resolve(prefix), "package.json"));
@@ -28,18 +29,7 @@ const { MessageReader } = require("@foxglove/rosmsg2-serialization");
 const { parse } = require("@foxglove/rosmsg");
 
 const POINTS = 10000, RATE = 20;  // as passed to SERVE
-const fail = (what) => {
-  console.error("foxglove_live: " + what);
-  process.exit(1);
-};
-const need = (ok, what) => ok || fail(what);
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(condition, seconds, what) {
-  for (const end = Date.now() + seconds * 1000; !condition(); await sleep(50)) {
-    if (Date.now() > end) fail("timed out waiting for " + what);
-  }
-}
-setTimeout(() => fail("the whole check took more than 120 s"), 120000).unref();
+const { fail, need, sleep, until } = checks("foxglove_live", 120);
 
 const server = spawn(serve, ["--points", POINTS, "--rate", RATE, "--seconds", 90, "--limit", 1000000].map(String),
                      { stdio: ["pipe", "pipe", "inherit"] });

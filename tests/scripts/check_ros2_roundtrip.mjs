@@ -5,7 +5,9 @@
 // @foxglove/rosmsg2-serialization's MessageReader from its schema's ros2msg
 // text (parsed by @foxglove/rosmsg with ros2: true), re-encoded with that
 // package's MessageWriter, and the result must equal the message's bytes.
-// Prints {"topics": {topic: {"schema", "messages"}}, "messages"} as JSON.
+// Prints {"topics": {topic: {"schema", "messages"}}, "messages", "tracked"} as
+// JSON; "tracked" maps the log time [ns] of each /streamclust/tracked_objects
+// message to its detections as [id, x, y, z, class_id, score].
 // Usage: node check_ros2_roundtrip.mjs NPM_PREFIX FILE   (NPM_PREFIX holds
 // node_modules with @mcap/core, @mcap/support, @foxglove/rosmsg and
 // @foxglove/rosmsg2-serialization).
@@ -38,7 +40,7 @@ function firstDifference(a, b) {
 }
 
 const bytes = fs.readFileSync(file);
-const out = { topics: {}, messages: 0 };
+const out = { topics: {}, messages: 0, tracked: {} };
 const failures = [];
 const schemas = new Map();
 const channels = new Map();  // id -> { topic, reader, writer, count }
@@ -67,7 +69,14 @@ for (let r; (r = stream.nextRecord()); ) {
     out.messages += 1;
     let again;
     try {
-      again = c.writer.writeMessage(c.reader.readMessage(r.data));
+      const message = c.reader.readMessage(r.data);
+      if (c.topic === "/streamclust/tracked_objects") {
+        out.tracked[r.logTime.toString()] = message.detections.map((d) => {
+          const p = d.bbox.center.position;
+          return [d.id, p.x, p.y, p.z, d.results[0].hypothesis.class_id, d.results[0].hypothesis.score];
+        });
+      }
+      again = c.writer.writeMessage(message);
     } catch (e) {
       failures.push(`${c.topic} message ${index}: ${e.message}`);
       continue;

@@ -10,11 +10,7 @@
 set -euo pipefail
 serve=$1 src=$2
 prefix=${STREAMCLUST_NPM_PREFIX:-$src/build/npm}
-for package in @foxglove/ws-protocol ws @foxglove/rosmsg2-serialization @foxglove/rosmsg; do
-  if ! command -v node >/dev/null || [[ ! -d "$prefix/node_modules/$package" ]]; then
-    echo "skipped: needs node and $package in $prefix (scripts/install-npm-tools.sh)"
-    exit 77
-  fi
-done
+source "$src/tests/scripts/need_npm_packages.sh"
+need_npm_packages "$prefix" @foxglove/ws-protocol ws @foxglove/rosmsg2-serialization @foxglove/rosmsg
 node "$src/tests/scripts/check_foxglove_live.mjs" "$prefix" "$serve"
 echo "foxglove_live: ok"

@@ -130,12 +130,13 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
   // would evict the clusterer's data from the caches and slow the next cycle.
   const bool rows_wanted = !o.labels_path.empty() || !o.ply_path.empty() || !o.pcd_path.empty() ||
                            !o.mcap_path.empty() || !o.png_path.empty() || o.verify || o.cycle_windows;
-  // --tracks: the boxes of the components of 10 points or more (the tracker's births).
+  // --tracks: the boxes of the components of 10 points or more (the tracker's observations).
   std::optional<tracking::ObjectBoxes> boxes;
   if (outputs.tracking()) boxes.emplace(tracking::ObjectBoxParams{});
   report.tracking = outputs.tracking();
   const std::vector<io::Record> no_points;
   const std::vector<std::int64_t> no_labels;
+  auto tracks_after = [&]() { return outputs.tracking() ? &outputs.tracks() : nullptr; };
 
   // Retrieves at `cycle_time`, then writes/keeps the outputs of a selected cycle.
   auto run_cycle = [&](double cycle_time) -> int {
@@ -236,7 +237,7 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     c.total_us = clock.take();
     if (!rows_wanted) {
       report.cycles.push_back(c);
-      if (o.on_cycle) o.on_cycle(c, no_points, no_labels);
+      if (o.on_cycle) o.on_cycle(CycleView{c, no_points, no_labels, tracks_after()});
       ++cycle;
       return kOk;
     }
@@ -283,9 +284,9 @@ int run_cluster_stages(const ClusterOptions& o, std::ostream& out, std::ostream&
     report.cycles.push_back(c);
     if (o.on_cycle) {
       if (o.cycle_windows) {
-        o.on_cycle(c, window_out.points, window_out.point_labels);
+        o.on_cycle(CycleView{c, window_out.points, window_out.point_labels, tracks_after()});
       } else {
-        o.on_cycle(c, no_points, no_labels);
+        o.on_cycle(CycleView{c, no_points, no_labels, tracks_after()});
       }
     }
     outputs.on_window(window_out, reader->time_origin(), stage);

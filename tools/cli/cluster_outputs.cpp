@@ -101,6 +101,8 @@ const std::vector<tracking::Track>& ClusterOutputs::track(const std::vector<trac
   return tracker_->update(objects, time);
 }
 
+const std::vector<tracking::Track>& ClusterOutputs::tracks() const { return tracker_->tracks(); }
+
 void ClusterOutputs::write_tracks(std::uint64_t cycle, double time, io::TimeOrigin origin, Stage& stage) {
   stage = Stage::writing;
   tracks_rows_.clear();

@@ -85,6 +85,8 @@ class ClusterOutputs {
   /// --tracks: the tracker's update with a cycle's objects (time [s]: the
   /// retrieval's); the tracks, valid until the next call.
   const std::vector<tracking::Track>& track(const std::vector<tracking::ObjectObservation>& objects, double time);
+  /// --tracks: the tracks after the last track() update.
+  const std::vector<tracking::Track>& tracks() const;
   /// --tracks: the rows of the last track() update for cycle `cycle` at
   /// stream time `time` [s]. Throws UsageError when the file fails.
   void write_tracks(std::uint64_t cycle, double time, io::TimeOrigin origin, Stage& stage);

@@ -18,6 +18,7 @@
 /// in steady state once they have grown).
 
 #include "cli/cluster_boxes.hpp"
+#include "cli/track_display.hpp"
 
 #include <streamclust/io/foxglove_messages.hpp>
 #include <streamclust/io/stream_time.hpp>
@@ -98,23 +99,17 @@ class FoxgloveFrames {
   void build_tracks(const std::vector<tracking::Track>& tracks, std::uint64_t log_ns) {
     track_boxes_.clear();
     for (const tracking::Track& t : tracks) {
-      if (t.state == tracking::TrackState::tentative) continue;
+      if (!shown_track(t)) continue;
+      const TrackDisplay d = track_display(t);
       io::foxglove::Box b;
       b.id = "track " + std::to_string(t.id);
       b.center = {t.position.x(), t.position.y(), t.position.z()};
       b.size = {t.length, t.width, t.height};
       b.yaw = t.yaw;
-      const auto c = label_display_color(static_cast<std::int64_t>(t.id));
-      const double alpha = t.state == tracking::TrackState::coasting ? 0.15 : 0.4;
-      b.color = io::foxglove::Color{c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, alpha};
-      const double speed = std::hypot(static_cast<double>(t.velocity.x()), static_cast<double>(t.velocity.y()));
-      char text[48];
-      std::snprintf(text, sizeof text, "%llu %.1f m/s", static_cast<unsigned long long>(t.id), speed);
-      b.text = text;
-      if (t.moving && speed > 0.0) {
-        b.arrow_length = speed;  // [m]: 1 s of travel
-        b.arrow_yaw = std::atan2(static_cast<double>(t.velocity.y()), static_cast<double>(t.velocity.x()));
-      }
+      b.color = io::foxglove::Color{d.rgba[0], d.rgba[1], d.rgba[2], d.rgba[3]};
+      b.text = d.text;
+      b.arrow_length = d.arrow_length;
+      b.arrow_yaw = d.arrow_yaw;
       b.metadata = {{"state", tracking::to_string(t.state)},
                     {"cluster", t.cluster_id == kNoComponent ? std::string("-1") : std::to_string(t.cluster_id)},
                     {"points", std::to_string(t.points)}};

@@ -236,8 +236,10 @@ outputs (besides those of cluster: --labels, --report, --mcap, --tracks, --png, 
   --foxglove [ADDR:]PORT          a Foxglove live view (WebSocket, protocol foxglove.websocket.v1):
                                   /streamclust/points (the window coloured by label),
                                   /streamclust/clusters (boxes with ids), /streamclust/raw (the
-                                  points received since the last cycle); ADDR default 0.0.0.0.
-                                  A slow viewer loses frames and never slows clustering
+                                  points received since the last cycle), with --tracks also
+                                  /streamclust/tracks (tracked boxes, ids, speeds, velocity
+                                  arrows); ADDR default 0.0.0.0. A slow viewer loses frames and
+                                  never slows clustering
   --record FILE.mcap              the raw input as livox_ros_driver2/msg/CustomMsg on /livox/lidar
                                   and sensor_msgs/msg/Imu on /livox/imu; `streamclust cluster
                                   FILE.mcap` with the same options gives the same cycles and labels
@@ -271,7 +273,7 @@ struct LidarPipeline {
   std::unique_ptr<LiveRecorder> recorder;
   std::unique_ptr<LivoxInput> input;
   std::unique_ptr<LiveFeed> feed;
-  std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0;  ///< live view channels
+  std::uint32_t view_points = 0, view_clusters = 0, view_raw = 0, view_tracks = 0;  ///< live view channels (tracks: with --tracks)
   std::mutex status_mutex;
   LiveStatus status;
   std::optional<std::chrono::steady_clock::time_point> started;  ///< when the feed began waiting
@@ -349,15 +351,19 @@ int run_pipeline(LidarPipeline& p, const SharedRun& run, std::ostream& out, std:
 
   // The cycles: the live view and the latency.
   FoxgloveFrames frames;
-  c.on_cycle = [&](const CycleReport& cycle, const std::vector<io::Record>& points,
-                   const std::vector<std::int64_t>& labels) {
+  c.on_cycle = [&](const CycleView& view) {
+    const CycleReport& cycle = view.report;
     if (run.view) {  // never waits for a client: a slow one loses frames (live/foxglove_server.hpp)
       const std::uint64_t log_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
-      frames.build(points, labels, log_ns);
+      frames.build(view.points, view.labels, log_ns);
       frames.build_raw(raw_since_cycle.records, log_ns);
       run.view->publish(p.view_points, log_ns, frames.point_cloud().data(), frames.point_cloud().size());
       run.view->publish(p.view_clusters, log_ns, frames.scene_update().data(), frames.scene_update().size());
       run.view->publish(p.view_raw, log_ns, frames.raw_cloud().data(), frames.raw_cloud().size());
+      if (view.tracks) {
+        frames.build_tracks(*view.tracks, log_ns);
+        run.view->publish(p.view_tracks, log_ns, frames.tracks_update().data(), frames.tracks_update().size());
+      }
     }
     raw_since_cycle.records.clear();
     const auto now = std::chrono::steady_clock::now();
@@ -471,7 +477,7 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
     pipelines.push_back(std::move(p));
   }
 
-  // The live view: one server, three channels per LiDAR.
+  // The live view: one server, three channels per LiDAR (four with --tracks).
   std::unique_ptr<live::FoxgloveServer> view;
   if (!o.foxglove.empty()) {
     const auto [address, port] = parse_foxglove_endpoint(o.foxglove);
@@ -493,6 +499,10 @@ int run_live(const LiveOptions& options, std::ostream& out, std::ostream& err) {
                                  FoxgloveFrames::kSceneUpdateSchema);
       p->view_raw = channel(FoxgloveFrames::kRawTopic, FoxgloveFrames::kPointCloudType,
                             FoxgloveFrames::kPointCloudSchema);
+      if (!p->cluster.tracks_path.empty()) {
+        p->view_tracks = channel(FoxgloveFrames::kTracksTopic, FoxgloveFrames::kSceneUpdateType,
+                                 FoxgloveFrames::kSceneUpdateSchema);
+      }
     }
     if (!o.cluster.quiet) err << "streamclust: live: Foxglove live view on ws://" << address << ":" << view->port() << "\n";
   }

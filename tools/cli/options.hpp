@@ -54,6 +54,20 @@ namespace streamclust::cli {
 
 struct RunSetup;     // cli/run_setup.hpp: what the options resolve to before a run
 struct CycleReport;  // cli/report.hpp: one retrieval cycle as reported
+}  // namespace streamclust::cli
+namespace streamclust::tracking {
+struct Track;  // streamclust/tracking/track.hpp
+}  // namespace streamclust::tracking
+namespace streamclust::cli {
+
+/// What a run's watcher (ClusterOptions::on_cycle) sees after each cycle.
+/// Valid during the call only.
+struct CycleView {
+  const CycleReport& report;                   ///< the cycle, its stream time [s]
+  const std::vector<io::Record>& points;       ///< with cycle_windows: the window's points; else empty
+  const std::vector<std::int64_t>& labels;     ///< per point: component, -1 unlabelled, -2 ground, -3 ceiling
+  const std::vector<tracking::Track>* tracks;  ///< with --tracks: the tracks after the cycle; else null
+};
 
 /// Everything `streamclust cluster` needs, after presets and overrides.
 struct ClusterOptions {
@@ -106,7 +120,7 @@ struct ClusterOptions {
   // outputs
   std::string labels_path, report_path, ply_path, pcd_path;
   std::string mcap_path;  ///< every cycle for Foxglove (tools/cli/mcap_output.hpp)
-  std::string tracks_path;  ///< tracked objects every cycle (CSV; tools/cli/tracks_output.hpp)
+  std::string tracks_path;  ///< tracked objects every cycle (CSV; streamclust/tracking/tracks_csv.hpp)
   std::string png_path;   ///< a bird's-eye picture of the last selected cycle
   std::uint64_t png_every = 0;  ///< > 0: a picture of every N-th cycle instead (FILE_<cycle>.png)
   bool all_cycles = false;
@@ -117,10 +131,9 @@ struct ClusterOptions {
   /// Opens the input instead of io::open_reader(input, read), for the
   /// driver (a live source instead of a file).
   std::function<std::unique_ptr<io::PointReader>()> open_input;
-  /// Called after every cycle with its report, its stream time [s] and,
-  /// when `cycle_windows`, the window's points and labels (-1 unlabelled,
-  /// -2 ground, -3 ceiling); otherwise both are empty.
-  std::function<void(const CycleReport&, const std::vector<io::Record>&, const std::vector<std::int64_t>&)> on_cycle;
+  /// Called after every cycle (CycleView: the window's rows when
+  /// `cycle_windows`, the tracks with --tracks).
+  std::function<void(const CycleView&)> on_cycle;
   bool cycle_windows = false;
   /// > 0: the report keeps only the last this many cycles (fixed memory
   /// for a run of any length); 0: every cycle.

@@ -160,11 +160,14 @@ input:
                                   the outputs are in the odometry's frame (header.frame_id)
   --queue N                       messages queued between DDS and the engine (default 64); when
                                   full, whole messages are dropped and counted
-outputs (besides those of cluster: --labels, --report, --mcap, --png, ...):
+outputs (besides those of cluster: --labels, --report, --mcap, --tracks, --png, ...):
   --namespace NS                  output topics NS/points (sensor_msgs/msg/PointCloud2: x y z
                                   intensity label class), NS/clusters
                                   (visualization_msgs/msg/MarkerArray), NS/detections
-                                  (vision_msgs/msg/Detection3DArray); default /streamclust
+                                  (vision_msgs/msg/Detection3DArray); with --tracks also
+                                  NS/tracks (MarkerArray: boxes, ids, speeds, velocity arrows)
+                                  and NS/tracked_objects (Detection3DArray: id = track id,
+                                  class moving or static); default /streamclust
   --depth N                       output history depth (reliable, keep last; default 5)
   --level-frame NAME              the outputs' frame when the points are placed by a mount (--mount,
                                   the objects presets' ground estimate, --imu gravity): level, z up;
@@ -287,7 +290,8 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
     input = std::make_unique<Ros2Input>(*points_sub, o.input, full_type, imu_sub.get(), o.imu, odom_sub.get(), o.odom,
                                         recorder.get());
     try {
-      outputs = std::make_unique<Ros2Outputs>(*participant, o.ns, o.depth, o.record_out_path);
+      outputs = std::make_unique<Ros2Outputs>(*participant, o.ns, o.depth, o.record_out_path,
+                                              !o.cluster.tracks_path.empty());
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--namespace: ") + e.what());
     } catch (const ros2::DdsError&) {
@@ -300,8 +304,9 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
   }
   if (!quiet) {
     err << tag << "subscribed to " << o.input << " (" << full_type << ", " << ros2::describe(qos.reliability)
-        << ", DDS domain " << participant->domain() << "); publishing " << outputs->topic(0) << ", "
-        << outputs->topic(1) << ", " << outputs->topic(2) << "\n";
+        << ", DDS domain " << participant->domain() << "); publishing ";
+    for (std::size_t i = 0; i < outputs->size(); ++i) err << (i > 0 ? ", " : "") << outputs->topic(i);
+    err << "\n";
   }
 
   // The engine thread: waits for the first message, sets the run up, runs
@@ -358,10 +363,12 @@ int run_ros2(const Ros2Options& o, std::ostream& out, std::ostream& err) {
         outputs->publish_static_transform(t, feed.first_time_ns(), *participant);
         output_frame = t.parent;
       }
-      c.on_cycle = [&, level](const CycleReport& cycle, const std::vector<io::Record>& points,
-                              const std::vector<std::int64_t>& labels) {
+      c.on_cycle = [&, level](const CycleView& view) {
+        const CycleReport& cycle = view.report;
         const std::uint64_t stamp_ns = FoxgloveFrames::nanoseconds(*c.read.time_origin, cycle.time);
-        outputs->publish(stamp_ns, level ? output_frame : input->frame_id(), points, labels);
+        const std::string& frame = level ? output_frame : input->frame_id();
+        outputs->publish(stamp_ns, frame, view.points, view.labels);
+        if (view.tracks) outputs->publish_tracks(stamp_ns, frame, *view.tracks);
         const auto now = std::chrono::steady_clock::now();
         const std::lock_guard<std::mutex> lock(run.mutex);
         run.points = input->counters().points;

@@ -10,6 +10,8 @@
 /// | `NS/points` | `sensor_msgs/msg/PointCloud2` | the window: x y z intensity (float32), label (int32: component >= 0, -1 unlabelled, -2 ground, -3 ceiling), class (uint8: 0 unlabelled, 1 object, 2 ground, 3 ceiling) |
 /// | `NS/clusters` | `visualization_msgs/msg/MarkerArray` | a DELETEALL, then per component a cube (its axis-aligned box, the label's colour) and its id above it |
 /// | `NS/detections` | `vision_msgs/msg/Detection3DArray` | per component its box, class "object", score 1, id = the label |
+/// | `NS/tracks` | `visualization_msgs/msg/MarkerArray` | with `--tracks`: a DELETEALL, then per confirmed or coasting track its oriented box (the id's colour), "ID S.S m/s" above it and, while it moves, an arrow of its velocity (1 s of travel; namespace `streamclust_tracks_velocity`) |
+/// | `NS/tracked_objects` | `vision_msgs/msg/Detection3DArray` | with `--tracks`: per confirmed or coasting track its oriented box, class "moving" or "static", score 1 (confirmed) or 0.5 (coasting), id = the track id |
 ///
 /// When the engine places points by a mount (given, estimated from the
 /// first window or from the IMU), the window is in a level frame
@@ -20,6 +22,7 @@
 
 #include "cli/cluster_boxes.hpp"
 #include "cli/structure_labels.hpp"
+#include "cli/track_display.hpp"
 
 #include <streamclust/io/cdr_writer.hpp>
 #include <streamclust/io/mcap_writer.hpp>
@@ -50,13 +53,19 @@ class Ros2Outputs {
   static constexpr Topic kPoints{"points", "sensor_msgs/msg/PointCloud2", "sensor_msgs/PointCloud2"};
   static constexpr Topic kClusters{"clusters", "visualization_msgs/msg/MarkerArray", "visualization_msgs/MarkerArray"};
   static constexpr Topic kDetections{"detections", "vision_msgs/msg/Detection3DArray", "vision_msgs/Detection3DArray"};
+  static constexpr Topic kTracks{"tracks", "visualization_msgs/msg/MarkerArray", "visualization_msgs/MarkerArray"};
+  static constexpr Topic kTrackedObjects{"tracked_objects", "vision_msgs/msg/Detection3DArray",
+                                         "vision_msgs/Detection3DArray"};
 
-  /// Publishers under namespace `ns`; `record_out` (empty: none) an MCAP
-  /// file of what is published. Throws ros2::DdsError, std::invalid_argument
-  /// (a bad namespace), std::runtime_error (the file).
+  /// Publishers under namespace `ns` (with `tracks`, the track topics too);
+  /// `record_out` (empty: none) an MCAP file of what is published. Throws
+  /// ros2::DdsError, std::invalid_argument (a bad namespace),
+  /// std::runtime_error (the file).
   Ros2Outputs(const ros2::DdsParticipant& participant, const std::string& ns, std::int32_t depth,
-              const std::string& record_out) {
-    for (const Topic* t : {&kPoints, &kClusters, &kDetections}) {
+              const std::string& record_out, bool tracks = false) {
+    std::vector<const Topic*> topics{&kPoints, &kClusters, &kDetections};
+    if (tracks) topics.insert(topics.end(), {&kTracks, &kTrackedObjects});
+    for (const Topic* t : topics) {
       Output o;
       o.topic = ros2::resolve_topic(t->name, ns);
       o.publisher = std::make_unique<ros2::CdrPublisher>(participant, ros2::dds_topic_name(o.topic),
@@ -65,7 +74,6 @@ class Ros2Outputs {
     }
     if (!record_out.empty()) {
       mcap_.emplace(record_out, io::McapWriter::Options{});
-      const Topic* topics[] = {&kPoints, &kClusters, &kDetections};
       for (std::size_t i = 0; i < outputs_.size(); ++i) {
         const auto schema = mcap_->add_schema(topics[i]->type, "ros2msg", io::ros2msg::ros2_definition(topics[i]->msg_type));
         outputs_[i].channel = mcap_->add_channel(schema, outputs_[i].topic, "cdr");
@@ -126,6 +134,42 @@ class Ros2Outputs {
     send(1, stamp_ns);
     io::ros2msg::write_detection3d_array(cdr_, h, detections_);
     send(2, stamp_ns);
+  }
+
+  /// With the track topics: publishes the confirmed and coasting `tracks`
+  /// of a cycle at `stamp_ns` [ns since 1970] in `frame_id`. O(tracks).
+  void publish_tracks(std::uint64_t stamp_ns, const std::string& frame_id, const std::vector<tracking::Track>& tracks) {
+    if (outputs_.size() < 5) return;
+    const io::ros2msg::Header h = header_of(stamp_ns, frame_id);
+    markers_.clear();
+    detections_.clear();
+    for (const tracking::Track& t : tracks) {
+      if (!shown_track(t)) continue;
+      const TrackDisplay d = track_display(t);
+      io::ros2msg::BoxMarker m;
+      m.id = static_cast<std::int32_t>(t.id % (std::uint64_t{1} << 30));
+      m.center = {t.position.x(), t.position.y(), t.position.z()};
+      m.size = {t.length, t.width, t.height};
+      m.yaw = t.yaw;
+      m.rgba = {static_cast<float>(d.rgba[0]), static_cast<float>(d.rgba[1]), static_cast<float>(d.rgba[2]),
+                static_cast<float>(d.rgba[3])};
+      m.text = d.text;
+      m.arrow_length = d.arrow_length;
+      m.arrow_yaw = d.arrow_yaw;
+      io::ros2msg::Detection o;
+      o.id = std::to_string(t.id);
+      o.class_id = t.moving ? "moving" : "static";
+      o.score = t.state == tracking::TrackState::confirmed ? 1.0 : 0.5;
+      o.center = m.center;
+      o.size = m.size;
+      o.yaw = t.yaw;
+      markers_.push_back(std::move(m));
+      detections_.push_back(std::move(o));
+    }
+    io::ros2msg::write_marker_array(cdr_, h, "streamclust_tracks", markers_);
+    send(3, stamp_ns);
+    io::ros2msg::write_detection3d_array(cdr_, h, detections_);
+    send(4, stamp_ns);
   }
 
   /// Publishes, once, the static transform from `t.parent` (the frame the

@@ -36,6 +36,7 @@
 #include <streamclust/io/cdr_writer.hpp>
 #include <streamclust/io/ros2_definitions.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -202,7 +203,12 @@ struct BoxMarker {
   double yaw = 0;                  ///< rotation about +z [rad]
   std::array<float, 4> rgba{1, 1, 1, 1};  ///< colour of the cube, each in [0, 1]
   std::string text;                       ///< the label; empty: the id
+  double arrow_length = 0;                ///< [m] > 0: an arrow from the centre (e.g. 1 s of travel)
+  double arrow_yaw = 0;                   ///< [rad] its heading about +z
 };
+
+/// Arrow shaft and head diameters [m].
+inline constexpr double kArrowShaft = 0.1, kArrowHead = 0.2;
 
 /// Label text height [m] and its gap above the box's top face [m].
 inline constexpr double kLabelHeight = 0.5, kLabelGap = 0.2;
@@ -247,7 +253,10 @@ inline void put_marker(CdrWriter& w, const Header& h, const std::string& ns, std
 /// each box a CUBE (id 2 box.id, pose from centre and yaw, scale = size,
 /// colour rgba) and a white TEXT_VIEW_FACING label (id 2 box.id + 1,
 /// kLabelHeight high, kLabelGap above the top face), all ADD in namespace
-/// `ns` with lifetime 0. Throws std::invalid_argument when a box id is
+/// `ns` with lifetime 0; then for each box with an arrow_length an ARROW
+/// (id 2 box.id in namespace `ns` + "_velocity", from the centre along
+/// arrow_yaw, scale arrow_length x kArrowShaft x kArrowHead, the cube's
+/// colour, opaque). Throws std::invalid_argument when a box id is
 /// outside (-2^30, 2^30).
 inline void write_marker_array(CdrWriter& w, const Header& h, const std::string& ns,
                                const std::vector<BoxMarker>& boxes) {
@@ -258,8 +267,10 @@ inline void write_marker_array(CdrWriter& w, const Header& h, const std::string&
                                   " outside (-2^30, 2^30): its marker ids 2 id and 2 id + 1 must fit int32");
     }
   }
+  const auto arrows = static_cast<std::size_t>(
+      std::count_if(boxes.begin(), boxes.end(), [](const BoxMarker& b) { return b.arrow_length > 0; }));
   w.clear();
-  w.count(1 + 2 * boxes.size());
+  w.count(1 + 2 * boxes.size() + arrows);
   detail::put_marker(w, h, ns, 0, kMarkerArrow, kMarkerDeleteAll, {0, 0, 0}, {0, 0, 0, 1}, {0, 0, 0}, {0, 0, 0, 0},
                      "");
   for (const BoxMarker& b : boxes) {
@@ -269,6 +280,13 @@ inline void write_marker_array(CdrWriter& w, const Header& h, const std::string&
     detail::put_marker(w, h, ns, 2 * b.id + 1, kMarkerTextViewFacing, kMarkerAdd, above, {0, 0, 0, 1},
                        {kLabelHeight, kLabelHeight, kLabelHeight}, {1, 1, 1, 1},
                        b.text.empty() ? std::to_string(b.id) : b.text);
+  }
+  if (arrows == 0) return;
+  const std::string arrow_ns = ns + "_velocity";
+  for (const BoxMarker& b : boxes) {
+    if (!(b.arrow_length > 0)) continue;
+    detail::put_marker(w, h, arrow_ns, 2 * b.id, kMarkerArrow, kMarkerAdd, b.center, yaw_quaternion(b.arrow_yaw),
+                       {b.arrow_length, kArrowShaft, kArrowHead}, {b.rgba[0], b.rgba[1], b.rgba[2], 1.0f}, "");
   }
 }
 

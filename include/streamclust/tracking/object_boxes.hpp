@@ -36,7 +36,10 @@ struct ObjectObservation {
   bool compensated = false;       ///< the points were moved to `time` along `velocity` before the box fit
   double time = 0.0;              ///< [s] the retrieval's time (its newest point)
   double time_begin = 0.0;        ///< [s] the component's oldest point
-  std::optional<float> ground_z;  ///< [m] the ground near the object, when the ground policy knows it
+  /// [m] the ground near the object, when the ground policy knows it: under
+  /// the footprint and ground_margin around (the box's bottom stands on that),
+  /// else up to 4 m further (a far object beyond sparse ground).
+  std::optional<float> ground_z;
 };
 
 /// Settings of ObjectBoxes.
@@ -194,10 +197,10 @@ class ObjectBoxes {
         hi = hi.cwiseMax(p.head<2>());
       }
       const Eigen::Vector2f mid = 0.5f * (lo + hi);
-      const std::optional<float> ground =
-          ground_near(mid.x(), mid.y(), 0.5f * (hi - lo).maxCoeff() + params_.ground_margin);
+      const float reach = 0.5f * (hi - lo).maxCoeff() + params_.ground_margin;
+      const std::optional<float> ground = ground_near(mid.x(), mid.y(), reach);
       o.box = fit_oriented_box(xyz, ground, params_.fit, fit_scratch_);
-      o.ground_z = ground;
+      o.ground_z = ground ? ground : ground_near(mid.x(), mid.y(), reach + 4.0f);
       observations_.push_back(o);
     }
     return observations_;

@@ -218,7 +218,8 @@ class HeightMapGround {
 
   /// The ground's height around (x, y) [m], for what reads the window after
   /// a retrieval (an object box's bottom): the mean of the lowest layers that
-  /// are solid surfaces (solid_surface) in the square of cells within
+  /// are solid surfaces (solid_surface) holding points classified ground
+  /// (indoors a cell under the ceiling alone is no ground) in the square of cells within
   /// `radius` [m] of (x, y) (at most 10 m), each bounded from the last
   /// point's sensor as the classification bounds it (a ceiling patch over a
   /// floor out of view is no ground); when none is, in the zone near
@@ -237,7 +238,7 @@ class HeightMapGround {
     for (std::int32_t iy = k.iy - rings; iy <= k.iy + rings; iy += stride) {
       for (std::int32_t ix = k.ix - rings; ix <= k.ix + rings; ix += stride) {
         const std::optional<float> layer = lowest_layer(ix, iy);
-        if (!layer || !solid_surface(ix, iy)) continue;
+        if (!layer || !solid_surface(ix, iy) || !holds_ground(ix, iy)) continue;
         float ground = *layer;
         if (has_sensor_ && params_.sensor_height > 0.0f) {
           const float cx = (static_cast<float>(ix) + 0.5f) * params_.cell_size - sensor_.x();
@@ -360,8 +361,7 @@ class HeightMapGround {
       const float scale = steps * params_.cell_size / distance;
       const Key in = key_of(Eigen::Vector3f(world.x() - ray.x() * scale, world.y() - ray.y() * scale, world.z()));
       if (in.ix == k.ix && in.iy == k.iy) continue;
-      const std::uint32_t c = cells_.find(in.ix, in.iy);
-      return c != CellTable<Cell>::kNone && cells_[c].ground_points > 0;
+      return holds_ground(in.ix, in.iy);
     }
     return false;
   }
@@ -501,6 +501,12 @@ class HeightMapGround {
     const PeakAndSpan counts = lowest_layer_counts(ix, iy);
     return counts.peak >= params_.surface_min_points && counts.peak > counts.span &&
            counts.peaked(params_.step_peak_ratio);
+  }
+
+  /// True when cell (ix, iy) holds window points classified ground. O(1) expected.
+  bool holds_ground(std::int32_t ix, std::int32_t iy) const {
+    const std::uint32_t c = cells_.find(ix, iy);
+    return c != CellTable<Cell>::kNone && cells_[c].ground_points > 0;
   }
 
   /// Points in a layer's two bins and in the kPeakSpan bins beside it.

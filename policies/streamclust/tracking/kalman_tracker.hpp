@@ -52,8 +52,11 @@ namespace streamclust {
 /// predicted position); the rest are paired by distance within the gates,
 /// nearest first (merges and splits renumber components; an object seen again
 /// after an occlusion has a new id). An observation left over with at least
-/// `birth_points` points, not floating more than `birth_clearance` above
-/// the ground under it (when known) and not centred in the box of a
+/// `birth_points` points, shaped like an object (at most `birth_max_length`
+/// long and `birth_max_area` large, at least `birth_flatness` times as high as long, not a flat
+/// vertical patch narrower than `birth_min_width`), not floating more than `birth_clearance` above
+/// the ground under it (where unknown: above the lowest observation within
+/// `birth_neighbourhood`) and not centred in the box of a
 /// confirmed track seen in this update (grown by `group_margin`: a part of
 /// that object), starts a tentative track; `confirm_hits` hits confirm
 /// it. A track not seen coasts on its prediction: a tentative one is
@@ -90,6 +93,11 @@ class KalmanTracker {
     float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
     std::size_t birth_points = 30;       ///< points an observation needs to start a track, [1, 1000000]
     float birth_clearance = 1.0f;        ///< [m] an observation whose lowest point is this far above the ground under it starts no track, (0, 1000]
+    float birth_neighbourhood = 3.0f;    ///< [m] where that ground is unknown, the lowest point of the observations centred this near stands for it, [0, 100]
+    float birth_max_length = 10.0f;      ///< [m] an observation longer than this starts no track (walls, buildings, terrain in one component), (0, 1000]
+    float birth_max_area = 30.0f;        ///< [m^2] nor one whose footprint is larger (a bus: 12 x 2.5 m; a wide crown: 5 x 5 m), (0, 1000000]
+    float birth_flatness = 0.1f;         ///< an observation lower than this fraction of its length starts no track (a patch of ground or ceiling), [0, 1]
+    float birth_min_width = 0.08f;       ///< [m] an observation narrower than this and over 2.5 times as long starts no track (a piece of wall seen flat), [0, 10]
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
@@ -107,6 +115,13 @@ class KalmanTracker {
       check(birth_points >= 1 && birth_points <= 1000000, "birth_points", static_cast<double>(birth_points),
             "[1, 1000000]");
       check(birth_clearance > 0.0f && birth_clearance <= 1000.0f, "birth_clearance", birth_clearance, "(0, 1000] m");
+      check(birth_neighbourhood >= 0.0f && birth_neighbourhood <= 100.0f, "birth_neighbourhood", birth_neighbourhood,
+            "[0, 100] m");
+      check(birth_max_length > 0.0f && birth_max_length <= 1000.0f, "birth_max_length", birth_max_length,
+            "(0, 1000] m");
+      check(birth_max_area > 0.0f && birth_max_area <= 1e6f, "birth_max_area", birth_max_area, "(0, 1000000] m^2");
+      check(birth_flatness >= 0.0f && birth_flatness <= 1.0f, "birth_flatness", birth_flatness, "[0, 1]");
+      check(birth_min_width >= 0.0f && birth_min_width <= 10.0f, "birth_min_width", birth_min_width, "[0, 10] m");
       check(confirm_hits >= 1 && confirm_hits <= 1000, "confirm_hits", confirm_hits, "[1, 1000]");
       check(coast_seconds >= 0.0 && coast_seconds <= 100.0, "coast_seconds", coast_seconds, "[0, 100] s");
       check(tentative_coast_seconds >= 0.0 && tentative_coast_seconds <= 100.0, "tentative_coast_seconds",
@@ -161,7 +176,8 @@ class KalmanTracker {
     }
     // Births, then misses and deletions.
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      if (taken_[o] || objects[o].box.points < params_.birth_points || floating(objects[o]) || part_of_track(objects[o])) {
+      if (taken_[o] || objects[o].box.points < params_.birth_points || structure_shaped(objects[o]) ||
+          floating(objects[o], objects) || part_of_track(objects[o])) {
         continue;
       }
       filters_.push_back(born(objects[o]));
@@ -224,14 +240,37 @@ class KalmanTracker {
     f.p = a * f.p * a.transpose() + noise;
   }
 
+  /// True when `o` is longer than birth_max_length, larger than
+  /// birth_max_area, lower than
+  /// birth_flatness times its length, or narrower than birth_min_width and
+  /// over 2.5 times as long (a post seen from one side is about as long as
+  /// it is wide): what the ground and wall models left of walls, buildings,
+  /// terrain or a ceiling, not an object to track.
+  bool structure_shaped(const tracking::ObjectObservation& o) const {
+    const float length = std::max(o.box.length, o.box.width);
+    const float width = std::min(o.box.length, o.box.width);
+    return length > params_.birth_max_length || length * width > params_.birth_max_area ||
+           o.box.height < params_.birth_flatness * length ||
+           (width < params_.birth_min_width && length > 2.5f * params_.birth_min_width);
+  }
+
   /// True when `o`'s lowest point is more than birth_clearance above the
-  /// ground under it (ObjectObservation::ground_z, when known): a tree's
-  /// crown, a patch of ceiling, an overhang. The objects tracked stand on
-  /// the ground.
-  bool floating(const tracking::ObjectObservation& o) const {
-    if (!o.ground_z || o.box.on_ground) return false;
+  /// ground under it (ObjectObservation::ground_z), or, where that ground is
+  /// unknown, above the lowest point of the observations centred within
+  /// birth_neighbourhood of it: a tree's crown (over its trunk), a patch of
+  /// ceiling, an overhang. The objects tracked stand on the ground.
+  /// O(objects) when the ground is unknown, else O(1).
+  bool floating(const tracking::ObjectObservation& o, const std::vector<tracking::ObjectObservation>& objects) const {
+    if (o.box.on_ground) return false;
     const float bottom = o.box.center.z() - 0.5f * o.box.height;
-    return bottom - *o.ground_z > params_.birth_clearance;
+    if (o.ground_z) return bottom - *o.ground_z > params_.birth_clearance;
+    float lowest = bottom;
+    const float reach = params_.birth_neighbourhood;
+    for (const tracking::ObjectObservation& other : objects) {
+      const Eigen::Vector2f d = other.box.center.head<2>() - o.box.center.head<2>();
+      if (d.squaredNorm() <= reach * reach) lowest = std::min(lowest, other.box.center.z() - 0.5f * other.box.height);
+    }
+    return bottom - lowest > params_.birth_clearance;
   }
 
   /// True when the centre of `o` lies in the box of a confirmed track seen
