@@ -10,6 +10,7 @@
 #
 #   JOBS=2              evaluate runs in parallel (default 2)
 #   BUILD_DIR=build/evaluation
+#   TOOL=path           use this streamclust binary (Release) instead of building one
 #   SECONDS_MAIN=3      simulated seconds per run of the matrix, the sweep and the T_B study
 #   QUICK=1             a smoke run: 1 s streams, two sensors, no doc rewrite
 #   TABLES_ONLY=1       no build and no runs: rewrite the tables and the picture
@@ -28,7 +29,6 @@ SECONDS_MAIN=${SECONDS_MAIN:-3}
 QUICK=${QUICK:-}
 TABLES_ONLY=${TABLES_ONLY:-}
 OUT="$BUILD_DIR/results"
-TOOL="$BUILD_DIR/tools/streamclust"
 
 if [[ -n "$TABLES_ONLY" ]]; then
   if [[ ! -f "$OUT/jobs.txt" ]]; then
@@ -36,9 +36,13 @@ if [[ -n "$TABLES_ONLY" ]]; then
     exit 1
   fi
 else
-  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
-    -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
-  cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
+  if [[ -z "${TOOL:-}" ]]; then
+    TOOL="$BUILD_DIR/tools/streamclust"
+    cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
+      -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
+    cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
+  fi
+  TOOL=$(realpath "$TOOL")
   rm -rf "$OUT"
   mkdir -p "$OUT"
 fi

@@ -288,6 +288,24 @@ TEST_CASE("sim scene: trajectories") {
   const sim::Trajectory still = sim::Trajectory::fixed({1, 2, 3});
   CHECK(still.position(100.0).isApprox(Eigen::Vector3f(1, 2, 3)));
   CHECK(std::isinf(still.period()));
+
+  // Departing at t = 2 s from (0, 0) along (0, 0) -> (10, 0) -> (10, 40):
+  // 2 m/s^2 up to 4 m/s (4 m in the first 2 s), then 4 m/s; it stops at the end.
+  const sim::Trajectory depart = sim::Trajectory::depart({{0, 0, 0}, {10, 0, 0}, {10, 40, 0}}, 2.0, 4.0f, 2.0f);
+  CHECK(depart.position(0.0).isApprox(Eigen::Vector3f(0, 0, 0)));
+  CHECK(depart.position(2.0).isApprox(Eigen::Vector3f(0, 0, 0)));
+  CHECK(depart.position(3.0).isApprox(Eigen::Vector3f(1, 0, 0)));     // a t^2 / 2 = 1 m
+  CHECK(depart.position(4.0).isApprox(Eigen::Vector3f(4, 0, 0)));     // top speed reached
+  CHECK(depart.position(5.5).isApprox(Eigen::Vector3f(10, 0, 0)));    // the corner
+  CHECK(depart.position(6.0).isApprox(Eigen::Vector3f(10, 2, 0)));    // turned: heading +y
+  CHECK(depart.pose(6.0).sin_yaw == doctest::Approx(1.0f));
+  CHECK(depart.pose(1.0).cos_yaw == doctest::Approx(1.0f));           // standing, facing its way
+  CHECK(depart.position(15.5).isApprox(Eigen::Vector3f(10, 40, 0)));  // arrived
+  CHECK(depart.position(100.0).isApprox(Eigen::Vector3f(10, 40, 0)));  // and stays
+  CHECK(std::isinf(depart.period()));
+  CHECK(depart.swept_bounds().hi.isApprox(Eigen::Vector3f(10, 40, 0)));
+  CHECK_THROWS_AS(sim::Trajectory::depart({{0, 0, 0}}, 0.0, 1.0f, 1.0f), std::invalid_argument);
+  CHECK_THROWS_AS(sim::Trajectory::depart({{0, 0, 0}, {1, 0, 0}}, 0.0, 0.0f, 1.0f), std::invalid_argument);
 }
 
 TEST_CASE("sim scene: moving objects move along their trajectory") {
@@ -381,7 +399,7 @@ TEST_CASE("sim scenes: contents, unique ids, clear start, determinism") {
     check_scene(sim::forest_scene(seed),
                 {{"tree", 30, 60}, {"bush", 10, 20}, {"vehicle", 2, 2}, {"pedestrian", 2, 4}}, 44);
     check_scene(sim::street_scene(seed),
-                {{"parked_car", 38, 46}, {"pole", 10, 20}, {"tree", 6, 30}, {"car", 4, 6}, {"cyclist", 2, 2},
+                {{"parked_car", 35, 44}, {"pole", 10, 20}, {"tree", 6, 30}, {"car", 5, 7}, {"cyclist", 2, 2},
                  {"pedestrian", 4, 6}},
                 70);
   }
@@ -417,7 +435,7 @@ TEST_CASE("sim scenes: golden fingerprints (the same scene for a seed on every c
     double range_sum;
     long id_sum;
   };
-  const Golden golden[3] = {{20, 18865.331560, 3173}, {60, 29136.755536, 20594}, {85, 33808.887203, 21257}};
+  const Golden golden[3] = {{20, 18865.331560, 3173}, {60, 29136.755536, 20594}, {82, 33899.592731, 21250}};
   for (int k = 0; k < 3; ++k) {
     CAPTURE(k);
     const sim::Scene scene = k == 0 ? sim::office_scene(1) : k == 1 ? sim::forest_scene(1) : sim::street_scene(1);
@@ -519,16 +537,38 @@ TEST_CASE("sim scenes: street parked cars in unbroken rows, lamp poles 0.9-1.0 m
       if (o.label == "parked_car") cars[o.bounds.center().y() > 0.0f ? 1 : 0].push_back(o.bounds);
       if (o.label == "pole") poles.push_back(&o);
     }
-    for (auto& row : cars) {
+    // The departing car: the moving car standing in the y < 0 row at t = 0.
+    const sim::ObjectInfo* departing = nullptr;
+    for (const sim::ObjectInfo& o : scene.objects()) {
+      if (o.label == "car" && scene.position(o.instance, 0.0).y() < -5.0f) departing = &o;
+    }
+    REQUIRE(departing != nullptr);
+    const float departing_x = scene.position(departing->instance, 0.0).x();
+    CHECK(departing_x >= 18.0f);
+    CHECK(departing_x <= 33.0f);
+    for (int r = 0; r < 2; ++r) {
+      auto& row = cars[r];
       std::sort(row.begin(), row.end(), [](const sim::Aabb& a, const sim::Aabb& b) { return a.lo.x() < b.lo.x(); });
-      REQUIRE(row.size() >= 19);
+      REQUIRE(row.size() >= 17);
       CHECK(row.front().lo.x() <= -58.0f);
       CHECK(row.back().hi.x() >= 54.0f);
+      int spaces = 0;
       for (std::size_t k = 1; k < row.size(); ++k) {
         const float gap = row[k].lo.x() - row[k - 1].hi.x();
         CHECK(gap >= 0.6f - 1e-3f);
-        CHECK(gap <= 1.5f + 1e-3f);
+        if (gap <= 1.5f + 1e-3f) continue;
+        // Unbroken but for the parking space of the y < 0 row: the departing
+        // car (2.1-2.4 m half length) 0.6-1.5 m ahead of the car behind it
+        // (+x), 6 m and more behind the car ahead of it.
+        ++spaces;
+        CHECK(r == 0);
+        const float behind = row[k].lo.x() - departing_x;
+        const float ahead = departing_x - row[k - 1].hi.x();
+        CHECK(behind >= 2.1f + 0.6f - 1e-3f);
+        CHECK(behind <= 2.4f + 1.5f + 1e-3f);
+        CHECK(ahead >= 2.4f + 6.0f - 1e-3f);
       }
+      CHECK(spaces == (r == 0 ? 1 : 0));
     }
     for (const sim::ObjectInfo* pole : poles) {
       // The mast at 1 m: its near and far faces from rays across the
@@ -586,6 +626,47 @@ TEST_CASE("sim scenes: street parked cars in unbroken rows, lamp poles 0.9-1.0 m
             FAIL_CHECK(o.label << " at t = " << t << " s within 0.3 m of " << other.label);
           }
         }
+      }
+    }
+  }
+}
+
+TEST_CASE("sim scenes: a street car pulls out of its parking space into the lane, clear of the traffic") {
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    CAPTURE(seed);
+    const sim::Scene scene = sim::street_scene(seed);
+    const sim::ObjectInfo* departing = nullptr;
+    for (const sim::ObjectInfo& o : scene.objects()) {
+      if (o.label == "car" && scene.position(o.instance, 0.0).y() < -5.0f) departing = &o;
+    }
+    REQUIRE(departing != nullptr);
+    const int id = departing->instance;
+    const Eigen::Vector3f parked = scene.position(id, 0.0);
+    double start = 0.0;
+    while (start < 60.0 && (scene.position(id, start + 0.05) - parked).norm() < 1e-4f) start += 0.05;
+    CHECK(start >= 1.0 - 1e-6);
+    CHECK(start < 30.0);
+    // From standing, 2.5 m/s^2 up to 10 m/s: 5 m in the first 2 s, in the
+    // lane and at top speed after 4 s, heading -x.
+    CHECK((scene.position(id, start + 2.0) - parked).norm() == doctest::Approx(5.0f).epsilon(0.05));
+    const Eigen::Vector3f cruising = scene.position(id, start + 5.0);
+    CHECK(cruising.y() == doctest::Approx(-2.0f));
+    CHECK((scene.position(id, start + 5.5) - cruising).x() == doctest::Approx(-5.0f).epsilon(1e-3));
+    for (double t = 0.0; t < start + 20.0; t += 0.1) {
+      CHECK((scene.position(id, t + 0.1) - scene.position(id, t)).norm() <= 1.0f + 1e-3f);
+    }
+    CHECK(scene.position(id, 100.0).isApprox(Eigen::Vector3f(-140.0f, -2.0f, 0.0f)));  // stopped at the end
+    // Clear of every car and cyclist: the footprints at their largest
+    // (the scene keeps 1 m between the actual ones; headings ignored) 0.3 m
+    // apart and more, short of the loops' U-turns (|x| >= 100).
+    for (const sim::ObjectInfo& o : scene.objects()) {
+      if (!o.moving || o.instance == id || (o.label != "car" && o.label != "cyclist")) continue;
+      CAPTURE(o.label);
+      const Eigen::Vector2f half = o.label == "car" ? Eigen::Vector2f(4.8f, 1.9f) : Eigen::Vector2f(2.4f + 0.85f, 0.95f + 0.22f);
+      for (double t = 0.0; scene.position(id, t).x() > -95.0f; t += 0.05) {
+        const Eigen::Vector2f d = (scene.position(o.instance, t) - scene.position(id, t)).head<2>().cwiseAbs();
+        const Eigen::Vector2f gap = (d - half).cwiseMax(0.0f);
+        if (gap.norm() < 0.3f - 1e-3f) FAIL_CHECK(o.label << " at t = " << t << " s too close to the departing car");
       }
     }
   }

@@ -2,9 +2,10 @@
 #pragma once
 
 /// \file
-/// Trajectory: the periodic path a moving object of a scene follows at
-/// constant speed (a closed polyline or a horizontal circle), and
-/// ObjectPose, its position and heading at one time.
+/// Trajectory: the path a moving object of a scene follows (periodic at
+/// constant speed along a closed polyline or a horizontal circle, or once
+/// along an open polyline from standing), and ObjectPose, its position and
+/// heading at one time.
 
 #include <streamclust/sim/shapes.hpp>
 
@@ -26,9 +27,11 @@ struct ObjectPose {
   float sin_yaw = 0.0f;
 };
 
-/// A periodic path followed at constant speed: a closed polyline (a segment
+/// A path: periodic at constant speed along a closed polyline (a segment
 /// travelled back and forth is the polyline a -> b -> a, with an
-/// instantaneous turn at each end) or a horizontal circle.
+/// instantaneous turn at each end) or a horizontal circle; or once along an
+/// open polyline, standing until a start time, then accelerating to a top
+/// speed (`depart`). Headings turn instantaneously at the polyline's corners.
 class Trajectory {
  public:
   /// Standing still at `p` (heading +x).
@@ -44,20 +47,27 @@ class Trajectory {
   /// [m/s], starting `phase` [m] along it at t = 0.
   static Trajectory loop(std::vector<Eigen::Vector3f> points, float speed, float phase = 0.0f) {
     if (points.empty()) throw std::invalid_argument("Trajectory::loop: points must not be empty");
-    Trajectory t;
+    Trajectory t = polyline_path(std::move(points), true);
     t.kind_ = Kind::polyline;
-    t.points_ = std::move(points);
     t.speed_ = speed;
     t.phase_ = phase;
-    const std::size_t n = t.points_.size();
-    t.cumulative_.assign(n + 1, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3f seg = t.points_[(i + 1) % n] - t.points_[i];
-      t.cumulative_[i + 1] = t.cumulative_[i] + static_cast<double>(seg.norm());
-      const Eigen::Vector2f h(seg.x(), seg.y());
-      const float len = h.norm();
-      t.headings_.push_back(len > 1e-6f ? Eigen::Vector2f(h / len) : Eigen::Vector2f(1.0f, 0.0f));
+    return t;
+  }
+
+  /// Once along the open polyline `points` (at least two): standing at the
+  /// first point until `start` [s], then accelerating at `acceleration`
+  /// [m/s^2] up to `top_speed` [m/s], standing at the last point once there.
+  /// A car pulling out of a parking space, say.
+  static Trajectory depart(std::vector<Eigen::Vector3f> points, double start, float top_speed, float acceleration) {
+    if (points.size() < 2) throw std::invalid_argument("Trajectory::depart: an open path needs at least two points");
+    if (!(top_speed > 0.0f) || !(acceleration > 0.0f)) {
+      throw std::invalid_argument("Trajectory::depart: top_speed and acceleration must be > 0");
     }
+    Trajectory t = polyline_path(std::move(points));
+    t.kind_ = Kind::departure;
+    t.start_ = start;
+    t.speed_ = top_speed;
+    t.acceleration_ = acceleration;
     return t;
   }
 
@@ -94,25 +104,16 @@ class Trajectory {
       p.position = points_[0];
       return p;
     }
+    if (kind_ == Kind::departure) return along(std::min(distance_departed(time), total), 1.0f);
     double s = static_cast<double>(phase_) + static_cast<double>(speed_) * time;
     s -= total * std::floor(s / total);
-    std::size_t i = 0;
-    const std::size_t n = points_.size();
-    while (i + 1 < n && s >= cumulative_[i + 1]) ++i;
-    const double len = cumulative_[i + 1] - cumulative_[i];
-    const float f = len > 1e-12 ? static_cast<float>((s - cumulative_[i]) / len) : 0.0f;
-    const Eigen::Vector3f& a = points_[i];
-    const Eigen::Vector3f& b = points_[(i + 1) % n];
-    p.position = a + f * (b - a);
-    const float sign = speed_ >= 0.0f ? 1.0f : -1.0f;
-    p.cos_yaw = sign * headings_[i].x();
-    p.sin_yaw = sign * headings_[i].y();
-    return p;
+    return along(s, speed_ >= 0.0f ? 1.0f : -1.0f);
   }
 
   Eigen::Vector3f position(double time) const { return pose(time).position; }
 
   /// Bounds of every position the trajectory takes.
+  /// An open path's bounds are its points' (the segments lie between them).
   Aabb swept_bounds() const {
     Aabb b;
     if (kind_ == Kind::circle) {
@@ -123,8 +124,10 @@ class Trajectory {
     return b;
   }
 
-  /// Time for one full period [s] (infinity when standing still).
+  /// Time for one full period [s] (infinity when standing still or along
+  /// an open path).
   double period() const {
+    if (kind_ == Kind::departure) return std::numeric_limits<double>::infinity();
     constexpr double kTwoPi = 6.283185307179586476925;
     const double length = kind_ == Kind::circle ? kTwoPi * static_cast<double>(radius_) : cumulative_.back();
     if (speed_ == 0.0f || !(length > 0.0)) return std::numeric_limits<double>::infinity();
@@ -132,8 +135,54 @@ class Trajectory {
   }
 
  private:
-  enum class Kind { polyline, circle };
+  enum class Kind { polyline, circle, departure };
   Trajectory() = default;
+
+  /// Cumulative lengths and headings of the segments between consecutive
+  /// `points` (closed: the last joined to the first as well).
+  static Trajectory polyline_path(std::vector<Eigen::Vector3f> points, bool closed = false) {
+    Trajectory t;
+    t.points_ = std::move(points);
+    const std::size_t n = t.points_.size();
+    const std::size_t segments = closed ? n : n - 1;
+    t.cumulative_.assign(segments + 1, 0.0);
+    for (std::size_t i = 0; i < segments; ++i) {
+      const Eigen::Vector3f seg = t.points_[(i + 1) % n] - t.points_[i];
+      t.cumulative_[i + 1] = t.cumulative_[i] + static_cast<double>(seg.norm());
+      const Eigen::Vector2f h(seg.x(), seg.y());
+      const float len = h.norm();
+      t.headings_.push_back(len > 1e-6f ? Eigen::Vector2f(h / len) : Eigen::Vector2f(1.0f, 0.0f));
+    }
+    return t;
+  }
+
+  /// Distance along a departure's path at `time` [s]: 0 before the start,
+  /// a t^2 / 2 while accelerating, then the top speed. Unbounded.
+  double distance_departed(double time) const {
+    const double t = time - start_;
+    if (t <= 0.0) return 0.0;
+    const double a = static_cast<double>(acceleration_);
+    const double v = static_cast<double>(speed_);
+    const double t_top = v / a;
+    return t <= t_top ? 0.5 * a * t * t : 0.5 * v * t_top + v * (t - t_top);
+  }
+
+  /// Pose `s` [m] along the polyline, 0 <= s <= its length; `sign` -1
+  /// faces backwards (a negative speed).
+  ObjectPose along(double s, float sign) const {
+    ObjectPose p;
+    std::size_t i = 0;
+    const std::size_t segments = headings_.size();
+    while (i + 1 < segments && s >= cumulative_[i + 1]) ++i;
+    const double len = cumulative_[i + 1] - cumulative_[i];
+    const float f = len > 1e-12 ? static_cast<float>((s - cumulative_[i]) / len) : 0.0f;
+    const Eigen::Vector3f& a = points_[i];
+    const Eigen::Vector3f& b = points_[(i + 1) % points_.size()];
+    p.position = a + f * (b - a);
+    p.cos_yaw = sign * headings_[i].x();
+    p.sin_yaw = sign * headings_[i].y();
+    return p;
+  }
 
   Kind kind_ = Kind::polyline;
   std::vector<Eigen::Vector3f> points_;
@@ -142,6 +191,8 @@ class Trajectory {
   float radius_ = 0.0f;
   float speed_ = 0.0f;
   float phase_ = 0.0f;
+  double start_ = 0.0;         ///< departure: when it sets off [s]
+  float acceleration_ = 0.0f;  ///< departure [m/s^2]
 };
 
 }  // namespace streamclust::sim

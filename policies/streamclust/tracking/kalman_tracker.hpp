@@ -39,8 +39,11 @@ namespace streamclust {
 /// track's last update (successive windows share most of their points: their
 /// errors are not independent), its variance raised by the excess when it
 /// falls outside the 99 % ellipse of the filter's velocity. A new track
-/// starts at rest with `initial_speed_noise`; window velocities count from
-/// its second sighting.
+/// starts at the velocity its window shows when that is clear (at least
+/// twice `moving_speed` and five standard errors; uncertainty three standard
+/// errors, at least 0.5 m/s: a car at 10 m/s moves 0.5 m a retrieval and
+/// its pieces are renumbered), else at rest with `initial_speed_noise`;
+/// window velocities count from its second sighting.
 /// Height, extent and heading are smoothed outside the filter.
 ///
 /// Association, per retrieval: the tracks are predicted to its time. An
@@ -287,6 +290,14 @@ class KalmanTracker {
     return false;
   }
 
+  /// True when the points of `o` clearly moved within the window: a window
+  /// velocity of at least twice moving_speed and five standard errors.
+  bool shows_motion(const tracking::ObjectObservation& o) const {
+    if (!o.velocity.valid) return false;
+    const float speed = o.velocity.velocity.norm();
+    return speed >= 2.0f * params_.moving_speed && speed >= 5.0f * o.velocity.error;
+  }
+
   float position_sigma(const tracking::ObjectObservation& o) const {
     return o.box.quality == tracking::BoxQuality::two_sides ? params_.position_noise : params_.partial_position_noise;
   }
@@ -472,6 +483,11 @@ class KalmanTracker {
     const double sv = params_.initial_speed_noise;
     f.x << o.box.center.x(), o.box.center.y(), 0.0, 0.0;
     f.p = Vector4(sp * sp, sp * sp, sv * sv, sv * sv).asDiagonal();
+    if (shows_motion(o)) {
+      const double se = std::max(3.0 * static_cast<double>(o.velocity.error), 0.5);
+      f.x.template tail<2>() = o.velocity.velocity.cast<double>();
+      f.p(2, 2) = f.p(3, 3) = se * se;
+    }
     if (o.velocity.valid) f.window_velocity = o.velocity.velocity;
     f.has_window_velocity = o.velocity.valid;
     smooth_box(f, o, true);

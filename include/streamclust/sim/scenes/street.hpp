@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,9 +32,17 @@ namespace streamclust::sim {
 /// a loop y = +2 going +x and y = -2 going -x with U-turns at |x| = 100), 2
 /// cyclists ("cyclist", 5 m/s, loop at y = +-3.8 with U-turns at |x| =
 /// 120), 4-6 pedestrians ("pedestrian", 1.1-1.5 m/s back and forth on the
-/// sidewalks, each on its own line). Objects on loops interpenetrate only
-/// during the U-turns, >= 100 m from the origin; no moving object comes
-/// within 0.3 m of a parked car or a pole.
+/// sidewalks, each on its own line), and one car ("car") pulling out of a
+/// free parking space in the y < 0 row 18-33 m ahead: standing until the
+/// way is clear (from 1 s on, in steps of 0.1 s), then swinging out into
+/// the y = -2 lane over 9 m, at 2.5 m/s^2 up to 10 m/s, and on along it to
+/// x = -140 where it stops.
+/// Objects on loops interpenetrate only during the U-turns, >= 100 m from
+/// the origin; short of them, the departing car keeps 1 m from every other
+/// car and cyclist; no moving object comes within 0.3 m of a parked car or
+/// a pole.
+/// The parking space and the departing car draw from a random stream of
+/// their own, so every other object is where it is without them.
 inline Scene street_scene(std::uint64_t seed) {
   detail::SplitMix64 rng = detail::make_rng(seed, 0x57EE7);
   constexpr float kRoad = 7.0f;
@@ -71,6 +80,21 @@ inline Scene street_scene(std::uint64_t seed) {
     }
   }
 
+  // The free parking space in the y < 0 row: no parked car within 7 m
+  // ahead of a nominal spot (toward -x, where the departing car swings
+  // out) nor 0.6 m behind it; the departing car stands 0.6-1.5 m ahead of
+  // the first parked car behind the space.
+  detail::SplitMix64 departure_rng = detail::make_rng(seed, 0xDE9A27);
+  const float nominal_x = departure_rng.uniform(19.0f, 26.0f);  // [m]
+  const float departing_l = departure_rng.uniform(4.2f, 4.8f);
+  const float departing_w = departure_rng.uniform(1.75f, 1.9f);
+  const float departing_h = departure_rng.uniform(1.4f, 1.6f);
+  const float departing_gap = departure_rng.uniform(0.6f, 1.5f);
+  const float space_lo = nominal_x - 0.5f * departing_l - 7.0f;
+  const float space_hi = nominal_x + 0.5f * departing_l + 0.6f;
+  const auto in_space = [&](float side, float lo, float hi) { return side < 0.0f && hi > space_lo && lo < space_hi; };
+  float behind_space = std::numeric_limits<float>::infinity();  // [m] x of the first parked car's body behind it
+
   // Parked cars: two unbroken rows, 0.6-1.5 m between consecutive bodies.
   // Every 10-20 m a lamp pole stands in a gap, on the sidewalk by the kerb,
   // `kPoleClearance` from the nearest car body (its corner across the gap)
@@ -81,6 +105,7 @@ inline Scene street_scene(std::uint64_t seed) {
   struct PoleSpot {
     float x, y;  // [m] axis
     float side;
+    bool by_space;  // a car beside it may be missing for the free parking space
   };
   std::vector<PoleSpot> pole_spots;
   for (float side : {-1.0f, 1.0f}) {
@@ -93,7 +118,10 @@ inline Scene street_scene(std::uint64_t seed) {
       const float yaw = side > 0 ? 0.0f : detail::kPi;
       const float w = rng.uniform(1.75f, 1.9f);
       const float h = rng.uniform(1.4f, 1.6f);
-      scene.add_object("parked_car", detail::car_shapes(base, yaw, l, w, h));
+      if (!in_space(side, x, x + l)) {
+        scene.add_object("parked_car", detail::car_shapes(base, yaw, l, w, h));
+        if (side < 0.0f && x >= space_hi) behind_space = std::min(behind_space, x);
+      }
       const float gap = rng.uniform(0.6f, 1.5f);
       const float pole_x = x + l + 0.5f * gap;
       if (pole_x >= next_pole && pole_x + 0.5f * gap + 4.8f <= 60.0f) {
@@ -104,17 +132,20 @@ inline Scene street_scene(std::uint64_t seed) {
         const float reach = kPoleClearance + r_max;
         const float beside = std::sqrt(reach * reach - 0.25f * gap * gap);
         const float y = std::max(kParkedY + 0.95f + beside, kRoad + r_max + 0.03f);
-        pole_spots.push_back(PoleSpot{pole_x, side * y, side});
+        const bool by_space = in_space(side, x, x + l) || in_space(side, x + l + gap, x + l + gap + 4.8f);
+        pole_spots.push_back(PoleSpot{pole_x, side * y, side, by_space});
         next_pole = pole_x + rng.uniform(10.0f, 20.0f);
       }
       x += l + gap;
     }
   }
 
-  // Lamp poles: a thin cylinder and an arm reaching over the parked cars.
+  // Lamp poles: a thin cylinder and an arm reaching over the parked cars;
+  // none by the free parking space.
   for (const PoleSpot& spot : pole_spots) {
     const float r = rng.uniform(0.08f, 0.12f);
     const float h = rng.uniform(6.0f, 8.0f);
+    if (spot.by_space) continue;
     const float x = spot.x;
     const float y = spot.y;
     const float side = spot.side;
@@ -141,6 +172,14 @@ inline Scene street_scene(std::uint64_t seed) {
     }
   }
 
+  // Footprints of the cars and cyclists on the road, for the departing
+  // car's clear way: half extents along x and y (heading ignored) [m].
+  struct RoadUser {
+    int instance;
+    Eigen::Vector2f half;
+  };
+  std::vector<RoadUser> road_users;
+
   // Moving cars on the lane loop, evenly spaced with jitter.
   {
     const float loop_x = 100.0f;
@@ -154,7 +193,8 @@ inline Scene street_scene(std::uint64_t seed) {
       const float l = rng.uniform(4.2f, 4.8f);
       const float w = rng.uniform(1.75f, 1.9f);
       const float h = rng.uniform(1.4f, 1.6f);
-      scene.add_moving_object("car", detail::car_shapes(Eigen::Vector3f::Zero(), 0.0f, l, w, h), std::move(lane));
+      const int car = scene.add_moving_object("car", detail::car_shapes(Eigen::Vector3f::Zero(), 0.0f, l, w, h), std::move(lane));
+      road_users.push_back(RoadUser{car, Eigen::Vector2f(0.5f * l, 0.5f * w)});
     }
   }
 
@@ -167,10 +207,11 @@ inline Scene street_scene(std::uint64_t seed) {
       ShapeSet bike;
       bike.add(Box::aligned({-0.85f, -0.08f, 0.0f}, {0.85f, 0.08f, 1.0f}), Material::metal);
       bike.add(Capsule{0.0f, 0.0f, 0.22f, 1.05f, 1.55f}, Material::fabric);
-      scene.add_moving_object(
+      const int cyclist = scene.add_moving_object(
           "cyclist", bike,
           Trajectory::loop({{-loop_x, 3.8f, 0.0f}, {loop_x, 3.8f, 0.0f}, {loop_x, -3.8f, 0.0f}, {-loop_x, -3.8f, 0.0f}}, 5.0f,
                            phase0 + 0.5f * loop_len * static_cast<float>(i) + rng.uniform(-20.0f, 20.0f)));
+      road_users.push_back(RoadUser{cyclist, Eigen::Vector2f(0.85f, 0.22f)});
     }
   }
 
@@ -189,6 +230,44 @@ inline Scene street_scene(std::uint64_t seed) {
       scene.add_moving_object("pedestrian", detail::person_shapes(Eigen::Vector3f::Zero(), height, 0.3f),
                               Trajectory::back_and_forth({x0, y, kCurb}, {x0 + len, y, kCurb}, speed, phase));
     }
+  }
+
+  // The departing car: out of its space along a half cosine from the
+  // parked row to the lane over 9 m (at most 31 degrees off the kerb; its
+  // corners stay >= 1 m from the car parked ahead and inside the kerb),
+  // then along the lane. It sets off at the first start time whose whole
+  // way keeps 1 m from every road user's footprint (headings ignored)
+  // until |x| = 95, short of the U-turns.
+  {
+    const float c = std::min(behind_space, 60.0f) - departing_gap - 0.5f * departing_l;
+    constexpr float kSwing = 9.0f;  // [m] along x from the parked row to the lane
+    constexpr int kSteps = 18;
+    std::vector<Eigen::Vector3f> way;
+    for (int k = 0; k <= kSteps; ++k) {
+      const float u = static_cast<float>(k) / kSteps;
+      const float y = -kParkedY + (kParkedY - 2.0f) * 0.5f * (1.0f - std::cos(detail::kPi * u));
+      way.emplace_back(c - kSwing * u, y, 0.0f);
+    }
+    way.emplace_back(-140.0f, -2.0f, 0.0f);
+    constexpr float kTopSpeed = 10.0f;     // [m/s]
+    constexpr float kAcceleration = 2.5f;  // [m/s^2]
+    const Eigen::Vector2f half(0.5f * departing_l, 0.5f * departing_w);
+    const auto clear_from = [&](double start) {
+      const Trajectory trial = Trajectory::depart(way, start, kTopSpeed, kAcceleration);
+      for (double t = start;; t += 0.05) {
+        const Eigen::Vector2f p = trial.position(t).head<2>();
+        if (p.x() < -95.0f) return true;  // the loops' U-turns lie beyond |x| = 100
+        for (const RoadUser& user : road_users) {
+          const Eigen::Vector2f gap =
+              ((scene.position(user.instance, t).head<2>() - p).cwiseAbs() - half - user.half).cwiseMax(0.0f);
+          if (gap.norm() < 1.0f) return false;
+        }
+      }
+    };
+    double start = 1.0;
+    while (start < 60.0 && !clear_from(start)) start += 0.1;
+    scene.add_moving_object("car", detail::car_shapes(Eigen::Vector3f::Zero(), 0.0f, departing_l, departing_w, departing_h),
+                            Trajectory::depart(std::move(way), start, kTopSpeed, kAcceleration));
   }
   return scene;
 }
