@@ -166,6 +166,12 @@ function(streamclust_add_tool target)
   target_link_libraries(${ARG_LIBRARY} PUBLIC streamclust::streamclust streamclust::io streamclust::live
                         streamclust_foxglove nlohmann_json::nlohmann_json)
   target_compile_features(${ARG_LIBRARY} PUBLIC cxx_std_17)
+  # The commands' own files compiled four to a translation unit (CMake's
+  # unity build: the headers they share parsed and instantiated once per
+  # batch); each generated unit stays on its own, the heaviest, compiled in
+  # parallel.
+  set_target_properties(${ARG_LIBRARY} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 4)
+  set_source_files_properties(${_units} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 
   add_executable(${target} "${_src}/streamclust.cpp")
   target_link_libraries(${target} PRIVATE ${ARG_LIBRARY})

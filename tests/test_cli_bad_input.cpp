@@ -22,7 +22,7 @@ namespace {
 
 using streamclust::test::run_cli;
 
-const std::string pcd_head =
+const std::string pcd_head_xyzt =
     "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z t\nSIZE 4 4 4 8\nTYPE F F F F\n"
     "COUNT 1 1 1 1\n";
 
@@ -32,8 +32,8 @@ TEST_CASE("a header without points: info reports 0 points (exit 0), cluster exit
   const sc::test::TempDir tmp("cli_bad_input", "header_only");
   const std::string files[] = {
       tmp.file("empty.csv", "x,y,z,t\n"),
-      tmp.file("empty.pcd", pcd_head + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n"),
-      tmp.file("empty_binary.pcd", pcd_head + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA binary\n"),
+      tmp.file("empty.pcd", pcd_head_xyzt + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n"),
+      tmp.file("empty_binary.pcd", pcd_head_xyzt + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA binary\n"),
       tmp.file("empty.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
                             "property float y\nproperty float z\nproperty double t\nend_header\n"),
   };
@@ -51,7 +51,7 @@ TEST_CASE("a header without points: info reports 0 points (exit 0), cluster exit
 
 TEST_CASE("bytes after the declared data: info and cluster exit 4 naming the byte") {
   const sc::test::TempDir tmp("cli_bad_input", "trailing");
-  std::string s = pcd_head + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n";
+  std::string s = pcd_head_xyzt + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n";
   const std::size_t end = s.size() + 20;
   s += std::string(20 + 7, '\0');
   const std::string f = tmp.file("trailing.pcd", s);

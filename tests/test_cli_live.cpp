@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_checks.hpp"
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
@@ -25,6 +26,8 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using streamclust::test::check_offline_equal;
+using streamclust::test::read_json;
 using streamclust::test::run_cli;
 using streamclust::test::RunResult;
 using streamclust::test::slurp;
@@ -100,7 +103,7 @@ RunResult replay(std::vector<std::string> args) {
   return run_cli(args);
 }
 
-std::vector<streamclust::io::Record> read_all(const std::string& path) {
+std::vector<streamclust::io::Record> read_records(const std::string& path) {
   auto reader = streamclust::io::open_reader(path, {});
   std::vector<streamclust::io::Record> all, chunk;
   while (chunk.clear(), reader->read(chunk, 65536) > 0) all.insert(all.end(), chunk.begin(), chunk.end());
@@ -117,8 +120,8 @@ std::vector<streamclust::io::Record> finite(const std::vector<streamclust::io::R
 /// Every recorded point is the input's point at the same position, within
 /// `metres` (the data type's quantum) and 1 us of relative time.
 void check_same_points(const std::string& input, const std::string& recorded, double metres) {
-  const auto a = finite(read_all(input));
-  const auto b = read_all(recorded);
+  const auto a = finite(read_records(input));
+  const auto b = read_records(recorded);
   REQUIRE(a.size() == b.size());
   double worst_m = 0.0, worst_us = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -131,20 +134,6 @@ void check_same_points(const std::string& input, const std::string& recorded, do
   CHECK(worst_m <= metres);
   CHECK(worst_us <= 1.0);
 }
-
-/// `cluster RECORDED` with the live run's options gives the same label rows.
-void check_offline_equal(const TempDir& dir, const std::string& live_labels, const std::string& recorded,
-                         const std::vector<std::string>& preset) {
-  std::vector<std::string> args{"cluster", recorded, "--labels", dir.path("offline.csv"), "--cycles", "all", "-q"};
-  args.insert(args.end(), preset.begin(), preset.end());
-  const RunResult offline = run_cli(args);
-  REQUIRE_MESSAGE(offline.code == 0, offline.err);
-  const std::string a = slurp(live_labels), b = slurp(dir.path("offline.csv"));
-  CHECK(a.size() > 1000);  // many cycles of many points
-  CHECK(a == b);
-}
-
-nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
 
 /// `seconds` of a simulated Mid-360 in the office, as `dir`/office.csv.
 std::string simulated_office(const TempDir& dir, const std::string& seconds) {

@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_checks.hpp"
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
@@ -45,6 +46,8 @@
 
 extern char** environ;
 
+using streamclust::test::check_offline_equal;
+using streamclust::test::read_json;
 using streamclust::test::run_cli;
 using streamclust::test::RunResult;
 using streamclust::test::slurp;
@@ -110,20 +113,6 @@ int replay_to(const TempDir& dir, unsigned domain, const std::string& topic, std
   INFO("replay: ", slurp(dir.path(log_name)));
   CHECK(code == 0);
   return code;
-}
-
-nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
-
-/// `cluster RECORDED` with the node's options gives the same label rows.
-void check_offline_equal(const TempDir& dir, const std::string& node_labels, const std::string& recorded,
-                         const std::vector<std::string>& preset) {
-  std::vector<std::string> args{"cluster", recorded, "--labels", dir.path("offline.csv"), "--cycles", "all", "-q"};
-  args.insert(args.end(), preset.begin(), preset.end());
-  const RunResult offline = run_cli(args);
-  REQUIRE_MESSAGE(offline.code == 0, offline.err);
-  const std::string a = slurp(node_labels), b = slurp(dir.path("offline.csv"));
-  CHECK(a.size() > 1000);
-  CHECK(a == b);
 }
 
 /// Messages per topic of an MCAP file, each decoded with its schema's definition.

@@ -14,6 +14,7 @@
 #include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/streamclust.hpp>
 
+#include "support/fixed_configs.hpp"
 #include "support/oracle.hpp"
 
 #include <cstddef>
@@ -102,9 +103,7 @@ static_assert(sc::is_connectivity_policy_v<BfsRebuildConnectivity>);
 struct BfsConfig : sc::CArcFixedConfig {
   using connectivity = BfsRebuildConnectivity;
 };
-struct ForestConfig : sc::CArcFixedConfig {
-  using connectivity = sc::SpanningForestConnectivity;
-};
+using streamclust::test::ForestConfig;
 
 template <class Config>
 sc::ClustererParams<Config> short_window() {

@@ -9,6 +9,7 @@
 #include <streamclust/streamclust.hpp>
 
 #include "support/partition.hpp"
+#include "support/points.hpp"
 #include "support/presets.hpp"
 #include "support/streams.hpp"
 
@@ -60,7 +61,7 @@ sc::ClustererParams<OneCellConfig> one_cell_params(double window = 10.0) {
   return p;
 }
 
-sc::Point at(float x, float y, double t) { return sc::Point{x, y, 0.0f, 0.0f, t}; }
+using streamclust::test::at;
 
 template <class Engine>
 sc::ComponentId label_of(const Engine& e, std::uint64_t stream_index) {

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include "support/approx.hpp"
 #include "support/invalid_argument.hpp"
 
 #include <streamclust/eval/metrics.hpp>
@@ -28,11 +29,10 @@ namespace {
 
 using Labels = std::vector<std::int64_t>;
 using streamclust::test::invalid_argument_message;
+using streamclust::test::near;
 
 const double kLn2 = std::log(2.0);
 const double kLn3 = std::log(3.0);
-
-doctest::Approx near(double v) { return doctest::Approx(v).epsilon(1e-12); }
 
 /// `count` copies of `label` appended to `v`.
 void push(Labels& v, std::int64_t label, std::size_t count) { v.insert(v.end(), count, label); }

@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include "support/approx.hpp"
 #include "support/invalid_argument.hpp"
 
 #include <streamclust/eval/metrics.hpp>
@@ -31,6 +32,7 @@ namespace {
 
 using Labels = std::vector<std::int64_t>;
 using streamclust::test::invalid_argument_message;
+using streamclust::test::near;
 
 constexpr SurfaceClass kObject = SurfaceClass::object;
 constexpr SurfaceClass kGround = SurfaceClass::ground;
@@ -40,8 +42,6 @@ constexpr std::int64_t kG = ev::kClassedGround;    // -2
 constexpr std::int64_t kC = ev::kClassedCeiling;  // -3
 constexpr std::int64_t kW = ev::kClassedWall;     // -4
 constexpr std::int64_t kU = ev::kUnlabelled;       // -1
-
-doctest::Approx near(double v) { return doctest::Approx(v).epsilon(1e-12); }
 
 /// One frame: per point its truth instance, truth class and prediction.
 struct Frame {

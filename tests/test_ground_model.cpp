@@ -478,16 +478,16 @@ std::vector<sc::SurfaceClass> classify_all(sc::HeightMapGround& model, const std
 
 /// Points on a surface z = f(x, y) over [x0, x1] x [y0, y1], interleaved
 /// with points of boxes standing on it (returned with their truth).
-struct Scene {
+struct SurfaceWithPosts {
   std::vector<Eigen::Vector3f> points;
   std::vector<bool> is_ground;
 };
 
 template <class Height>
-Scene surface_with_posts(Height height, std::uint64_t seed) {
+SurfaceWithPosts surface_with_posts(Height height, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  Scene s;
+  SurfaceWithPosts s;
   for (int i = 0; i < 20000; ++i) {
     if (i % 5 == 4) {
       // A post 0.4 x 0.4 m, 1.5 m tall, at one of four places.
@@ -508,7 +508,8 @@ Scene surface_with_posts(Height height, std::uint64_t seed) {
 
 /// Fraction of ground points classed ground, and of post points above
 /// `above` m over the ground classed object, after the first `warm` points.
-std::pair<double, double> rates(const Scene& s, const std::vector<sc::SurfaceClass>& classes, std::size_t warm) {
+std::pair<double, double> rates(const SurfaceWithPosts& s, const std::vector<sc::SurfaceClass>& classes,
+                                std::size_t warm) {
   std::size_t g = 0, g_ok = 0, o = 0, o_ok = 0;
   for (std::size_t i = warm; i < s.points.size(); ++i) {
     if (s.is_ground[i]) {
@@ -530,7 +531,7 @@ TEST_CASE("HeightMapGround on a flat floor, a 15 degree slope and a kerb: ground
   // slope 0.99 / 0.86, kerb 1.00 / 0.96 (ground / posts).
   auto run = [](auto height, const std::string& name, double min_ground) {
     sc::HeightMapGround model;
-    const Scene s = surface_with_posts(height, 3);
+    const SurfaceWithPosts s = surface_with_posts(height, 3);
     const auto classes = classify_all(model, s.points);
     const std::pair<double, double> r = rates(s, classes, 2000);
     const double ground_rate = r.first, object_rate = r.second;

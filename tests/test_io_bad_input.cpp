@@ -34,7 +34,7 @@ using streamclust::test::some_records;
 using streamclust::test::with_rate;
 
 /// All records of `path`; throws what the reader throws.
-std::vector<io::Record> read_all(const std::string& path) {
+std::vector<io::Record> read_all_with_rate(const std::string& path) {
   auto r = io::open_reader(path, with_rate());
   std::vector<io::Record> out;
   while (r->read(out, 2) > 0) {
@@ -59,7 +59,7 @@ TEST_CASE("PCD ascii: blank lines may follow the POINTS records, a further recor
   const std::string data = "1 2 3 4\n1 2 3 4\n1 2 3 4";
   for (const std::string& tail : {std::string(), std::string("\n"), std::string("\r\n"), std::string("\n\n  \t\n"),
                                   std::string("\n \r\n")}) {
-    CHECK(read_all(tmp.file("ok.pcd", h + data + tail)).size() == 3);
+    CHECK(read_all_with_rate(tmp.file("ok.pcd", h + data + tail)).size() == 3);
   }
   expect_error(tmp.file("extra.pcd", h + data + "\n5 6 7 8\n"), "line 14",
                "expected end of file after the 3 points POINTS declares, found \"5 6 7 8\"");
@@ -72,7 +72,7 @@ TEST_CASE("PCD binary and binary_compressed: no byte may follow the declared dat
   std::string s = pcd_head + "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA binary\n";
   const std::size_t start = s.size();
   for (int i = 0; i < 8; ++i) append_bytes(s, 1.0f);
-  CHECK(read_all(tmp.file("ok.pcd", s)).size() == 2);
+  CHECK(read_all_with_rate(tmp.file("ok.pcd", s)).size() == 2);
   expect_error(tmp.file("nl.pcd", s + "\n"), "byte " + std::to_string(start + 32),
                "1 byte after the declared data (POINTS 2 x 16 bytes): expected end of file");
   // Misaligned: a record too many would read as garbage coordinates.
@@ -84,7 +84,7 @@ TEST_CASE("PCD binary and binary_compressed: no byte may follow the declared dat
   const auto good_path = tmp.path("good.pcd");
   io::write_pcd(good_path, some_records(100), {}, "binary_compressed");
   const std::string good = file_bytes(good_path);
-  CHECK(read_all(good_path).size() == 100);
+  CHECK(read_all_with_rate(good_path).size() == 100);
   expect_error(tmp.file("compressed.pcd", good + "abc"), "byte " + std::to_string(good.size()),
                "3 bytes after the LZF block of ");
 }
@@ -96,7 +96,7 @@ TEST_CASE("PCD: a field or keyword given twice is an error on its line; `_` padd
                "field \"x\" appears twice in FIELDS (fields 1 and 4)");
   expect_error(tmp.file("dupcase.pcd", "VERSION 0.7\nFIELDS x y z T t\nSIZE 4 4 4 4 4\nTYPE F F F F F\n" + tail),
                "line 2", "field \"t\" appears twice in FIELDS (fields 4 and 5)");
-  CHECK(read_all(tmp.file("pad.pcd", "VERSION 0.7\nFIELDS x _ y _ z\nSIZE 4 4 4 4 4\nTYPE F F F F F\n" + tail))
+  CHECK(read_all_with_rate(tmp.file("pad.pcd", "VERSION 0.7\nFIELDS x _ y _ z\nSIZE 4 4 4 4 4\nTYPE F F F F F\n" + tail))
             .size() == 1);
   expect_error(tmp.file("twice.pcd", pcd_head + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nPOINTS 1\nDATA ascii\n1 2 3 4\n"),
                "line 10", "second POINTS line (the first is line 9)");
@@ -123,14 +123,14 @@ TEST_CASE("PCD header consistency errors name their line") {
 TEST_CASE("PLY ascii: elements after the vertices are read and checked, then only blank lines") {
   BadInputDir tmp("ply_ascii_elements");
   const std::string v = "1 2 3 0.1\n4 5 6 0.2\n7 8 9 0.3\n";
-  CHECK(read_all(tmp.file("ok.ply", ply_ascii_head + v + "\n \n")).size() == 3);
+  CHECK(read_all_with_rate(tmp.file("ok.ply", ply_ascii_head + v + "\n \n")).size() == 3);
   expect_error(tmp.file("extra.ply", ply_ascii_head + v + "1 2 3 0.4\n"), "line 12",
                "expected end of file after the last element (vertex, 3 items), found \"1 2 3 0.4\"");
 
   const std::string h = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                         "property float z\nproperty double t\nelement face 2\nproperty list uchar int vertex_indices\n"
                         "end_header\n";  // data from line 11
-  CHECK(read_all(tmp.file("faces.ply", h + v + "3 0 1 2\n3 2 1 0\n")).size() == 3);
+  CHECK(read_all_with_rate(tmp.file("faces.ply", h + v + "3 0 1 2\n3 2 1 0\n")).size() == 3);
   expect_error(tmp.file("cut.ply", h + v + "3 0 1 2\n4 2 1 0\n"), "line 15, column 1 (vertex_indices)",
                "list of 4 items cut short: the line ends after 3");
   expect_error(tmp.file("short.ply", h + v + "3 0 1 2\n"), "line 15",
@@ -144,7 +144,7 @@ TEST_CASE("PLY ascii: elements after the vertices are read and checked, then onl
   // An element before the vertices is checked the same way.
   const std::string before = "ply\nformat ascii 1.0\nelement camera 1\nproperty float f\nelement vertex 1\n"
                              "property float x\nproperty float y\nproperty float z\nend_header\n";
-  CHECK(read_all(tmp.file("before.ply", before + "0.5\n1 2 3\n")).size() == 1);
+  CHECK(read_all_with_rate(tmp.file("before.ply", before + "0.5\n1 2 3\n")).size() == 1);
   expect_error(tmp.file("before_bad.ply", before + "0.5 7\n1 2 3\n"), "line 10",
                "expected 1 camera properties (f), found 2 values");
 }
@@ -159,7 +159,7 @@ TEST_CASE("PLY binary: every element up to its last byte, nothing after it") {
   std::string face;
   append_bytes(face, std::uint8_t{3});
   for (std::int32_t k : {0, 1, 0}) append_bytes(face, k);
-  CHECK(read_all(tmp.file("ok.ply", s + face + face)).size() == 2);
+  CHECK(read_all_with_rate(tmp.file("ok.ply", s + face + face)).size() == 2);
   // A face list cut short: the byte where the file ends.
   const std::string cut = s + face + face.substr(0, 7);
   expect_error(tmp.file("cut.ply", cut), "byte " + std::to_string(cut.size()),
@@ -174,7 +174,7 @@ TEST_CASE("PLY binary: every element up to its last byte, nothing after it") {
   const std::size_t fstart = f.size();
   for (int i = 0; i < 6; ++i) append_bytes(f, 1.0f);
   for (int i = 0; i < 6; ++i) append_bytes(f, std::int32_t{1});
-  CHECK(read_all(tmp.file("edges.ply", f)).size() == 2);
+  CHECK(read_all_with_rate(tmp.file("edges.ply", f)).size() == 2);
   expect_error(tmp.file("edges_short.ply", f.substr(0, f.size() - 3)), "byte " + std::to_string(fstart + 24 + 16),
                "truncated binary data: element \"edge\" expects 3 items of 8 bytes, file ends after 2 items");
   expect_error(tmp.file("edges_long.ply", f + "xyz"), "byte " + std::to_string(f.size()),
@@ -189,7 +189,7 @@ TEST_CASE("PLY binary: every element up to its last byte, nothing after it") {
                    "element vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
   lb += face;
   for (int i = 0; i < 6; ++i) append_bytes(lb, 2.0f);
-  const auto records = read_all(tmp.file("list_before.ply", lb));
+  const auto records = read_all_with_rate(tmp.file("list_before.ply", lb));
   REQUIRE(records.size() == 2);
   CHECK(records[1].z == 2.0f);
 }
@@ -219,12 +219,12 @@ TEST_CASE("CSV: a UTF-8 byte-order mark is skipped; a role column twice is an er
                "column \"X\" appears twice (columns 1 and 5)");
   expect_error(tmp.file("dup_time.csv", "x,y,z,time,time\n1,2,3,0,4\n"), "line 1",
                "column \"time\" appears twice (columns 4 and 5)");
-  CHECK(read_all(tmp.file("dup_other.csv", "x,y,z,t,note,note\n1,2,3,0,a,b\n")).size() == 1);
+  CHECK(read_all_with_rate(tmp.file("dup_other.csv", "x,y,z,t,note,note\n1,2,3,0,a,b\n")).size() == 1);
 
   // Raw non-UTF-8 and control bytes in a header never reach the message.
   const auto bad = tmp.file("latin1.csv", "\xff\xfe" "a,b\x01,c\x1b[31m\n1,2,3\n");
   try {
-    read_all(bad);
+    read_all_with_rate(bad);
     FAIL("expected an InputError");
   } catch (const io::InputError& e) {
     const std::string m = e.what();

@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include "support/bad_files.hpp"
 #include "support/temp_dir.hpp"
 
 #include <streamclust/io/lzf.hpp>
@@ -11,7 +12,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -40,12 +40,7 @@ std::vector<io::Record> read_all(const std::string& path, const io::ReadOptions&
   return read_all(*r);
 }
 
-template <class T>
-void append_bytes(std::string& s, T v) {
-  char b[sizeof v];
-  std::memcpy(b, &v, sizeof v);
-  s.append(b, sizeof v);
-}
+using streamclust::test::append_bytes;
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 // of damage ends in an InputError that names the file and the place.
 
 #include "support/bad_files.hpp"
+#include "support/same_float.hpp"
 #include "support/temp_dir.hpp"
 
 #include <streamclust/io/mcap_reader.hpp>
@@ -23,6 +24,7 @@
 namespace io = streamclust::io;
 using streamclust::test::expect_error;
 using streamclust::test::file_bytes;
+using streamclust::test::same_float;
 using streamclust::test::TempDir;
 
 namespace {
@@ -32,7 +34,7 @@ std::string fixture(const std::string& name) {
   return (std::filesystem::path(__FILE__).parent_path() / "data" / "recordings" / name).string();
 }
 
-std::vector<io::Record> read_all(const std::string& path, const io::ReadOptions& options = {}) {
+std::vector<io::Record> read_recording(const std::string& path, const io::ReadOptions& options = {}) {
   auto reader = io::open_reader(path, options);
   std::vector<io::Record> out;
   while (reader->read(out, 97) > 0) {
@@ -45,10 +47,8 @@ std::vector<io::Record> read_all(const std::string& path, const io::ReadOptions&
 std::vector<io::Record> expected(const std::string& name) {
   io::ReadOptions o;
   o.time_unit = io::TimeUnit::ns;
-  return read_all(fixture(name), o);
+  return read_recording(fixture(name), o);
 }
-
-bool same_float(float a, float b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 void check_equal(const std::vector<io::Record>& got, const std::vector<io::Record>& want) {
   REQUIRE(got.size() == want.size());
@@ -69,9 +69,9 @@ void check_equal(const std::vector<io::Record>& got, const std::vector<io::Recor
 }
 
 /// The InputError of reading all of `path` ("" when it reads cleanly).
-std::string read_error(const std::string& path, const io::ReadOptions& options = {}) {
+std::string recording_error(const std::string& path, const io::ReadOptions& options = {}) {
   try {
-    read_all(path, options);
+    read_recording(path, options);
   } catch (const io::InputError& e) {
     CHECK(e.file().find(std::filesystem::path(path).filename().string()) != std::string::npos);
     return e.where() + ": " + e.what_expected();
@@ -143,7 +143,7 @@ TEST_CASE("each recording reads as its source stream, point for point") {
     auto reader = io::open_reader(fixture(c.file), o);
     CHECK(reader->info().format == c.format);
     CHECK(reader->info().has_time);
-    check_equal(read_all(fixture(c.file), o), expected(c.expected));
+    check_equal(read_recording(fixture(c.file), o), expected(c.expected));
     // Times count from the same whole second as the source's.
     CHECK(io::find_time_origin(fixture(c.file), o).seconds == 1700000000);
   }
@@ -163,37 +163,37 @@ TEST_CASE("a recording's time field and fields are reported") {
 
 TEST_CASE("topic choice: the only point-cloud topic, --topic, or an error listing them") {
   const std::string two = fixture("ros1_pc2_two_topics.bag");
-  const std::string e = read_error(two);
+  const std::string e = recording_error(two);
   CHECK(e.rfind("topics: 2 point-cloud topics: /lidar_front (sensor_msgs/PointCloud2, 4 messages), /lidar_rear "
                 "(sensor_msgs/PointCloud2, 4 messages); choose one (--topic NAME)",
                 0) == 0);
   io::ReadOptions o;
   o.topic = "lidar_front";  // without the leading slash too
-  CHECK(read_all(two, o).size() == 480);
+  CHECK(read_recording(two, o).size() == 480);
   o.topic = "/lidar_rear";
-  CHECK(read_all(two, o).size() == 48);
+  CHECK(read_recording(two, o).size() == 48);
   o.topic = "/livox/imu";
-  CHECK(read_error(two, o).find("topic /livox/imu has type sensor_msgs/Imu, which holds no points") != std::string::npos);
+  CHECK(recording_error(two, o).find("topic /livox/imu has type sensor_msgs/Imu, which holds no points") != std::string::npos);
   o.topic = "/nope";
-  CHECK(read_error(two, o).find("no topic /nope; topics: ") != std::string::npos);
+  CHECK(recording_error(two, o).find("no topic /nope; topics: ") != std::string::npos);
   // Other topics (IMU) are skipped without a choice when one cloud topic exists.
-  CHECK(read_all(fixture("ros2_custom_lz4.mcap")).size() == 480);
+  CHECK(read_recording(fixture("ros2_custom_lz4.mcap")).size() == 480);
 }
 
 TEST_CASE("a topic without a message definition is an input error") {
   const std::string path = fixture("ros2_no_schema.mcap");
-  CHECK(read_error(path).find("without a schema (message type and definition missing): /livox/lidar (no schema, 2 messages)") !=
+  CHECK(recording_error(path).find("without a schema (message type and definition missing): /livox/lidar (no schema, 2 messages)") !=
         std::string::npos);
   io::ReadOptions o;
   o.topic = "/livox/lidar";
-  CHECK(read_error(path, o) ==
+  CHECK(recording_error(path, o) ==
         "topic /livox/lidar: the recording has no schema for this topic: its message type and definition are missing");
 
   // A ROS 1 bag whose connections lost their message_definition field.
   TempDir dir("recordings", "no_definition");
   std::string b = file_bytes(fixture("ros1_custom.bag"));
   for (std::size_t at = 0; (at = b.find("message_definition=", at)) != std::string::npos;) b[at + 17] = 'X';
-  CHECK(read_error(dir.file("a.bag", b)) ==
+  CHECK(recording_error(dir.file("a.bag", b)) ==
         "topic /livox/lidar: the message definition of livox_ros_driver/CustomMsg is missing from the recording: "
         "expected it to decode the messages");
 }
@@ -204,10 +204,10 @@ TEST_CASE("MCAP: wrong magic, truncation, CRCs, lengths, compression, channels")
 
   std::string b = good;
   b[1] = 'X';
-  CHECK(read_error(dir.file("magic.mcap", b)) == "byte 0: not an MCAP file: expected the magic 89 4d 43 41 50 30 0d 0a");
+  CHECK(recording_error(dir.file("magic.mcap", b)) == "byte 0: not an MCAP file: expected the magic 89 4d 43 41 50 30 0d 0a");
 
   b = good.substr(0, good.size() - 3);
-  CHECK(read_error(dir.file("cut.mcap", b)) ==
+  CHECK(recording_error(dir.file("cut.mcap", b)) ==
         "byte " + std::to_string(b.size() - 8) +
             ": expected the closing MCAP magic: the file is truncated or was not closed (try `mcap recover`)");
 
@@ -215,44 +215,44 @@ TEST_CASE("MCAP: wrong magic, truncation, CRCs, lengths, compression, channels")
   const std::size_t chunk = first_record(good, io::mcap::chunk);
   b = good;
   b[chunk + 9 + 24] = static_cast<char>(b[chunk + 9 + 24] ^ 0x01);
-  CHECK(read_error(dir.file("chunk_crc.mcap", b)).rfind("byte " + std::to_string(chunk) + " (chunk): chunk CRC mismatch", 0) == 0);
+  CHECK(recording_error(dir.file("chunk_crc.mcap", b)).rfind("byte " + std::to_string(chunk) + " (chunk): chunk CRC mismatch", 0) == 0);
 
   // A byte of a Message Index record (never decoded): the data section CRC.
   b = good;
   const std::size_t index = first_record(good, io::mcap::message_index);
   b[index + 9 + 2] = static_cast<char>(b[index + 9 + 2] ^ 0x40);
-  CHECK(read_error(dir.file("data_crc.mcap", b)).find("data section CRC mismatch") != std::string::npos);
+  CHECK(recording_error(dir.file("data_crc.mcap", b)).find("data section CRC mismatch") != std::string::npos);
 
   // The summary section.
   b = good;
   const std::uint64_t summary = load_u64(good, good.size() - 8 - 20);
   b[summary + 12] = static_cast<char>(b[summary + 12] ^ 0x01);
-  CHECK(read_error(dir.file("summary_crc.mcap", b)).rfind("byte " + std::to_string(summary) + ": summary CRC mismatch", 0) == 0);
+  CHECK(recording_error(dir.file("summary_crc.mcap", b)).rfind("byte " + std::to_string(summary) + ": summary CRC mismatch", 0) == 0);
 
   // A record length running past the data section.
   b = good;
   store_u64(b, chunk + 1, std::uint64_t{1} << 40);
-  CHECK(read_error(dir.file("length.mcap", b)).rfind("byte " + std::to_string(chunk) + ": record (opcode 0x06) of 1099511627776 bytes runs past", 0) == 0);
+  CHECK(recording_error(dir.file("length.mcap", b)).rfind("byte " + std::to_string(chunk) + ": record (opcode 0x06) of 1099511627776 bytes runs past", 0) == 0);
 
   // A chunk whose uncompressed size lies: larger than the data gives.
   b = good;
   store_u64(b, chunk + 9 + 16, load_u64(good, chunk + 9 + 16) + 1000);
-  CHECK(read_error(dir.file("size.mcap", b)).find("chunk decompresses to") != std::string::npos);
+  CHECK(recording_error(dir.file("size.mcap", b)).find("chunk decompresses to") != std::string::npos);
   b = good;
   store_u64(b, chunk + 9 + 16, std::uint64_t{1} << 50);
-  CHECK(read_error(dir.file("huge.mcap", b)).find("expected at most 1073741824") != std::string::npos);
+  CHECK(recording_error(dir.file("huge.mcap", b)).find("expected at most 1073741824") != std::string::npos);
 
   // Unknown compression.
   b = good;
   const std::size_t lz4 = b.find("lz4", chunk);
   b[lz4 + 2] = 'z';
-  CHECK(read_error(dir.file("codec.mcap", b)).find("unknown chunk compression \"lzz\": expected \"\", \"lz4\" or \"zstd\"") !=
+  CHECK(recording_error(dir.file("codec.mcap", b)).find("unknown chunk compression \"lzz\": expected \"\", \"lz4\" or \"zstd\"") !=
         std::string::npos);
 
   // Corrupt compressed data: the codec or the CRC catches it.
   b = good;
   b[lz4 + 3 + 8 + 40] = static_cast<char>(b[lz4 + 3 + 8 + 40] ^ 0x5A);
-  const std::string corrupt = read_error(dir.file("corrupt.mcap", b));
+  const std::string corrupt = recording_error(dir.file("corrupt.mcap", b));
   CHECK((corrupt.find("corrupt lz4 data") != std::string::npos || corrupt.find("CRC mismatch") != std::string::npos ||
          corrupt.find("decompresses to") != std::string::npos));
 
@@ -261,7 +261,7 @@ TEST_CASE("MCAP: wrong magic, truncation, CRCs, lengths, compression, channels")
   b = plain;
   const std::size_t message = first_record(plain, io::mcap::message);
   b[message + 9] = 99;
-  CHECK(read_error(dir.file("channel.mcap", b)) ==
+  CHECK(recording_error(dir.file("channel.mcap", b)) ==
         "byte " + std::to_string(message + 9) + ": message on channel 99, which no Channel record defined before it");
 }
 
@@ -294,27 +294,27 @@ TEST_CASE("ROS 1 bags: magic, version, truncation, compression, chunk size, coun
 
   std::string b = good;
   b.replace(0, 13, "#ROSBAG V1.2\n");
-  CHECK(read_error(dir.file("v1.bag", b)) == "byte 0: ROS bag format 1.x: expected format 2.0 (convert it with `rosbag fix`)");
+  CHECK(recording_error(dir.file("v1.bag", b)) == "byte 0: ROS bag format 1.x: expected format 2.0 (convert it with `rosbag fix`)");
   b = good;
   b[2] = 'X';
-  CHECK(read_error(dir.file("magic.bag", b)) == "byte 0: not a ROS 1 bag: expected \"#ROSBAG V2.0\" and a newline");
+  CHECK(recording_error(dir.file("magic.bag", b)) == "byte 0: not a ROS 1 bag: expected \"#ROSBAG V2.0\" and a newline");
 
   b = good.substr(0, good.size() - 10);
-  CHECK(read_error(dir.file("cut.bag", b)).find("truncated index record") != std::string::npos);
+  CHECK(recording_error(dir.file("cut.bag", b)).find("truncated index record") != std::string::npos);
   b = good.substr(0, 5000);
-  CHECK(read_error(dir.file("short.bag", b)).find("index_pos") != std::string::npos);
+  CHECK(recording_error(dir.file("short.bag", b)).find("index_pos") != std::string::npos);
 
   b = good;
   const std::size_t none = b.find("compression=none");
   b.replace(none + 12, 4, "nope");
-  CHECK(read_error(dir.file("codec.bag", b)).find("unknown chunk compression \"nope\": expected none, bz2 or lz4") !=
+  CHECK(recording_error(dir.file("codec.bag", b)).find("unknown chunk compression \"nope\": expected none, bz2 or lz4") !=
         std::string::npos);
 
   // The chunk's declared size.
   b = good;
   const std::size_t size = b.find("size=", none - 40) + 5;
   store_u32(b, size, 12);
-  CHECK(read_error(dir.file("size.bag", b)).find("its header says 12") != std::string::npos);
+  CHECK(recording_error(dir.file("size.bag", b)).find("its header says 12") != std::string::npos);
 
   // A lying point_num in the first CustomMsg (the chunk is uncompressed, so
   // the message is in the file verbatim; the decoder finds the field).
@@ -334,14 +334,14 @@ TEST_CASE("ROS 1 bags: magic, version, truncation, compression, chunk size, coun
   REQUIRE(point_num != nullptr);
   b = good;
   store_u32(b, at + point_num->offset, 121);
-  CHECK(read_error(dir.file("count.bag", b)).find("point_num says 121 points, the points array holds 120") !=
+  CHECK(recording_error(dir.file("count.bag", b)).find("point_num says 121 points, the points array holds 120") !=
         std::string::npos);
   // The points array's count: more points than bytes.
   const io::ros::StructArray* points = decoded.find_array("points");
   REQUIRE(points != nullptr);
   b = good;
   store_u32(b, at + points->offset - 4, 1000000);
-  CHECK(read_error(dir.file("array.bag", b)).find("array points of 1000000 elements of 19 bytes: the message has 2280 bytes left") !=
+  CHECK(recording_error(dir.file("array.bag", b)).find("array points of 1000000 elements of 19 bytes: the message has 2280 bytes left") !=
         std::string::npos);
 }
 
@@ -350,21 +350,21 @@ TEST_CASE("rosbag2 SQLite: not a database, missing tables, unknown topic ids") {
   const std::string good = file_bytes(fixture("ros2_pc2_old.db3"));
   std::string b = good;
   b[0] = 'X';
-  CHECK(read_error(dir.file("magic.db3", b)).rfind("database: not a valid SQLite database", 0) == 0);
-  CHECK(read_error(dir.file("text.db3", "SQLite format 3")).find("SQLite") != std::string::npos);
+  CHECK(recording_error(dir.file("magic.db3", b)).rfind("database: not a valid SQLite database", 0) == 0);
+  CHECK(recording_error(dir.file("text.db3", "SQLite format 3")).find("SQLite") != std::string::npos);
   b = good.substr(0, 3000);
-  CHECK_FALSE(read_error(dir.file("cut.db3", b)).empty());
+  CHECK_FALSE(recording_error(dir.file("cut.db3", b)).empty());
 
   // A bag folder whose metadata.yaml lists a missing file.
   const std::filesystem::path folder = dir.dir / "bag";
   std::filesystem::create_directories(folder);
   dir.file("bag/metadata.yaml", "rosbag2_bagfile_information:\n  storage_identifier: sqlite3\n  relative_file_paths:\n    - bag_0.db3\n");
-  CHECK(read_error(folder.string()).find("listed file") != std::string::npos);
+  CHECK(recording_error(folder.string()).find("listed file") != std::string::npos);
   dir.file("bag/metadata.yaml", "rosbag2_bagfile_information:\n  storage_identifier: rosbag_v2\n  relative_file_paths:\n    - x\n");
-  CHECK_FALSE(read_error(folder.string()).empty());
+  CHECK_FALSE(recording_error(folder.string()).empty());
   const std::filesystem::path empty = dir.dir / "empty";
   std::filesystem::create_directories(empty);
-  CHECK(read_error(empty.string()).find("expected metadata.yaml") != std::string::npos);
+  CHECK(recording_error(empty.string()).find("expected metadata.yaml") != std::string::npos);
 }
 
 TEST_CASE("every truncation and many byte flips of every recording end cleanly") {
@@ -381,8 +381,8 @@ TEST_CASE("every truncation and many byte flips of every recording end cleanly")
     // still find every row it needs in the first pages.
     for (std::size_t n = 0; n < good.size(); n += 1 + n / 32) {
       const std::string path = dir.file("cut" + ext, good.substr(0, n));
-      (read_error(path).empty() ? clean : errors)++;
-      if (ext != ".db3") CHECK_MESSAGE(!read_error(path).empty(), "cut at " << n);
+      (recording_error(path).empty() ? clean : errors)++;
+      if (ext != ".db3") CHECK_MESSAGE(!recording_error(path).empty(), "cut at " << n);
     }
     // Flips: an error or a clean read, never anything else (a crash, a
     // hang or another exception fails the test run).
@@ -391,7 +391,7 @@ TEST_CASE("every truncation and many byte flips of every recording end cleanly")
       b[at] = static_cast<char>(b[at] ^ 0xA5);
       const std::string path = dir.file("flip" + ext, b);
       try {
-        (read_error(path).empty() ? clean : errors)++;
+        (recording_error(path).empty() ? clean : errors)++;
       } catch (const std::exception& e) {
         FAIL("flip at " << at << ": " << e.what());
       }

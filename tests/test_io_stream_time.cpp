@@ -49,7 +49,7 @@ double parse(std::string_view s) {
   return v;
 }
 
-std::vector<io::Record> read_all(const std::string& path, const io::ReadOptions& options = {},
+std::vector<io::Record> read_with_origin(const std::string& path, const io::ReadOptions& options = {},
                                   io::TimeOrigin* origin = nullptr) {
   auto reader = io::open_reader(path, options);
   std::vector<io::Record> out;
@@ -202,8 +202,8 @@ TEST_CASE("readers: epoch times in CSV, PCD and PLY read as the same stream shif
         io::write_ply(epoch, records, {}, false, io::TimeOrigin{kEpoch});
       }
       io::TimeOrigin origin_zero, origin_epoch;
-      const auto a = read_all(zero, {}, &origin_zero);
-      const auto b = read_all(epoch, {}, &origin_epoch);
+      const auto a = read_with_origin(zero, {}, &origin_zero);
+      const auto b = read_with_origin(epoch, {}, &origin_epoch);
       INFO(name);
       CHECK(origin_zero == io::TimeOrigin{0});
       CHECK(origin_epoch == io::TimeOrigin{kEpoch});
@@ -228,7 +228,7 @@ TEST_CASE("readers: epoch times in CSV, PCD and PLY read as the same stream shif
       if (std::string(name) == "c.pcd") io::write_pcd(path, records, {}, "binary_compressed", io::TimeOrigin{kEpoch});
       if (std::string(name) == "b.ply") io::write_ply(path, records, {}, true, io::TimeOrigin{kEpoch});
       io::TimeOrigin origin;
-      const auto back = read_all(path, {}, &origin);
+      const auto back = read_with_origin(path, {}, &origin);
       INFO(name);
       CHECK(origin == io::TimeOrigin{kEpoch});
       REQUIRE(back.size() == records.size());
@@ -253,7 +253,7 @@ TEST_CASE("readers: epoch times in CSV, PCD and PLY read as the same stream shif
     io::ReadOptions ns;
     ns.time_unit = io::TimeUnit::ns;
     io::TimeOrigin origin;
-    const auto a = read_all(zero, ns), b = read_all(epoch, ns, &origin);
+    const auto a = read_with_origin(zero, ns), b = read_with_origin(epoch, ns, &origin);
     CHECK(origin == io::TimeOrigin{kEpoch});
     REQUIRE(a.size() == b.size());
     std::size_t differ = 0;
@@ -267,7 +267,7 @@ TEST_CASE("readers: epoch times in CSV, PCD and PLY read as the same stream shif
     CHECK(io::find_time_origin(epoch) == io::TimeOrigin{kEpoch});
     io::ReadOptions options;
     options.time_origin = io::TimeOrigin{kEpoch - 100};
-    const auto back = read_all(epoch, options);
+    const auto back = read_with_origin(epoch, options);
     CHECK(back.front().t == 100.0);
     CHECK(back.back().t == doctest::Approx(100.0 + times.back()));
   }

@@ -6,6 +6,8 @@
 #include <streamclust/io/reader.hpp>
 #include <streamclust/io/writers.hpp>
 
+#include "support/same_float.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -18,6 +20,7 @@
 
 namespace io = streamclust::io;
 namespace fs = std::filesystem;
+using streamclust::test::same_float;
 
 namespace {
 
@@ -55,8 +58,6 @@ std::vector<io::Record> sample_records(std::size_t n) {
   }
   return v;
 }
-
-bool same_float(float a, float b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 /// Records read back equal `a`, their times counted from the reader's origin.
 struct ReadBack {

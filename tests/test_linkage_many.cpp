@@ -30,7 +30,7 @@ namespace {
 using Payload = sc::AngularLinkage::Payload;
 
 /// A payload with unit direction (azimuth, elevation) [rad] and range [m].
-Payload ray(double azimuth, double elevation, float range) {
+Payload ray_payload(double azimuth, double elevation, float range) {
   const auto x = static_cast<float>(std::cos(elevation) * std::cos(azimuth));
   const auto y = static_cast<float>(std::cos(elevation) * std::sin(azimuth));
   const auto z = static_cast<float>(std::sin(elevation));
@@ -91,12 +91,12 @@ TEST_CASE("AngularLinkage::link_many decides as the pairwise operator on random 
         const double az = angle(rng) * 200.0;
         const double el = angle(rng) * 50.0;
         const float r = range(rng);
-        const Payload a = ray(az, el, r);
+        const Payload a = ray_payload(az, el, r);
         std::vector<Payload> ring;
         for (int k = 0; k < 37; ++k) {
           // near rays at ranges near r (surfaces) and anywhere (depth jumps)
           const float rb = k % 3 == 0 ? range(rng) : r * (1.0f + depth(rng));
-          ring.push_back(ray(az + angle(rng), el + angle(rng), rb));
+          ring.push_back(ray_payload(az + angle(rng), el + angle(rng), rb));
         }
         positive += require_same_decisions(link, a, ring, rng);
         total += ring.size();
@@ -118,14 +118,14 @@ TEST_CASE("AngularLinkage::link_many decides as the pairwise operator a few ulps
       for (int trial = 0; trial < 60; ++trial) {
         const double az = angle(rng) * 50.0;
         const double el = angle(rng) * 20.0;
-        const Payload a = ray(az, el, 10.0f);
+        const Payload a = ray_payload(az, el, 10.0f);
         const double daz = angle(rng);
         const double del = angle(rng);
         // Bisect the nearer range d2 of b until the decision flips between
         // two adjacent floats: linked near d2 = 10 (a surface), not near 0.
         float lo = 1e-3f;
         float hi = 10.0f;
-        const auto at = [&](float d2) { return ray(az + daz, el + del, d2); };
+        const auto at = [&](float d2) { return ray_payload(az + daz, el + del, d2); };
         if (link(a, at(lo)) == link(a, at(hi))) continue;
         while (std::nextafter(lo, hi) < hi) {
           const float mid = lo + (hi - lo) / 2.0f;
@@ -148,19 +148,19 @@ TEST_CASE("AngularLinkage::link_many on ties: equal ranges, equal rays, the same
   std::mt19937 rng(3);
   for (const float floor : {0.0f, 0.2f}) {
     const sc::AngularLinkage link{{30.0f, floor}};
-    const Payload a = ray(0.01, 0.0, 5.0f);  // y ~ 0.01, z = +0
+    const Payload a = ray_payload(0.01, 0.0, 5.0f);  // y ~ 0.01, z = +0
     std::vector<Payload> ring;
     ring.push_back(a);                               // itself
-    ring.push_back(ray(0.01, 0.0, 4.0f));            // same ray, nearer
-    ring.push_back(ray(0.01, 0.0, 6.0f));            // same ray, farther
-    ring.push_back(ray(0.012, 0.0, 5.0f));           // equal range, other ray
-    ring.push_back(ray(0.008, 0.0, 5.0f));           // equal range, other side
-    ring.push_back(ray(0.01, 0.001, 5.0f));          // equal range, tie broken by z
+    ring.push_back(ray_payload(0.01, 0.0, 4.0f));            // same ray, nearer
+    ring.push_back(ray_payload(0.01, 0.0, 6.0f));            // same ray, farther
+    ring.push_back(ray_payload(0.012, 0.0, 5.0f));           // equal range, other ray
+    ring.push_back(ray_payload(0.008, 0.0, 5.0f));           // equal range, other side
+    ring.push_back(ray_payload(0.01, 0.001, 5.0f));          // equal range, tie broken by z
     Payload negative_zero = a;
     negative_zero.direction[2] = -0.0f;              // -0 against +0
     ring.push_back(negative_zero);
-    ring.push_back(ray(0.01 + 1e-6, 0.0, 5.0f));     // below the floor
-    ring.push_back(ray(3.0, 0.0, 5.0f));             // rays more than 90 degrees apart
+    ring.push_back(ray_payload(0.01 + 1e-6, 0.0, 5.0f));     // below the floor
+    ring.push_back(ray_payload(3.0, 0.0, 5.0f));             // rays more than 90 degrees apart
     require_same_decisions(link, a, ring, rng);
     require_same_decisions(link, negative_zero, ring, rng);
   }

@@ -19,6 +19,7 @@
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/window/time_window.hpp>
 
+#include "support/last_labels.hpp"
 #include "support/partition.hpp"
 #include "support/streams.hpp"
 
@@ -112,13 +113,7 @@ sc::ClustererParams<Config> params_for(std::uint64_t seed) {
   return p;
 }
 
-/// Labels of the last retrieval, in window order.
-template <class Engine>
-std::vector<sc::ComponentId> labels(const Engine& engine) {
-  std::vector<sc::ComponentId> out;
-  for (const sc::PointLabel& l : engine.last_result().points) out.push_back(l.label);
-  return out;
-}
+using st::last_labels;
 
 }  // namespace
 
@@ -180,7 +175,7 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
       INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i);
       REQUIRE(fast.size() == plain.size());
       // the same point ids and the same labels: ids follow the same history
-      REQUIRE(labels(fast) == labels(plain));
+      REQUIRE(last_labels(fast) == last_labels(plain));
       const auto& fp = fast.last_result().points;
       const auto& pp = plain.last_result().points;
       for (std::size_t k = 0; k < fp.size(); ++k) REQUIRE(fp[k].stream_index == pp[k].stream_index);
@@ -188,7 +183,7 @@ TEST_CASE_TEMPLATE("payload path and Sample path give the same partition, equal 
       std::vector<sc::Sample> window;
       fast.for_each_point([&](const sc::Sample& s, std::uint64_t) { window.push_back(s); });
       batch.set_grid({fast.grid().rows, fast.grid().cols});
-      REQUIRE(st::partition_mismatch(labels(fast), batch.cluster(window).labels) == "");
+      REQUIRE(st::partition_mismatch(last_labels(fast), batch.cluster(window).labels) == "");
       // the payload ring holds make_payload of every live sample
       for (std::size_t pos = 0; pos < fast.size(); ++pos) {
         const sc::PointHandle h = fast.handle_at(pos);

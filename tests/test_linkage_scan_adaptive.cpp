@@ -22,16 +22,17 @@
 #include <streamclust/testing/linkage_laws.hpp>
 #include <streamclust/testing/livox_streams.hpp>
 
+#include "support/constants.hpp"
+#include "support/directions.hpp"
+#include "support/invalid_argument.hpp"
 #include "support/oracle_input.hpp"
 #include "support/streams.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <random>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,13 +41,9 @@ namespace st = streamclust::test;
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-Eigen::Vector3f direction_deg(double azimuth_deg, double elevation_deg) {
-  const double az = azimuth_deg * kDeg, el = elevation_deg * kDeg;
-  return Eigen::Vector3f(static_cast<float>(std::cos(el) * std::cos(az)), static_cast<float>(std::cos(el) * std::sin(az)),
-                         static_cast<float>(std::sin(el)));
-}
+using st::direction_deg;
+using st::invalid_argument_message;
+using st::kDeg;
 
 /// A synthetic pattern: a square lattice of directions, `fine_deg` apart
 /// within 20 deg of the axis (azimuth and elevation), `coarse_deg` apart
@@ -76,15 +73,6 @@ sc::ScanAdaptiveLinkage::Params lattice_params(float factor = 4.0f) {
   p.spacing = lattice_table();
   p.spacing_factor = factor;
   return p;
-}
-
-std::string invalid_argument_message(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include <streamclust/stream_clusterer.hpp>
 #include <streamclust/window/time_window.hpp>
 
+#include "support/last_labels.hpp"
 #include "support/partition.hpp"
 #include "support/streams.hpp"
 
@@ -69,7 +70,7 @@ using Gated = sc::AllOf<sc::RangeAdaptiveLinkage, IntensityGate>;
 using GatedPayload = sc::linkage_payload_t<Gated>;
 
 template <class Linkage>
-struct Cfg {
+struct ForestCfg {
   using projection = sc::SphericalProjection;
   using spatial_index = sc::CappedGrid;
   using linkage = Linkage;
@@ -79,7 +80,7 @@ struct Cfg {
 };
 
 template <class Config>
-sc::ClustererParams<Config> params_for(std::uint64_t seed) {
+sc::ClustererParams<Config> gated_params_for(std::uint64_t seed) {
   sc::ClustererParams<Config> p;
   p.mask_size = 3 + 2 * static_cast<int>(seed % 3);
   p.resolution = {12, 48};
@@ -100,12 +101,7 @@ std::vector<sc::Point> gated_stream(st::StreamKind kind, std::size_t n, std::uin
   return stream;
 }
 
-template <class Engine>
-std::vector<sc::ComponentId> labels(const Engine& engine) {
-  std::vector<sc::ComponentId> out;
-  for (const sc::PointLabel& l : engine.last_result().points) out.push_back(l.label);
-  return out;
-}
+using st::last_labels;
 
 // Near misses: named like a capability, without its signature.
 struct NonConstLinkMany : sc::RangeAdaptiveLinkage {
@@ -144,16 +140,16 @@ static_assert(sc::has_linkage_ray_payload_v<sc::AngularOrEuclidean>);
 // over 32 bytes together (16 + 16 + 4): the Sample path
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::AngularLinkage, sc::EuclideanLinkage, IntensityGate>>);
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::RangeAdaptiveLinkage, SamplePathOnly<IntensityGate>>>);
-static_assert(sc::StreamClusterer<Cfg<Gated>>::uses_payload);
-static_assert(!sc::StreamClusterer<Cfg<SamplePathOnly<Gated>>>::uses_payload);
+static_assert(sc::StreamClusterer<ForestCfg<Gated>>::uses_payload);
+static_assert(!sc::StreamClusterer<ForestCfg<SamplePathOnly<Gated>>>::uses_payload);
 // a const member make_payload is a bound payload: the engine's, not a combinator's
 static_assert(sc::has_linkage_bound_payload_v<sc::ScanAdaptiveLinkage> &&
               !sc::has_linkage_static_payload_v<sc::ScanAdaptiveLinkage>);
 static_assert(sc::has_linkage_static_payload_v<sc::RangeAdaptiveLinkage> &&
               !sc::has_linkage_bound_payload_v<sc::RangeAdaptiveLinkage>);
 static_assert(!sc::has_linkage_payload_v<sc::AllOf<sc::RangeAdaptiveLinkage, sc::ScanAdaptiveLinkage>>);
-static_assert(sc::StreamClusterer<Cfg<sc::ScanAdaptiveLinkage>>::uses_payload &&
-              sc::StreamClusterer<Cfg<sc::ScanAdaptiveLinkage>>::tests_many);
+static_assert(sc::StreamClusterer<ForestCfg<sc::ScanAdaptiveLinkage>>::uses_payload &&
+              sc::StreamClusterer<ForestCfg<sc::ScanAdaptiveLinkage>>::tests_many);
 // near misses are told apart from absent capabilities
 static_assert(sc::detail::names_link_many<NonConstLinkMany> && !sc::has_linkage_link_many_v<NonConstLinkMany>);
 static_assert(sc::detail::names_make_payload<MemberMakePayload> && !sc::has_linkage_payload_v<MemberMakePayload>);
@@ -251,19 +247,19 @@ TEST_CASE("a combinator's link_many decides as its pairwise operator, across blo
 }
 
 TEST_CASE("the wide payload path gives the Sample path's partition, equal to the batch clusterer") {
-  using Wide = Cfg<Gated>;
-  using Plain = Cfg<SamplePathOnly<Gated>>;
+  using Wide = ForestCfg<Gated>;
+  using Plain = ForestCfg<SamplePathOnly<Gated>>;
   std::size_t compared = 0;
   std::size_t multi = 0;
   std::size_t gated = 0;
   for (std::uint64_t seed = 0; seed < 12; ++seed) {
     const auto kind = static_cast<st::StreamKind>(seed % static_cast<std::uint64_t>(st::StreamKind::count_));
     const auto stream = gated_stream(kind, seed % 4 < 2 ? 500 : 2600, seed);
-    sc::StreamClusterer<Wide> wide(params_for<Wide>(seed));
-    sc::StreamClusterer<Plain> plain(params_for<Plain>(seed));
-    sc::BatchClusterer<Plain> batch(params_for<Plain>(seed));
+    sc::StreamClusterer<Wide> wide(gated_params_for<Wide>(seed));
+    sc::StreamClusterer<Plain> plain(gated_params_for<Plain>(seed));
+    sc::BatchClusterer<Plain> batch(gated_params_for<Plain>(seed));
     const auto ungated_params = [&] {
-      auto p = params_for<Plain>(seed);
+      auto p = gated_params_for<Plain>(seed);
       std::get<1>(p.linkage).max_gap = 1000.0f;
       return p;
     }();
@@ -276,11 +272,11 @@ TEST_CASE("the wide payload path gives the Sample path's partition, equal to the
       plain.retrieve();
       INFO("seed " << seed << ", stream " << st::to_string(kind) << ", after point " << i);
       REQUIRE(wide.size() == plain.size());
-      REQUIRE(labels(wide) == labels(plain));
+      REQUIRE(last_labels(wide) == last_labels(plain));
       std::vector<sc::Sample> window;
       wide.for_each_point([&](const sc::Sample& s, std::uint64_t) { window.push_back(s); });
       batch.set_grid({wide.grid().rows, wide.grid().cols});
-      REQUIRE(st::partition_mismatch(labels(wide), batch.cluster(window).labels) == "");
+      REQUIRE(st::partition_mismatch(last_labels(wide), batch.cluster(window).labels) == "");
       // the ring holds the composed payload of every live sample
       for (std::size_t pos = 0; pos < wide.size(); pos += 7) {
         const sc::PointHandle h = wide.handle_at(pos);
@@ -301,10 +297,10 @@ TEST_CASE("the wide payload path gives the Sample path's partition, equal to the
 }
 
 TEST_CASE("memory_usage counts 32 payload bytes per ring slot for the composed payload") {
-  using Wide = Cfg<Gated>;
-  using Plain = Cfg<SamplePathOnly<Gated>>;
-  sc::StreamClusterer<Wide> wide(params_for<Wide>(1));
-  sc::StreamClusterer<Plain> plain(params_for<Plain>(1));
+  using Wide = ForestCfg<Gated>;
+  using Plain = ForestCfg<SamplePathOnly<Gated>>;
+  sc::StreamClusterer<Wide> wide(gated_params_for<Wide>(1));
+  sc::StreamClusterer<Plain> plain(gated_params_for<Plain>(1));
   for (const auto& p : gated_stream(st::StreamKind::blobs, 3000, 3)) {
     wide.insert(p);
     plain.insert(p);

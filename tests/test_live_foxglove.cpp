@@ -19,7 +19,7 @@
 
 using namespace streamclust;
 namespace fg = streamclust::live::foxglove;
-using nlohmann::json;
+using Json = nlohmann::json;
 
 namespace {
 
@@ -53,18 +53,18 @@ TEST_CASE("foxglove subprotocol: either name, the client's first; none otherwise
 }
 
 TEST_CASE("foxglove server operations: serverInfo, advertise, unadvertise, status") {
-  const json info = json::parse(fg::server_info_json("streamclust", "42"));
+  const Json info = Json::parse(fg::server_info_json("streamclust", "42"));
   CHECK(info["op"] == "serverInfo");
   CHECK(info["name"] == "streamclust");
-  CHECK(info["capabilities"] == json::array());
-  CHECK(info["metadata"] == json::object());
+  CHECK(info["capabilities"] == Json::array());
+  CHECK(info["metadata"] == Json::object());
   CHECK(info["sessionId"] == "42");
 
-  const json ad = json::parse(fg::advertise_json(
+  const Json ad = Json::parse(fg::advertise_json(
       {{3, "/streamclust/points", "cdr", "foxglove_msgs/msg/PointCloud", "float64 x\n", "ros2msg"}}));
   CHECK(ad["op"] == "advertise");
   REQUIRE(ad["channels"].size() == 1);
-  const json& c = ad["channels"][0];
+  const Json& c = ad["channels"][0];
   CHECK(c["id"] == 3);
   CHECK(c["topic"] == "/streamclust/points");
   CHECK(c["encoding"] == "cdr");
@@ -72,10 +72,10 @@ TEST_CASE("foxglove server operations: serverInfo, advertise, unadvertise, statu
   CHECK(c["schema"] == "float64 x\n");
   CHECK(c["schemaEncoding"] == "ros2msg");
 
-  CHECK(json::parse(fg::unadvertise_json({3, 5})) == json{{"op", "unadvertise"}, {"channelIds", {3, 5}}});
-  const json warning = json::parse(fg::status_json(fg::StatusLevel::warning, "slow", "drops"));
-  CHECK(warning == json{{"op", "status"}, {"level", 1}, {"message", "slow"}, {"id", "drops"}});
-  CHECK(json::parse(fg::status_json(fg::StatusLevel::error, "bad")).count("id") == 0);
+  CHECK(Json::parse(fg::unadvertise_json({3, 5})) == Json{{"op", "unadvertise"}, {"channelIds", {3, 5}}});
+  const Json warning = Json::parse(fg::status_json(fg::StatusLevel::warning, "slow", "drops"));
+  CHECK(warning == Json{{"op", "status"}, {"level", 1}, {"message", "slow"}, {"id", "drops"}});
+  CHECK(Json::parse(fg::status_json(fg::StatusLevel::error, "bad")).count("id") == 0);
 }
 
 TEST_CASE("foxglove client operations: subscribe and unsubscribe parsed, malformed ones named") {

@@ -56,11 +56,11 @@ Bytes& pad(Bytes& b, std::size_t bytes) {
   return b;
 }
 
-live::LivoxPacketSummary decode(const Bytes& b, live::LivoxPacketContents& out, std::uint32_t interval = 4167) {
+live::LivoxPacketSummary decode_sdk1(const Bytes& b, live::LivoxPacketContents& out, std::uint32_t interval = 4167) {
   return live::decode_sdk1_packet(b.data(), b.size(), interval, out);
 }
 
-constexpr std::uint64_t t0 = 1000000000123ull;  // a packet time [ns]
+constexpr std::uint64_t kPacketTime = 1000000000123ull;  // a packet time [ns]
 
 /// A Cartesian return: i32 x, y, z [mm], reflectivity, optional tag.
 void cartesian(Bytes& b, std::int32_t x, std::int32_t y, std::int32_t z, std::uint8_t refl, int tag = -1) {
@@ -100,13 +100,13 @@ TEST_CASE("SDK1 CRCs: check values, the seeded empty CRC, a preamble with its CR
 TEST_CASE("SDK1 Cartesian packets (types 0, 2), hand-built: metres, reflectivity, tags, firing times, empty slots") {
   live::LivoxPacketContents out;
   SUBCASE("type 0: 100 structs of 13 bytes, no tag, Mid-40 interval") {
-    Bytes b = header(0, 0, t0);
+    Bytes b = header(0, 0, kPacketTime);
     cartesian(b, 1234, -5678, 90, 77);
     cartesian(b, 0, 0, 0, 60);  // empty (whatever its reflectivity)
     cartesian(b, -1, 0, 0, 255);
     REQUIRE(pad(b, 18 + 100 * 13).size() == 1318);
     b[18 + 99 * 13 + 11] = 0x10;  // the last struct: z = 0x10000000 mm
-    const auto s = decode(b, out, 10000);
+    const auto s = decode_sdk1(b, out, 10000);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK_FALSE(s.has_counter);
     CHECK(s.sync == live::LivoxTimeSync::none);
@@ -114,28 +114,28 @@ TEST_CASE("SDK1 Cartesian packets (types 0, 2), hand-built: metres, reflectivity
     CHECK(s.slots == 100);
     CHECK(s.returns == 3);
     CHECK(s.empty_slots == 97);
-    CHECK(s.first_time_ns == t0);
-    CHECK(s.last_time_ns == t0 + 99 * 10000);
+    CHECK(s.first_time_ns == kPacketTime);
+    CHECK(s.last_time_ns == kPacketTime + 99 * 10000);
     REQUIRE(out.returns.size() == 3);
-    check_return(out.returns[0], 1.234f, -5.678f, 0.09f, 77, 0, t0);
-    check_return(out.returns[1], -0.001f, 0.0f, 0.0f, 255, 0, t0 + 2 * 10000);
-    check_return(out.returns[2], 0.0f, 0.0f, 268435.456f, 0, 0, t0 + 99 * 10000);
+    check_return(out.returns[0], 1.234f, -5.678f, 0.09f, 77, 0, kPacketTime);
+    check_return(out.returns[1], -0.001f, 0.0f, 0.0f, 255, 0, kPacketTime + 2 * 10000);
+    check_return(out.returns[2], 0.0f, 0.0f, 268435.456f, 0, 0, kPacketTime + 99 * 10000);
   }
   SUBCASE("type 2: 96 structs of 14 bytes with a tag; appended after what `returns` held") {
     out.returns.resize(2);
-    Bytes b = header(2, 1, t0);
+    Bytes b = header(2, 1, kPacketTime);
     cartesian(b, 0, 0, 0, 0, 0);
     cartesian(b, 450000, 2, -3, 9, 0x35);
     REQUIRE(pad(b, 1362).size() == 18 + 96 * 14);
-    const auto s = decode(b, out);
+    const auto s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.sync == live::LivoxTimeSync::ptp);
     CHECK(s.slots == 96);
     CHECK(s.returns == 1);
     CHECK(s.empty_slots == 95);
-    CHECK(s.last_time_ns == t0 + 95 * 4167);
+    CHECK(s.last_time_ns == kPacketTime + 95 * 4167);
     REQUIRE(out.returns.size() == 3);
-    check_return(out.returns[2], 450.0f, 0.002f, -0.003f, 9, 0x35, t0 + 4167);
+    check_return(out.returns[2], 450.0f, 0.002f, -0.003f, 9, 0x35, kPacketTime + 4167);
   }
 }
 
@@ -153,14 +153,14 @@ TEST_CASE("SDK1 spherical packets (types 1, 3), hand-built: depth and angles to 
     CAPTURE(tag);
     out.returns.clear();
     const std::uint8_t type = tag < 0 ? 1 : 3;
-    Bytes b = header(type, 4, t0);
+    Bytes b = header(type, 4, kPacketTime);
     spherical(b, 10000, 9000, 0, 1, tag);      // 10 m along x
     spherical(b, 0, 4500, 4500, 50, tag);      // no return
     spherical(b, 2000, 0, 12345, 2, tag);      // 2 m up: the azimuth does not matter
     spherical(b, 5000, 9000, 27000, 3, tag);   // 5 m along -y
     spherical(b, 4000, 6000, 4500, 4, tag);    // theta 60 deg, phi 45 deg
     pad(b, type == 1 ? 918 : 978);
-    const auto s = decode(b, out);
+    const auto s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.sync == live::LivoxTimeSync::pps);
     CHECK(s.slots == (type == 1 ? 100u : 96u));
@@ -168,36 +168,36 @@ TEST_CASE("SDK1 spherical packets (types 1, 3), hand-built: depth and angles to 
     CHECK(s.empty_slots == s.slots - 4);
     REQUIRE(out.returns.size() == 4);
     const auto t = static_cast<std::uint8_t>(tag < 0 ? 0 : tag);
-    check_return(out.returns[0], 10.0f, 0.0f, 0.0f, 1, t, t0, 1e-6f);
-    check_return(out.returns[1], 0.0f, 0.0f, 2.0f, 2, t, t0 + 2 * 4167, 1e-6f);
-    check_return(out.returns[2], 0.0f, -5.0f, 0.0f, 3, t, t0 + 3 * 4167, 1e-6f);
+    check_return(out.returns[0], 10.0f, 0.0f, 0.0f, 1, t, kPacketTime, 1e-6f);
+    check_return(out.returns[1], 0.0f, 0.0f, 2.0f, 2, t, kPacketTime + 2 * 4167, 1e-6f);
+    check_return(out.returns[2], 0.0f, -5.0f, 0.0f, 3, t, kPacketTime + 3 * 4167, 1e-6f);
     const float h = 4.0f * std::sqrt(3.0f) / 2.0f / std::sqrt(2.0f);
-    check_return(out.returns[3], h, h, 2.0f, 4, t, t0 + 4 * 4167, 1e-5f);
+    check_return(out.returns[3], h, h, 2.0f, 4, t, kPacketTime + 4 * 4167, 1e-5f);
   }
 }
 
 TEST_CASE("SDK1 dual and triple packets (types 4, 5, 7, 8): returns of one firing share its time") {
   live::LivoxPacketContents out;
   SUBCASE("type 4: 48 firings of 2 x 14 bytes; an empty first return") {
-    Bytes b = header(4, 0, t0);
+    Bytes b = header(4, 0, kPacketTime);
     cartesian(b, 1000, 0, 0, 10, 0x10);
     cartesian(b, 2000, 0, 0, 20, 0x20);
     cartesian(b, 0, 0, 0, 0, 0);
     cartesian(b, 0, 3000, 0, 30, 0x20);
     pad(b, 18 + 48 * 28);
-    const auto s = decode(b, out);
+    const auto s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.slots == 96);
     CHECK(s.returns == 3);
     CHECK(s.empty_slots == 93);
-    CHECK(s.last_time_ns == t0 + 47 * 4167);
+    CHECK(s.last_time_ns == kPacketTime + 47 * 4167);
     REQUIRE(out.returns.size() == 3);
-    check_return(out.returns[0], 1.0f, 0.0f, 0.0f, 10, 0x10, t0);
-    check_return(out.returns[1], 2.0f, 0.0f, 0.0f, 20, 0x20, t0);
-    check_return(out.returns[2], 0.0f, 3.0f, 0.0f, 30, 0x20, t0 + 4167);
+    check_return(out.returns[0], 1.0f, 0.0f, 0.0f, 10, 0x10, kPacketTime);
+    check_return(out.returns[1], 2.0f, 0.0f, 0.0f, 20, 0x20, kPacketTime);
+    check_return(out.returns[2], 0.0f, 3.0f, 0.0f, 30, 0x20, kPacketTime + 4167);
   }
   SUBCASE("type 5: 48 firings of theta, phi, 2 x (depth, reflectivity, tag)") {
-    Bytes b = header(5, 0, t0);
+    Bytes b = header(5, 0, kPacketTime);
     put<std::uint16_t>(b, 9000);
     put<std::uint16_t>(b, 9000);  // along +y
     put<std::uint32_t>(b, 1500);
@@ -205,30 +205,30 @@ TEST_CASE("SDK1 dual and triple packets (types 4, 5, 7, 8): returns of one firin
     put<std::uint32_t>(b, 2500);
     b.insert(b.end(), {22, 0x20});
     REQUIRE(pad(b, 18 + 48 * 16).size() == 786);
-    const auto s = decode(b, out);
+    const auto s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.returns == 2);
     CHECK(s.empty_slots == 94);
     REQUIRE(out.returns.size() == 2);
-    check_return(out.returns[0], 0.0f, 1.5f, 0.0f, 11, 0x10, t0, 1e-6f);
-    check_return(out.returns[1], 0.0f, 2.5f, 0.0f, 22, 0x20, t0, 1e-6f);
+    check_return(out.returns[0], 0.0f, 1.5f, 0.0f, 11, 0x10, kPacketTime, 1e-6f);
+    check_return(out.returns[1], 0.0f, 2.5f, 0.0f, 22, 0x20, kPacketTime, 1e-6f);
   }
   SUBCASE("types 7 and 8: 30 firings of 3 returns") {
-    Bytes b = header(7, 0, t0);
+    Bytes b = header(7, 0, kPacketTime);
     pad(b, 18 + 29 * 42);
     cartesian(b, 1, 2, 3, 1, 1);
     cartesian(b, 4, 5, 6, 2, 2);
     cartesian(b, 7, 8, 9, 3, 3);
-    auto s = decode(b, out);
+    auto s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.slots == 90);
     CHECK(s.returns == 3);
     REQUIRE(out.returns.size() == 3);
     for (int k = 0; k < 3; ++k)
       check_return(out.returns[k], 0.001f * float(3 * k + 1), 0.001f * float(3 * k + 2), 0.001f * float(3 * k + 3),
-                   static_cast<std::uint8_t>(k + 1), static_cast<std::uint8_t>(k + 1), t0 + 29 * 4167, 1e-7f);
+                   static_cast<std::uint8_t>(k + 1), static_cast<std::uint8_t>(k + 1), kPacketTime + 29 * 4167, 1e-7f);
     out.returns.clear();
-    b = header(8, 0, t0);
+    b = header(8, 0, kPacketTime);
     put<std::uint16_t>(b, 0);
     put<std::uint16_t>(b, 0);  // straight up
     for (std::uint32_t depth : {1000u, 0u, 3000u}) {
@@ -236,26 +236,26 @@ TEST_CASE("SDK1 dual and triple packets (types 4, 5, 7, 8): returns of one firin
       b.insert(b.end(), {5, 6});
     }
     REQUIRE(pad(b, 18 + 30 * 22).size() == 678);
-    s = decode(b, out);
+    s = decode_sdk1(b, out);
     REQUIRE(s.status == live::LivoxPacketStatus::points);
     CHECK(s.returns == 2);
     CHECK(s.empty_slots == 88);
     REQUIRE(out.returns.size() == 2);
-    check_return(out.returns[0], 0.0f, 0.0f, 1.0f, 5, 6, t0);
-    check_return(out.returns[1], 0.0f, 0.0f, 3.0f, 5, 6, t0);
+    check_return(out.returns[0], 0.0f, 0.0f, 1.0f, 5, 6, kPacketTime);
+    check_return(out.returns[1], 0.0f, 0.0f, 3.0f, 5, 6, kPacketTime);
   }
 }
 
 TEST_CASE("SDK1 IMU packets (type 6): gyro [rad/s] and acceleration [g]") {
-  Bytes b = header(6, 1, t0);
+  Bytes b = header(6, 1, kPacketTime);
   for (float v : {0.01f, -0.02f, 0.03f, 0.0f, 0.5f, -1.0f}) put(b, v);
   REQUIRE(b.size() == 42);
   live::LivoxPacketContents out;
-  const auto s = decode(b, out);
+  const auto s = decode_sdk1(b, out);
   REQUIRE(s.status == live::LivoxPacketStatus::imu);
-  CHECK(s.first_time_ns == t0);
+  CHECK(s.first_time_ns == kPacketTime);
   CHECK(out.returns.empty());
-  CHECK(out.imu.time_ns == t0);
+  CHECK(out.imu.time_ns == kPacketTime);
   CHECK(out.imu.gyro == std::array<float, 3>{0.01f, -0.02f, 0.03f});
   CHECK(out.imu.acceleration == std::array<float, 3>{0.0f, 0.5f, -1.0f});
   // The encoder writes the same bytes.
@@ -274,22 +274,22 @@ TEST_CASE("SDK1 time: GPS UTC fields to ns since 1970, impossible dates, reserve
     return pad(b, 42);
   };
   live::LivoxPacketContents out;
-  auto s = decode(gps(26, 11, 29, 13, 1234567890u), out);
+  auto s = decode_sdk1(gps(26, 11, 29, 13, 1234567890u), out);
   REQUIRE(s.status == live::LivoxPacketStatus::imu);
   CHECK(s.sync == live::LivoxTimeSync::gps);
   CHECK(out.imu.time_ns == 1795958434567890000ull);  // 2026-11-29 13:20:34.567890 UTC
-  s = decode(gps(24, 2, 29, 23, 3599999999u), out);    // a leap day, the hour's last microsecond
+  s = decode_sdk1(gps(24, 2, 29, 23, 3599999999u), out);    // a leap day, the hour's last microsecond
   REQUIRE(s.status == live::LivoxPacketStatus::imu);
   CHECK(out.imu.time_ns == 1709251199999999000ull);
   out.imu.time_ns = 42;
   for (const Bytes& bad : {gps(25, 2, 29, 0, 0), gps(26, 0, 1, 0, 0), gps(26, 13, 1, 0, 0), gps(26, 4, 31, 0, 0),
                            gps(26, 1, 0, 0, 0), gps(26, 1, 1, 24, 0), gps(26, 1, 1, 0, 3600000000u)}) {
-    CHECK(decode(bad, out).status == live::LivoxPacketStatus::bad_time);
+    CHECK(decode_sdk1(bad, out).status == live::LivoxPacketStatus::bad_time);
     CHECK(out.imu.time_ns == 42);
   }
   for (const std::uint8_t type : TypeList{2, 5, 255}) {
-    Bytes b = header(6, type, t0);
-    CHECK(decode(pad(b, 42), out).status == live::LivoxPacketStatus::bad_time);
+    Bytes b = header(6, type, kPacketTime);
+    CHECK(decode_sdk1(pad(b, 42), out).status == live::LivoxPacketStatus::bad_time);
   }
   // The encoder's side: UTC to the microsecond, and only years 2000-2255.
   live::Sdk1PacketHeader h;
@@ -309,26 +309,26 @@ TEST_CASE("SDK1 malformed packets: every truncation, extra bytes, unknown data t
   live::LivoxPacketContents out;
   for (std::uint8_t type = 0; type <= 8; ++type) {
     CAPTURE(int(type));
-    Bytes whole = header(type, 0, t0);
+    Bytes whole = header(type, 0, kPacketTime);
     pad(whole, live::sdk1_packet_bytes(*streamclust::io::find_sdk1_data_type(type)));
     std::memset(whole.data() + 18, 0x11, whole.size() - 18);  // every slot a return
     for (std::size_t n = 0; n < whole.size(); ++n) {
       // A vector of exactly n bytes: ASan sees a read past them.
       const Bytes cut(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(n));
-      if (decode(cut, out).status != live::LivoxPacketStatus::truncated) FAIL_CHECK("not truncated at " << n);
+      if (decode_sdk1(cut, out).status != live::LivoxPacketStatus::truncated) FAIL_CHECK("not truncated at " << n);
     }
     Bytes longer = whole;
     longer.push_back(0);
-    CHECK(decode(longer, out).status == live::LivoxPacketStatus::bad_length);
+    CHECK(decode_sdk1(longer, out).status == live::LivoxPacketStatus::bad_length);
     CHECK(out.returns.empty());
-    const auto s = decode(whole, out);
+    const auto s = decode_sdk1(whole, out);
     CHECK(s.returns == s.slots);
     CHECK(out.returns.size() == s.returns);
     out.returns.clear();
   }
   for (const std::uint8_t type : TypeList{9, 17, 255}) {
-    Bytes b = header(type, 0, t0);
-    const auto s = decode(pad(b, 1362), out);
+    Bytes b = header(type, 0, kPacketTime);
+    const auto s = decode_sdk1(pad(b, 1362), out);
     CHECK(s.status == live::LivoxPacketStatus::unknown_data_type);
     CHECK(s.data_type == type);
   }
@@ -392,19 +392,20 @@ TEST_CASE("SDK1 encode -> decode round trips of every point type within its quan
 TEST_CASE("SDK1 packet encoder refuses what it cannot write") {
   live::Sdk1PacketHeader h;
   h.data_type = 2;
-  h.timestamp = t0;
+  h.timestamp = kPacketTime;
   Bytes out;
   auto encode = [&](std::vector<live::LivoxReturn> in, std::uint32_t interval = 4167) {
     live::encode_sdk1_data_packet(h, interval, in.data(), in.size(), out);
   };
-  const live::LivoxReturn ok{1, 2, 3, 0, 0, t0};
+  const live::LivoxReturn ok{1, 2, 3, 0, 0, kPacketTime};
   CHECK_NOTHROW(encode({ok}));
-  CHECK_THROWS_AS(encode({live::LivoxReturn{NAN, 0, 0, 0, 0, t0}}), std::invalid_argument);
-  CHECK_THROWS_AS(encode({live::LivoxReturn{3e6f, 0, 0, 0, 0, t0}}), std::invalid_argument);
-  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, t0 - 1000}}), std::invalid_argument);
-  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, t0 + 96 * 4167}}), std::invalid_argument);
+  CHECK_THROWS_AS(encode({live::LivoxReturn{NAN, 0, 0, 0, 0, kPacketTime}}), std::invalid_argument);
+  CHECK_THROWS_AS(encode({live::LivoxReturn{3e6f, 0, 0, 0, 0, kPacketTime}}), std::invalid_argument);
+  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, kPacketTime - 1000}}), std::invalid_argument);
+  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, kPacketTime + 96 * 4167}}), std::invalid_argument);
   CHECK_THROWS_AS(encode({ok, ok}), std::invalid_argument);  // two returns in a single-return firing
-  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, t0 + 4167}, ok}), std::invalid_argument);  // out of order
+  CHECK_THROWS_AS(encode({live::LivoxReturn{1, 0, 0, 0, 0, kPacketTime + 4167}, ok}),
+                  std::invalid_argument);  // out of order
   CHECK_THROWS_AS(encode({ok}, 0), std::invalid_argument);
   h.data_type = 6;
   CHECK_THROWS_AS(encode({ok}), std::invalid_argument);

@@ -41,9 +41,9 @@ using streamclust::test::invalid_argument_message;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiDouble = 3.14159265358979323846;
 
-struct Scene {
+struct GravityScene {
   bool ceiling = false;
   double ceiling_height = 3.0;  ///< [m] above the ground
   bool ground = true;
@@ -53,14 +53,14 @@ struct Scene {
 
 /// World points: a ground disc (z = 0, 2 cm noise) of radius 15 m, three
 /// boxes standing on it, a wall at x = 8 m, optionally a ceiling.
-std::vector<Eigen::Vector3d> world_points(const Scene& scene, unsigned seed) {
+std::vector<Eigen::Vector3d> world_points(const GravityScene& scene, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.02);
   std::vector<Eigen::Vector3d> out;
   const auto disc = [&](double z, int n) {
     for (int i = 0; i < n; ++i) {
-      const double r = 1.0 + 14.0 * std::sqrt(u(rng)), a = 2.0 * kPi * u(rng);
+      const double r = 1.0 + 14.0 * std::sqrt(u(rng)), a = 2.0 * kPiDouble * u(rng);
       out.emplace_back(r * std::cos(a), r * std::sin(a), z + noise(rng));
     }
   };
@@ -105,13 +105,13 @@ std::vector<Eigen::Vector3f> sensor_points(const std::vector<Eigen::Vector3d>& w
 double tilt_error_deg(const sc::Pose& estimate, const sc::Pose& mount) {
   const Eigen::Vector3d normal_in_sensor = mount.rotation.conjugate() * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d mapped = estimate.rotation * normal_in_sensor;
-  return std::acos(std::min(1.0, mapped.dot(Eigen::Vector3d::UnitZ()))) * 180.0 / kPi;
+  return std::acos(std::min(1.0, mapped.dot(Eigen::Vector3d::UnitZ()))) * 180.0 / kPiDouble;
 }
 
 }  // namespace
 
 TEST_CASE("estimate_mount: ground, boxes and a wall; level, pitched, upside-down and rolled sensors 1 m up") {
-  const std::vector<Eigen::Vector3d> world = world_points(Scene{}, 1);
+  const std::vector<Eigen::Vector3d> world = world_points(GravityScene{}, 1);
   const double mounts[][2] = {{0.0, 0.0}, {0.0, 15.0}, {0.0, 30.0}, {180.0, 0.0}, {10.0, 20.0}, {-25.0, -10.0}};
   for (const auto& m : mounts) {
     const double roll = m[0], pitch = m[1];
@@ -133,7 +133,7 @@ TEST_CASE("estimate_mount: ground, boxes and a wall; level, pitched, upside-down
 }
 
 TEST_CASE("estimate_ground: with floor and ceiling the ground is what the boxes stand on, nearer or not") {
-  Scene scene;
+  GravityScene scene;
   scene.ceiling = true;
   const std::vector<Eigen::Vector3d> world = world_points(scene, 2);
   for (const double roll : {0.0, 180.0}) {
@@ -162,7 +162,7 @@ TEST_CASE("estimate_ground: with floor and ceiling the ground is what the boxes 
 }
 
 TEST_CASE("estimate_ground: two parallel planes and nothing that tells which is below: ambiguous") {
-  Scene scene;
+  GravityScene scene;
   scene.ceiling = true;
   scene.standing_boxes = false;  // floor, ceiling and a wall from one to the other
   const sc::Pose level;
@@ -180,14 +180,14 @@ TEST_CASE("estimate_ground: two parallel planes and nothing that tells which is 
 }
 
 TEST_CASE("estimate_ground: no large near-horizontal plane, too few points: nullopt") {
-  Scene scene;
+  GravityScene scene;
   scene.ground = false;
   const sc::Pose level;
   CHECK_FALSE(sc::estimate_ground(sensor_points(world_points(scene, 3), level, 1.0)).has_value());
   // Pitched 60 degrees, beyond max_tilt_deg 45: the ground is no candidate, the wall (30 degrees from the
   // sensor's z axis) is: the documented failure. With max_tilt_deg 70 both are, and the nearer is the ground.
   const sc::Pose steep = sc::mount_from_roll_pitch_yaw_deg(0.0, 60.0, 0.0);
-  const auto wall = sc::estimate_ground(sensor_points(world_points(Scene{}, 3), steep, 1.0));
+  const auto wall = sc::estimate_ground(sensor_points(world_points(GravityScene{}, 3), steep, 1.0));
   REQUIRE(wall.has_value());
   CHECK(tilt_error_deg(wall->mount, steep) > 45.0);
   // The wall taken for the ground (found or ambiguous) or, the ground's points near it not touching, for a ceiling.
@@ -196,7 +196,7 @@ TEST_CASE("estimate_ground: no large near-horizontal plane, too few points: null
   CHECK(wall_distance == doctest::Approx(8.0).epsilon(0.05));
   sc::MountEstimateParams wide;
   wide.max_tilt_deg = 70.0;
-  const auto found = sc::estimate_mount(sensor_points(world_points(Scene{}, 3), steep, 1.0), wide);
+  const auto found = sc::estimate_mount(sensor_points(world_points(GravityScene{}, 3), steep, 1.0), wide);
   REQUIRE(found.has_value());
   CHECK(tilt_error_deg(*found, steep) < 1.0);
   const float nan = std::nanf("");
@@ -207,7 +207,7 @@ TEST_CASE("estimate_ground: no large near-horizontal plane, too few points: null
 
 TEST_CASE("estimate_ground: deterministic for a seed; non-finite points skipped; bad params named") {
   std::vector<Eigen::Vector3f> points =
-      sensor_points(world_points(Scene{}, 4), sc::mount_from_roll_pitch_yaw_deg(5.0, 8.0, 0.0), 1.0);
+      sensor_points(world_points(GravityScene{}, 4), sc::mount_from_roll_pitch_yaw_deg(5.0, 8.0, 0.0), 1.0);
   points.insert(points.begin() + 100, Eigen::Vector3f(std::nanf(""), 0.0f, 0.0f));
   const auto a = sc::estimate_ground(points);
   const auto b = sc::estimate_ground(points);

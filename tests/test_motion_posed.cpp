@@ -11,6 +11,7 @@
 #include <streamclust/motion/posed_motion.hpp>
 #include <streamclust/motion/trajectory.hpp>
 
+#include "support/constants.hpp"
 #include "support/invalid_argument.hpp"
 
 #include <cmath>
@@ -28,7 +29,7 @@ static_assert(!sc::PosedMotion::identity, "PosedMotion is not the identity");
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using streamclust::test::kDeg;
 
 sc::PlacedPoint place(sc::PosedMotion& motion, const Eigen::Vector3f& p, double t) {
   sc::PlacedPoint placed;

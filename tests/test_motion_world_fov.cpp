@@ -12,6 +12,8 @@
 #include <streamclust/motion/world_field_of_view.hpp>
 #include <streamclust/presets.hpp>
 
+#include "support/constants.hpp"
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -20,6 +22,8 @@ namespace sc = streamclust;
 
 namespace {
 
+using streamclust::test::kDeg;
+
 /// Random directions of `fov` (sensor frame), turned by a random one of
 /// `rotations`, must all be accepted by a projection with `world` bounds.
 void check_all_inside(const sc::SphericalProjection::Params& fov, const std::vector<Eigen::Quaterniond>& rotations,
@@ -27,7 +31,6 @@ void check_all_inside(const sc::SphericalProjection::Params& fov, const std::vec
   const sc::SphericalProjection projection(world);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   for (int i = 0; i < 20000; ++i) {
     const double az = (fov.azimuth_min_deg + u(rng) * (fov.azimuth_max_deg - fov.azimuth_min_deg)) * kDeg;
     const double el = (fov.elevation_min_deg + u(rng) * (fov.elevation_max_deg - fov.elevation_min_deg)) * kDeg;

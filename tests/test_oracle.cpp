@@ -35,17 +35,17 @@ TEST_CASE_TEMPLATE_APPLY(oracle_id, st::OracleSlice<0>);
 using st::PolicyCombo;
 using SphB = sc::SphericalProjection;
 using Cyl = sc::CylindricalProjection;
-using SF = sc::SpanningForestConnectivity;
+using SpanningForest = sc::SpanningForestConnectivity;
 
 // The spanning forest's own edge cases: a retrieval after every point (a
 // fold per point, the forest never older than one point) and a single
 // retrieval at the end (everything before it by folds without labelling,
 // threshold 1: a fold whenever the new edges outnumber the window's points).
 TEST_CASE_TEMPLATE("spanning forest: retrieval after every point and only at the end agree with the batch clusterer",
-                   Config, PolicyCombo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SF>,
-                   PolicyCombo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SF>,
-                   PolicyCombo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SF>,
-                   PolicyCombo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SF>) {
+                   Config, PolicyCombo<SphB, sc::BucketGrid, sc::EuclideanLinkage, sc::TimeWindow, SpanningForest>,
+                   PolicyCombo<SphB, sc::BucketGrid, sc::AngularLinkage, sc::CountWindow, SpanningForest>,
+                   PolicyCombo<SphB, sc::CappedGrid, sc::AngularLinkage, sc::TimeWindow, SpanningForest>,
+                   PolicyCombo<Cyl, sc::OverwriteGrid, sc::EuclideanLinkage, sc::CountWindow, SpanningForest>) {
   st::run_oracle<Config>(0, 100, st::Schedule::every_point, 1);
   const std::uint64_t folds = st::run_oracle<Config>(0, 100, st::Schedule::at_end, 1);
   CHECK(folds > 100);

@@ -22,10 +22,9 @@
 #include "support/temp_dir.hpp"
 
 namespace io = streamclust::io;
+using Bytes = std::vector<std::uint8_t>;
 
 namespace {
-
-using Bytes = std::vector<std::uint8_t>;
 
 std::uint32_t be32(const Bytes& b, std::size_t at) {
   if (at + 4 > b.size()) throw std::runtime_error("truncated at byte " + std::to_string(at));
@@ -53,7 +52,7 @@ std::uint32_t reference_adler(const Bytes& d) {
   return static_cast<std::uint32_t>((b << 16) | a);
 }
 
-struct Decoded {
+struct DecodedPng {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   Bytes rgb;
@@ -61,13 +60,13 @@ struct Decoded {
 
 /// Decodes what the writer produces (8-bit RGB, one zlib stream, filter 0);
 /// throws std::runtime_error on anything else or on any inconsistency.
-Decoded decode(const Bytes& png) {
+DecodedPng decode(const Bytes& png) {
   const Bytes signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (png.size() < 8 || !std::equal(signature.begin(), signature.end(), png.begin()))
     throw std::runtime_error("bad signature");
   std::vector<std::string> types;
   Bytes idat;
-  Decoded out;
+  DecodedPng out;
   std::size_t at = 8;
   while (at < png.size()) {
     const std::uint32_t length = be32(png, at);
@@ -145,7 +144,7 @@ TEST_CASE("PNG writer: decodes to the same pixels, small and larger images") {
     const std::size_t h = size.second;
     INFO(w << " x " << h);
     const io::RgbImage img = pattern(w, h);
-    const Decoded d = decode(io::encode_png(img));
+    const DecodedPng d = decode(io::encode_png(img));
     CHECK(d.width == w);
     CHECK(d.height == h);
     CHECK(d.rgb == img.pixels());

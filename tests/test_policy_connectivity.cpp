@@ -10,7 +10,9 @@
 #include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/streamclust.hpp>
 
+#include "support/last_labels.hpp"
 #include "support/partition.hpp"
+#include "support/points.hpp"
 
 #include <algorithm>
 #include <set>
@@ -69,18 +71,13 @@ sc::ClustererParams<Config> chain_params(double window) {
 
 sc::Point at(float x, double t) { return sc::Point{x, 0.0f, 0.0f, 0.0f, t}; }
 
-template <class Engine>
-std::vector<sc::ComponentId> labels(const Engine& e) {
-  std::vector<sc::ComponentId> out;
-  for (const auto& p : e.last_result().points) out.push_back(p.label);
-  return out;
-}
+using streamclust::test::last_labels;
 
 using Rebuild = ChainConfig<sc::UnionFindRebuildConnectivity>;
 using Forest = ChainConfig<sc::SpanningForestConnectivity>;
 using Lazy = ChainConfig<sc::LazyBfsConnectivity>;
 
-sc::Point at(float x, float y, double t) { return sc::Point{x, y, 0.0f, 0.0f, t}; }
+using streamclust::test::at;
 
 /// Sizes of the last retrieval's components, ascending.
 template <class Engine>
@@ -188,14 +185,14 @@ TEST_CASE_TEMPLATE("rebuild and forest: ids persist, merge to the heavier side a
   engine.insert(at(10.9f, 0.2));
   engine.insert(at(13.0f, 0.3));
   engine.retrieve();
-  const auto first = labels(engine);
+  const auto first = last_labels(engine);
   REQUIRE(first.size() == 4);
   const sc::ComponentId big = first[0];
   const sc::ComponentId small = first[3];
   CHECK(big != small);
   engine.insert(at(15.0f, 0.4));  // alone
   engine.retrieve();
-  auto now = labels(engine);
+  auto now = last_labels(engine);
   CHECK(now[0] == big);
   CHECK(now[3] == small);
   const sc::ComponentId fresh = now[4];
@@ -204,7 +201,7 @@ TEST_CASE_TEMPLATE("rebuild and forest: ids persist, merge to the heavier side a
   engine.insert(at(11.8f, 0.5));  // 0.9 m from the big part's end: joins it
   engine.insert(at(12.5f, 0.6));  // 1.8 -> 2.5 and 2.5 -> 3.0: merges big and small
   engine.retrieve();
-  now = labels(engine);
+  now = last_labels(engine);
   CHECK(now[0] == big);  // the heavier id wins the merge
   CHECK(now[3] == big);
   CHECK(now[4] == fresh);
@@ -245,7 +242,7 @@ TEST_CASE_TEMPLATE("rebuild, forest and lazy BFS give the same partition, every 
       ++retrievals;
       split_work += lazy.last_stats().clusters_split;
       INFO("retrieval " << retrievals);
-      REQUIRE(sc::test::partition_mismatch(labels(lazy), labels(fast)) == "");
+      REQUIRE(sc::test::partition_mismatch(last_labels(lazy), last_labels(fast)) == "");
       CHECK(lazy.last_result().components.size() == fast.last_result().components.size());
     }
   }
@@ -366,7 +363,7 @@ TEST_CASE("spanning forest: folds without retrieval bound the new edges and keep
       folds += forest.last_stats().forest_folds;
       components += forest.last_result().components.size();
       INFO("point " << i);
-      REQUIRE(labels(forest) == labels(rebuild));
+      REQUIRE(last_labels(forest) == last_labels(rebuild));
       CHECK(forest.last_result().components.size() == rebuild.last_result().components.size());
     }
   }

@@ -12,6 +12,7 @@
 #include <streamclust/testing/doctest.hpp>
 #include <streamclust/testing/linkage_laws.hpp>
 
+#include "support/constants.hpp"
 #include "support/invalid_argument.hpp"
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
@@ -25,7 +26,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -42,9 +42,9 @@ using streamclust::Sample;
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using streamclust::test::kDeg;
+using streamclust::test::kInf;
+using streamclust::test::kNaN;
 
 Sample at(const Eigen::Vector3f& p) { return streamclust::make_sample(p, p.norm(), 0.0f, 0.0); }
 

@@ -9,6 +9,8 @@
 #include <streamclust/testing/doctest.hpp>
 #include <streamclust/testing/projection_laws.hpp>
 
+#include "support/constants.hpp"
+#include "support/directions.hpp"
 #include "support/invalid_argument.hpp"
 #include "support/policy_hooks.hpp"
 #include "support/policy_lists.hpp"
@@ -19,7 +21,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -31,18 +32,11 @@ using streamclust::SphericalProjection;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
+using streamclust::test::direction_deg;
 using streamclust::test::invalid_argument_message;
-
-/// Unit direction of azimuth / elevation in degrees.
-Eigen::Vector3f direction_deg(double az, double el) {
-  return Eigen::Vector3f(static_cast<float>(std::cos(el * kDeg) * std::cos(az * kDeg)),
-                         static_cast<float>(std::cos(el * kDeg) * std::sin(az * kDeg)),
-                         static_cast<float>(std::sin(el * kDeg)));
-}
+using streamclust::test::kDeg;
+using streamclust::test::kInf;
+using streamclust::test::kNaN;
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include <streamclust/registry/stock.hpp>
 
 #include "support/cli_run.hpp"
+#include "support/contains.hpp"
 
 #include <cstdint>
 #include <string>
@@ -65,7 +66,7 @@ std::string parse_error(const std::string& option, const std::string& value, Reg
   return {};
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using streamclust::test::contains;
 
 }  // namespace
 

@@ -11,6 +11,8 @@
 #include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/streamclust.hpp>
 
+#include "support/fixed_configs.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <map>
@@ -21,7 +23,7 @@ namespace sc = streamclust;
 
 namespace {
 
-struct Expected {
+struct ExpectedSummary {
   std::size_t size = 0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Vector3f min, max;
@@ -45,12 +47,12 @@ void check_result(const Engine& engine, const sc::Clustering& result, std::set<s
   }
   // The summaries, recomputed from the window in window order.
   REQUIRE(result.points.size() == engine.size());
-  std::map<sc::ComponentId, Expected> expected;
+  std::map<sc::ComponentId, ExpectedSummary> expected;
   std::size_t i = 0;
   engine.for_each_point([&](const sc::Sample& s, std::uint64_t stream_index) {
     REQUIRE(i < result.points.size());
     REQUIRE(result.points[i].stream_index == stream_index);
-    Expected& e = expected[result.points[i].label];
+    ExpectedSummary& e = expected[result.points[i].label];
     if (e.size == 0) {
       e.min = e.max = s.position;
       e.time_begin = s.time;
@@ -69,7 +71,7 @@ void check_result(const Engine& engine, const sc::Clustering& result, std::set<s
   for (const sc::ComponentSummary& c : result.components) {
     const auto it = expected.find(c.id);
     REQUIRE(it != expected.end());
-    const Expected& e = it->second;
+    const ExpectedSummary& e = it->second;
     CHECK(c.size == e.size);
     CHECK(c.min == e.min);
     CHECK(c.max == e.max);
@@ -123,14 +125,14 @@ Tally run_fragmented(std::uint32_t seed) {
 
 /// CArcFixedConfig with another connectivity strategy and spatial index.
 template <class Connectivity, class Index = sc::config_traits<sc::CArcFixedConfig>::spatial_index>
-struct Fixed : sc::CArcFixedConfig {
+struct CArcFixedWith : sc::CArcFixedConfig {
   using connectivity = Connectivity;
   using spatial_index = Index;
 };
-using LazyConfig = Fixed<sc::LazyBfsConnectivity>;
-using RebuildConfig = Fixed<sc::UnionFindRebuildConnectivity>;
-using ForestConfig = Fixed<sc::SpanningForestConnectivity>;
-using CappedForestConfig = Fixed<sc::SpanningForestConnectivity, sc::CappedGrid>;
+using LazyConfig = CArcFixedWith<sc::LazyBfsConnectivity>;
+using streamclust::test::RebuildConfig;
+using streamclust::test::ForestConfig;
+using CappedForestConfig = CArcFixedWith<sc::SpanningForestConnectivity, sc::CappedGrid>;
 
 }  // namespace
 

@@ -30,7 +30,7 @@ namespace sc = streamclust;
 namespace cli = streamclust::cli;
 
 /// parse_simulate_options, with a UsageError turned into its message ("" when none).
-std::string usage_error(const std::vector<std::string>& args) {
+std::string simulate_usage_error(const std::vector<std::string>& args) {
   try {
     (void)cli::parse_simulate_options(args);
   } catch (const cli::UsageError& e) {
@@ -113,19 +113,19 @@ TEST_CASE("simulate options: --mount, --scene hills, --trajectory, --class-colum
   const auto params = cli::simulator_params<sc::sim::Mid360Model>(o);
   CHECK(params.mount.rotation.angularDistance(sc::mount_from_roll_pitch_yaw_deg(0.0, 30.0, 0.0).rotation) < 1e-12);
 
-  CHECK(usage_error({"--mount", "1,2", "--out", "a.csv"}).find("ROLL,PITCH,YAW") != std::string::npos);
-  CHECK(usage_error({"--mount", "1,2,3,4", "--out", "a.csv"}).find("ROLL,PITCH,YAW") != std::string::npos);
-  CHECK(usage_error({"--mount", "a,0,0", "--out", "a.csv"}).find("--mount") != std::string::npos);
-  CHECK(usage_error({"--mount", "0,400,0", "--out", "a.csv"}).find("[-360, 360]") != std::string::npos);
-  CHECK(usage_error({"--mount", "--out", "a.csv"}).find("--mount") != std::string::npos);
-  CHECK(usage_error({"--sensor", "synthetic", "--scene", "room", "--mount", "0,0,0", "--out", "a.csv"})
+  CHECK(simulate_usage_error({"--mount", "1,2", "--out", "a.csv"}).find("ROLL,PITCH,YAW") != std::string::npos);
+  CHECK(simulate_usage_error({"--mount", "1,2,3,4", "--out", "a.csv"}).find("ROLL,PITCH,YAW") != std::string::npos);
+  CHECK(simulate_usage_error({"--mount", "a,0,0", "--out", "a.csv"}).find("--mount") != std::string::npos);
+  CHECK(simulate_usage_error({"--mount", "0,400,0", "--out", "a.csv"}).find("[-360, 360]") != std::string::npos);
+  CHECK(simulate_usage_error({"--mount", "--out", "a.csv"}).find("--mount") != std::string::npos);
+  CHECK(simulate_usage_error({"--sensor", "synthetic", "--scene", "room", "--mount", "0,0,0", "--out", "a.csv"})
             .find("--mount needs a simulated sensor") != std::string::npos);
-  CHECK(usage_error({"--class-column", "--out", "a.pcd"}).find("--class-column") != std::string::npos);
-  CHECK(usage_error({"--sensor", "synthetic", "--scene", "room", "--class-column", "--out", "a.csv"})
+  CHECK(simulate_usage_error({"--class-column", "--out", "a.pcd"}).find("--class-column") != std::string::npos);
+  CHECK(simulate_usage_error({"--sensor", "synthetic", "--scene", "room", "--class-column", "--out", "a.csv"})
             .find("--class-column") != std::string::npos);
-  CHECK(usage_error({"--scene", "moon", "--out", "a.csv"}).find("office|forest|street|hills") != std::string::npos);
-  CHECK(usage_error({"--out", "a.csv", "--trajectory", "a.csv"}).find("--trajectory") != std::string::npos);
-  CHECK(usage_error({"--scene", "hills", "--out", "a.csv"}).empty());
+  CHECK(simulate_usage_error({"--scene", "moon", "--out", "a.csv"}).find("office|forest|street|hills") != std::string::npos);
+  CHECK(simulate_usage_error({"--out", "a.csv", "--trajectory", "a.csv"}).find("--trajectory") != std::string::npos);
+  CHECK(simulate_usage_error({"--scene", "hills", "--out", "a.csv"}).empty());
 
   // The scenario options are the ones `evaluate` parses too.
   const std::vector<std::string> args = {"--mount", "0,10,0"};

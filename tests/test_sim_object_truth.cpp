@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "support/constants.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <map>
@@ -21,7 +23,7 @@
 namespace {
 
 namespace sim = streamclust::sim;
-constexpr float kPi = 3.14159265358979f;
+using streamclust::test::kPi;
 
 /// Distance between two axis directions (modulo pi) [rad].
 float axis_gap(float a, float b) { return std::abs(std::remainder(a - b, kPi)); }

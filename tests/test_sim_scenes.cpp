@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "support/directions.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -25,6 +27,8 @@ namespace {
 
 namespace sc = streamclust;
 namespace sim = streamclust::sim;
+
+using streamclust::test::spherical;
 
 /// A test-only sensor: a fixed list of directions fired in a cycle at a fixed rate.
 struct CyclingSensor {
@@ -41,10 +45,6 @@ struct CyclingSensor {
   }
   double point_rate() const { return rate; }
 };
-
-Eigen::Vector3f spherical(float azimuth, float elevation) {
-  return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
-}
 
 /// n_az x n_el directions, elevations in [el_lo, el_hi] [rad].
 CyclingSensor raster(int n_az, int n_el, float el_lo, float el_hi, double rate = 100000.0) {
@@ -346,12 +346,12 @@ TEST_CASE("sim scene: moving objects move along their trajectory") {
 
 namespace {
 
-struct Expected {
+struct ExpectedCount {
   const char* label;
   int lo, hi;
 };
 
-void check_scene(const sim::Scene& scene, const std::vector<Expected>& expected, std::size_t min_objects) {
+void check_scene(const sim::Scene& scene, const std::vector<ExpectedCount>& expected, std::size_t min_objects) {
   CHECK(scene.object_count() >= min_objects);
   std::map<std::string, int> counts;
   std::set<int> ids;
@@ -380,7 +380,7 @@ void check_scene(const sim::Scene& scene, const std::vector<Expected>& expected,
   CHECK(ids.size() == scene.object_count());                            // unique
   CHECK(*ids.rbegin() == static_cast<int>(scene.object_count()));       // 1..N
   std::size_t listed = 0;
-  for (const Expected& e : expected) {
+  for (const ExpectedCount& e : expected) {
     INFO(e.label);
     CHECK(counts[e.label] >= e.lo);
     CHECK(counts[e.label] <= e.hi);

@@ -11,6 +11,9 @@
 
 #include <Eigen/Core>
 
+#include "support/constants.hpp"
+#include "support/directions.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,12 +30,9 @@ namespace {
 namespace sc = streamclust;
 namespace sim = streamclust::sim;
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-Eigen::Vector3f spherical(float azimuth, float elevation) {
-  return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
-}
+using streamclust::test::kInf;
+using streamclust::test::kPi;
+using streamclust::test::spherical;
 
 /// A terrain with every kind of term: two waves, a ramp, a strip and a single step.
 sim::Terrain::Params busy_params() {

@@ -13,6 +13,8 @@
 #include <streamclust/sim/synthetic_stream.hpp>
 #include <streamclust/streamclust.hpp>
 
+#include "support/fixed_configs.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <map>
@@ -24,14 +26,14 @@ namespace sc = streamclust;
 
 namespace {
 
-using Labels = std::unordered_map<std::uint64_t, sc::ComponentId>;  // stream index -> id
+using IdsByStreamIndex = std::unordered_map<std::uint64_t, sc::ComponentId>;  // stream index -> id
 
-struct Expected {
+struct ExpectedIds {
   std::vector<sc::ComponentId> kept;  // per component in order of first point; kNoComponent = fresh
 };
 
 /// The rule, from the previous labels and the current result's grouping.
-Expected expected_ids(const Labels& previous, const sc::Clustering& now) {
+ExpectedIds expected_ids(const IdsByStreamIndex& previous, const sc::Clustering& now) {
   // Components in order of their oldest point (result points are oldest first).
   std::map<sc::ComponentId, std::size_t> order;
   std::vector<std::size_t> group_of(now.points.size());
@@ -45,7 +47,7 @@ Expected expected_ids(const Labels& previous, const sc::Clustering& now) {
     const auto it = previous.find(now.points[i].stream_index);
     if (it != previous.end()) ++votes[it->second][group_of[i]];
   }
-  Expected e;
+  ExpectedIds e;
   e.kept.assign(order.size(), sc::kNoComponent);
   std::vector<std::uint64_t> kept_weight(order.size(), 0);
   for (const auto& [old_id, by_group] : votes) {
@@ -77,7 +79,7 @@ void check_rule_on_stream(std::uint32_t seed) {
   stream_params.point_rate = 60000.0;
   stream_params.seed = seed;
   sc::SyntheticStream stream(stream_params);
-  Labels previous;
+  IdsByStreamIndex previous;
   sc::ComponentId max_seen = 0;
   bool any_seen = false;
   int retrievals = 0, fresh_total = 0, kept_total = 0;
@@ -96,7 +98,7 @@ void check_rule_on_stream(std::uint32_t seed) {
       REQUIRE(result.components[k].size == counts[result.components[k].id]);
     }
     // The id rule.
-    const Expected e = expected_ids(previous, result);
+    const ExpectedIds e = expected_ids(previous, result);
     std::map<sc::ComponentId, std::size_t> order;
     for (const auto& p : result.points) order.emplace(p.label, order.size());
     std::vector<sc::ComponentId> actual(order.size());
@@ -128,15 +130,12 @@ void check_rule_on_stream(std::uint32_t seed) {
   CHECK(fresh_total > retrievals);
 }
 
-struct RebuildConfig : sc::CArcFixedConfig {
-  using connectivity = sc::UnionFindRebuildConnectivity;
-};
+using streamclust::test::ForestConfig;
+using streamclust::test::RebuildConfig;
+
 struct CappedRebuildConfig : sc::CArcFixedConfig {
   using spatial_index = sc::CappedGrid;
   using connectivity = sc::UnionFindRebuildConnectivity;
-};
-struct ForestConfig : sc::CArcFixedConfig {
-  using connectivity = sc::SpanningForestConnectivity;
 };
 
 }  // namespace

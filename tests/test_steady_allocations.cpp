@@ -70,15 +70,15 @@ struct CappedCountConfig : sc::CArcFixedConfig {
   using connectivity = Connectivity;
 };
 
-constexpr std::uint32_t kRows = 32;   // 5.625 degrees of elevation per row
-constexpr std::uint32_t kCols = 256;  // 1.40625 degrees of azimuth per column
+constexpr std::uint32_t kGridRows = 32;   // 5.625 degrees of elevation per row
+constexpr std::uint32_t kGridCols = 256;  // 1.40625 degrees of azimuth per column
 constexpr std::size_t kWindow = 256;  // [points]
 constexpr std::size_t kPerCycle = 64;  // points between retrievals
 
 template <class Config>
 sc::ClustererParams<Config> params() {
   sc::ClustererParams<Config> p;
-  p.resolution = {kRows, kCols};
+  p.resolution = {kGridRows, kGridCols};
   p.window.capacity = kWindow;
   p.spatial_index.capacity = 4;
   p.linkage.max_distance = 0.05f;  // [m]: below the 0.12 m between neighbouring cells at 5 m
@@ -182,7 +182,7 @@ void run_blocks(Engine& engine, double rate, double seconds, bool retrieve, std:
 template <class Config>
 sc::ClustererParams<Config> time_params(std::uint32_t capacity) {
   sc::ClustererParams<Config> p;
-  p.resolution = {kRows, kCols};
+  p.resolution = {kGridRows, kGridCols};
   p.window.duration = 0.1;  // [s]
   p.spatial_index.capacity = capacity;
   p.linkage.max_distance = 0.05f;  // [m]

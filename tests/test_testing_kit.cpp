@@ -25,6 +25,8 @@
 #include <streamclust/testing/linkage_laws.hpp>
 #include <streamclust/testing/motion_laws.hpp>
 
+#include "support/contains.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -34,7 +36,7 @@ namespace kit = streamclust::testing;
 
 namespace {
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using streamclust::test::contains;
 
 /// Mutation: the newer point gets the longer reach, |a - b| <= 0.6 m when a
 /// is the newer, 0.3 m otherwise. Not symmetric.

@@ -15,6 +15,8 @@
 
 #include <Eigen/Geometry>
 
+#include "support/constants.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,7 +28,7 @@ namespace tr = streamclust::tracking;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using streamclust::test::kPi;
 
 /// Difference of two headings of lines (period pi) [rad], in [0, pi/2].
 float heading_error(float a, float b) {

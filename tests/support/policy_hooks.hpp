@@ -23,6 +23,7 @@
 #include <streamclust/window/count_window.hpp>
 #include <streamclust/window/time_window.hpp>
 
+#include "constants.hpp"
 #include "test_linkages.hpp"
 
 #include <streamclust/testing/random_params.hpp>
@@ -67,7 +68,6 @@ using ::streamclust::testing::RandomParams;
 /// The Sample at `range` [m] along the ray of azimuth / elevation [deg]
 /// (direction computed in double).
 inline Sample sample_on_ray(double azimuth_deg, double elevation_deg, double range) {
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   const double a = azimuth_deg * kDeg;
   const double e = elevation_deg * kDeg;
   const Eigen::Vector3f p(static_cast<float>(range * std::cos(e) * std::cos(a)),

@@ -7,6 +7,7 @@
 #include "cli/euclidean_clusters.hpp"
 #include "cli/objects_engine.hpp"
 #include "cli/objects_sensors.hpp"
+#include "cli/stopwatch.hpp"
 #include "cli/structure_planes.hpp"
 
 #include <streamclust/eval/object_metrics.hpp>
@@ -67,8 +68,6 @@ SimulatedStream simulate_objects_stream(const SimulateOptions& s, float height) 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 /// A continuous engine of the evaluation, fed in stretches between
 /// retrievals; its labels written over the scored window [lo, hi).
@@ -134,7 +133,7 @@ std::string peer_name(const char* method, bool swept, float plane_distance, floa
   return name;
 }
 
-void summarize(ObjectsMethodResult& m) {
+void summarize_objects_method(ObjectsMethodResult& m) {
   m.cost_median_ms = percentile(m.cost_ms, 50.0);
   m.cost_p99_ms = percentile(m.cost_ms, 99.0);
 }
@@ -356,7 +355,7 @@ ObjectsEvaluation evaluate_objects(const EvaluateObjectsOptions& o) {
   for (ObjectsMethodResult& m : r_frame) all.push_back(&m);
   for (ObjectsMethodResult* m : all) {
     if (m->average.frames() == 0) continue;
-    summarize(*m);
+    summarize_objects_method(*m);
     e.methods.push_back(std::move(*m));
   }
   return e;

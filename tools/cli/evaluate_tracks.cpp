@@ -9,6 +9,7 @@
 #include "cli/evaluate_objects.hpp"
 #include "cli/objects_engine.hpp"
 #include "cli/objects_sensors.hpp"
+#include "cli/stopwatch.hpp"
 #include "cli/structure_planes.hpp"
 
 #include <streamclust/motion/trajectory.hpp>
@@ -34,8 +35,6 @@ namespace streamclust::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 /// The reported tracks of a tracker (confirmed and coasting; tentative
 /// ones are not objects yet) as metric inputs.
