@@ -38,13 +38,8 @@ QUICK=${QUICK:-}
 SWEEP=${SWEEP:-1}
 OUT="$BUILD_DIR/results-objects"
 SWEEP_OUT="$BUILD_DIR/results-objects-sweep"
-if [[ -z "${TOOL:-}" ]]; then
-  TOOL="$BUILD_DIR/tools/streamclust"
-  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
-    -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
-  cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
-fi
-TOOL=$(realpath "$TOOL")
+source scripts/lib/evaluation-common.sh
+evaluation_tool
 
 SENSORS="mid360 avia"
 SCENES="office forest street hills"
@@ -80,15 +75,6 @@ motion_args() {
   esac
 }
 
-# Runs the job list $1 (one line a run: its name, then the tool's arguments)
-# into directory $2, JOBS at a time; failures go to $2/failed.txt.
-run_jobs() {
-  local list=$1 out=$2
-  : >"$out/failed.txt"
-  xargs -P "$JOBS" -L 1 bash -c 'name=$0; msg=$("'"$TOOL"'" evaluate "$@" 2>&1) ||
-    { echo "$name: $(echo "$msg" | head -1)" >>"'"$out"'/failed.txt"; echo "evaluation-objects: run $name failed: $msg" >&2; }' <"$list"
-}
-
 start=$(date +%s)
 # ---------------------------------------------------------------- 1. sweep
 if [[ "$SWEEP" != 0 ]]; then
@@ -109,7 +95,7 @@ if [[ "$SWEEP" != 0 ]]; then
     done
   done
   echo "evaluation-objects: sweep, $(wc -l <"$SWEEP_OUT/jobs.txt") runs, $JOBS in parallel, results in $SWEEP_OUT" >&2
-  run_jobs "$SWEEP_OUT/jobs.txt" "$SWEEP_OUT"
+  evaluation_run_jobs "$SWEEP_OUT/jobs.txt" "$SWEEP_OUT" evaluation-objects
   echo $(($(date +%s) - start)) >"$SWEEP_OUT/elapsed.txt"
   # The best mean strict objects correct per peer over the cells with objects.
   python3 - "$SWEEP_OUT" <<'PY'
@@ -170,7 +156,7 @@ done
 runs=$(wc -l <"$JOBLIST")
 echo "evaluation-objects: $runs runs, $JOBS in parallel, results in $OUT (euclidean $EUCLIDEAN m, frame $FRAME m)" >&2
 matrix_start=$(date +%s)
-run_jobs "$JOBLIST" "$OUT"
+evaluation_run_jobs "$JOBLIST" "$OUT" evaluation-objects
 elapsed=$(($(date +%s) - matrix_start))
 echo "evaluation-objects: runs done in $elapsed s (sweep $sweep_elapsed s)" >&2
 

@@ -23,13 +23,8 @@ JOBS=${JOBS:-2}
 BUILD_DIR=${BUILD_DIR:-build/evaluation}
 QUICK=${QUICK:-}
 OUT="$BUILD_DIR/results-tracks"
-if [[ -z "${TOOL:-}" ]]; then
-  TOOL="$BUILD_DIR/tools/streamclust"
-  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
-    -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
-  cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
-fi
-TOOL=$(realpath "$TOOL")
+source scripts/lib/evaluation-common.sh
+evaluation_tool
 
 SENSORS="mid360 avia"
 SCENES="office forest street hills"
@@ -59,12 +54,9 @@ for sensor in $SENSORS; do
     done
   done
 done
-: >"$OUT/failed.txt"
 echo "evaluation-tracks: $(wc -l <"$JOBLIST") runs, $JOBS in parallel, results in $OUT" >&2
 start=$(date +%s)
-xargs -P "$JOBS" -L 1 bash -c 'name=$0; msg=$("'"$TOOL"'" evaluate "$@" 2>&1) ||
-  { echo "$name: $(echo "$msg" | head -1)" >>"'"$OUT"'/failed.txt"; echo "evaluation-tracks: run $name failed: $msg" >&2; }' \
-  <"$JOBLIST"
+evaluation_run_jobs "$JOBLIST" "$OUT" evaluation-tracks
 elapsed=$(($(date +%s) - start))
 echo "evaluation-tracks: runs done in $elapsed s" >&2
 

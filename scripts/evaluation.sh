@@ -36,13 +36,8 @@ if [[ -n "$TABLES_ONLY" ]]; then
     exit 1
   fi
 else
-  if [[ -z "${TOOL:-}" ]]; then
-    TOOL="$BUILD_DIR/tools/streamclust"
-    cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DSTREAMCLUST_BUILD_TESTS=OFF \
-      -DSTREAMCLUST_BUILD_EXAMPLES=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_BUILD_TOOLS=ON >&2
-    cmake --build "$BUILD_DIR" --target streamclust_tool -j "$JOBS" >&2
-  fi
-  TOOL=$(realpath "$TOOL")
+  source scripts/lib/evaluation-common.sh
+  evaluation_tool
   rm -rf "$OUT"
   mkdir -p "$OUT"
 fi
@@ -147,9 +142,7 @@ if [[ -z "$TABLES_ONLY" ]]; then
   # Each line: NAME ARGS...; a failing run (e.g. a narrow sensor that sees no
   # object once the structure is dropped) is listed in failed.txt and its
   # table cells stay empty.
-  : >"$OUT/failed.txt"
-  xargs -P "$JOBS" -L 1 bash -c 'name=$0; msg=$("'"$TOOL"'" evaluate "$@" 2>&1) ||
-    { echo "$name: $msg" >>"'"$OUT"'/failed.txt"; echo "evaluation: run $name failed: $msg" >&2; }' <"$JOBLIST"
+  evaluation_run_jobs "$JOBLIST" "$OUT" evaluation
   echo "evaluation: runs done in $(($(date +%s) - start)) s" >&2
 fi
 
