@@ -22,10 +22,10 @@
 # installed sources (<datadir>/streamclust/python, and the tool's in
 # <datadir>/streamclust/tool: the module parses keywords with the tool's
 # parser): the extension `_streamclust` (target <target>) with one generated
-# translation unit per projection and linkage, and the package's Python
-# files copied beside it. The stock module is this function with no
-# policies of its own (python/CMakeLists.txt). Each added linkage costs two
-# such units, as in the tool.
+# translation unit per linkage (every projection's engines of it), and the
+# package's Python files copied beside it. The stock module is this function
+# with no policies of its own (python/CMakeLists.txt). Each added linkage
+# costs one such unit, as in the tool.
 
 include("${CMAKE_CURRENT_LIST_DIR}/StreamclustAddTool.cmake")  # the shared policies header
 
@@ -70,8 +70,8 @@ function(streamclust_add_python_module target)
     POLICIES ${ARG_POLICIES} PROJECTIONS ${ARG_PROJECTIONS} INDEXES ${ARG_INDEXES} LINKAGES ${ARG_LINKAGES}
     CONNECTIVITIES ${ARG_CONNECTIVITIES})
 
-  # One translation unit per projection and linkage (every index, window,
-  # mode and connectivity of the registry: python/src/engine_clusterer.hpp).
+  # One translation unit per linkage, for every projection (every index,
+  # window, mode and connectivity of the registry: python/src/engine_clusterer.hpp).
   set(_engines "#include \"engine_clusterer.hpp\"\nSTREAMCLUST_INSTANTIATE_PYTHON_ENGINE(@P@, @L@);\n")
   _streamclust_units("streamclust_add_python_module(${target})" "${_dir}" engines _units
     PROJECTIONS ${ARG_PROJECTIONS} LINKAGES ${ARG_LINKAGES} BODY _engines)

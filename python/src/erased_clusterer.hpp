@@ -8,8 +8,8 @@
 /// per `insert` (a packet of points) or per retrieval, never per point: the
 /// engine inside keeps its compiled fast paths. `make_erased_clusterer`
 /// picks the configuration the CLI would run for the same options (its
-/// instantiations are split over one translation unit per projection and
-/// linkage, like the CLI's).
+/// instantiations are split over one translation unit per linkage, like
+/// the CLI's).
 
 #include "point_buffers.hpp"
 
