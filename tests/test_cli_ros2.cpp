@@ -302,7 +302,10 @@ TEST_CASE("ros2: malformed CDR from a publisher is counted and skipped; the stre
 TEST_CASE("ros2: a publisher that leaves and comes back; a late subscriber of the outputs gets what follows") {
   TempDir dir("cli_ros2", "rejoin");
   constexpr unsigned kDomain = 67;
-  NodeThread node(node_args(dir, kDomain, {"--idle-exit", "4"}));
+  // The node waits out the gap between the publishers: the second starts
+  // after a participant of the test's own and its discovery, seconds under
+  // the sanitizers on a busy machine (4 s was once too short).
+  NodeThread node(node_args(dir, kDomain, {"--idle-exit", "12"}));
   replay_to(dir, kDomain, "/livox/lidar", {"--simulate", "--sensor", "mid360", "--seconds", "1.0", "-q"}, "first.log");
   // A late subscriber of the labelled clouds, while the publisher is away.
   namespace r2 = streamclust::ros2;
