@@ -304,7 +304,7 @@ TEST_CASE("ros2: a publisher that leaves and comes back; a late subscriber of th
   constexpr unsigned kDomain = 67;
   // The node waits out the gap between the publishers: the second starts
   // after a participant of the test's own and its discovery, seconds under
-  // the sanitizers on a busy machine (4 s was once too short).
+  // the sanitizers on a busy machine.
   NodeThread node(node_args(dir, kDomain, {"--idle-exit", "12"}));
   replay_to(dir, kDomain, "/livox/lidar", {"--simulate", "--sensor", "mid360", "--seconds", "1.0", "-q"}, "first.log");
   // A late subscriber of the labelled clouds, while the publisher is away.
