@@ -74,9 +74,8 @@ endfunction()
 # linkage (the stock ones, then the given ones) holding, for every projection (the stock ones, then the
 # given ones), the text of the variable BODY names (and, for the spherical projection, of SPHERICAL_BODY's)
 # with @P@ and @L@ replaced by the pair's types; sets <out> to their paths. Variables, not texts: a text's
-# semicolons would split it. A linkage's pairs share one unit because most of a pair's compile time is
-# what every pair includes and instantiates (the driver's headers, Eigen, the JSON report): g++ 12 -O3
-# compiles a linkage's two pairs in 77 s of CPU as one unit and in 113 s as two.
+# semicolons would split it. A linkage's pairs share one unit: most of a pair's compile time is what every
+# pair includes and instantiates (figures: docs/design-decisions.md, "The tool's generated units").
 function(_streamclust_units caller dir prefix out)
   cmake_parse_arguments(ARG "" "BODY;SPHERICAL_BODY" "PROJECTIONS;LINKAGES" ${ARGN})
   set(_units "")
