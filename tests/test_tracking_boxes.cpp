@@ -377,3 +377,89 @@ TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its b
   engine.retrieve();
   CHECK_THROWS_AS(boxes.update(engine, stale), std::logic_error);
 }
+
+TEST_CASE("ObjectBoxes: a fast mover seen in pieces one after another is one object with its velocity") {
+  // A 1.0 x 0.6 x 1.5 m box at 15 m/s, 20 m out, seen only in bursts of
+  // 0.1 s every 0.25 s (a scan pattern coming back to it): each burst is a
+  // piece of its own component 1.25 m from the next, too short in time for
+  // a window velocity of its own. Linked, the pieces are one object at the
+  // box's place now, moving at its velocity; unlinked, pieces without one.
+  // The same box hanging 2.2 m above the ground is the top of a structure
+  // the view passes over: not linked unless the clearance allows it.
+  sc::ObjectsSetup setup;
+  setup.sensor_height = 1.0f;
+  const Eigen::Vector2f start(20.0f, -6.0f), v(0.0f, 15.0f);
+  constexpr float kYaw = 1.5707963f;  // along its motion
+  struct Outcome {
+    int retrievals = 0;       // retrievals checked
+    int linked_right = 0;     // one linked object at the box's place with its velocity
+    int one_on_path = 0;      // exactly one object along the box's path over the window
+    int several_pieces = 0;   // objects of two or more pieces
+  };
+  const auto run = [&](const tr::ObjectBoxParams& params, float bottom) {
+    sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
+    tr::ObjectBoxes boxes(params);
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<float> ground_r(9.0f, 30.0f), ground_a(-kPi, kPi);
+    std::uniform_int_distribution<int> side(0, 1);
+    const double rate = 100000.0;
+    double next_retrieval = 0.6;
+    Outcome out;
+    for (int i = 0; i < 120000; ++i) {
+      const double t = static_cast<double>(i) / rate;
+      sc::Point p;
+      p.t = t;
+      const bool burst = std::fmod(t, 0.25) < 0.1;
+      if (burst && i % 4 == 0) {
+        const Rect r{start + v * static_cast<float>(t), 1.0f, 0.6f, kYaw};
+        const auto q = points_on_sides(r, {side(rng) == 0 ? 1 : 2}, 1, bottom, 1.5f, 0.01f, rng);
+        p.x = q.front().x();
+        p.y = q.front().y();
+        p.z = q.front().z();
+      } else {
+        const float rr = ground_r(rng), a = ground_a(rng);
+        p.x = rr * std::cos(a);
+        p.y = rr * std::sin(a);
+        p.z = -1.0f;
+      }
+      engine.insert(p);
+      if (t < next_retrieval) continue;
+      next_retrieval += 0.05;
+      const sc::Clustering& result = engine.retrieve();
+      const Eigen::Vector2f truth = start + v * static_cast<float>(result.time);
+      int on_path = 0;
+      for (const auto& o : boxes.update(engine, result)) {
+        const Eigen::Vector2f c = o.box.center.head<2>();
+        if (std::abs(c.x() - truth.x()) > 1.0f || c.y() < truth.y() - 9.0f || c.y() > truth.y() + 2.0f) continue;
+        ++on_path;
+        if (o.pieces >= 2) ++out.several_pieces;
+        if (o.pieces >= 2 && o.compensated && (c - truth).norm() < 1.0f &&
+            (o.velocity.velocity - v).norm() < 1.5f) {
+          ++out.linked_right;
+        }
+      }
+      if (on_path == 1) ++out.one_on_path;
+      ++out.retrievals;
+    }
+    return out;
+  };
+  tr::ObjectBoxParams linking;
+  tr::ObjectBoxParams unlinked;
+  unlinked.link_pieces = false;
+  tr::ObjectBoxParams any_clearance;
+  any_clearance.piece_max_clearance = 100.0f;
+
+  const Outcome on_ground = run(linking, -0.8f);
+  CHECK(on_ground.retrievals >= 10);
+  CHECK(on_ground.linked_right == on_ground.retrievals);
+  CHECK(on_ground.one_on_path == on_ground.retrievals);
+  const Outcome off = run(unlinked, -0.8f);
+  CHECK(off.several_pieces == 0);
+  CHECK(off.one_on_path < off.retrievals);  // the pieces were separate objects
+
+  const Outcome hanging = run(linking, 1.2f);
+  CHECK(hanging.retrievals >= 10);
+  CHECK(hanging.several_pieces == 0);
+  const Outcome hanging_allowed = run(any_clearance, 1.2f);
+  CHECK(hanging_allowed.linked_right == hanging_allowed.retrievals);
+}
