@@ -6,7 +6,8 @@
 // components of 10 points or more and KalmanTracker updates its tracks. Only
 // that part is timed (manual time, per retrieval); the counters give its
 // median and P99 [us] over the retrievals of the run, the objects and tracks
-// per retrieval, and the points boxed.
+// per retrieval, and the points boxed. The *_unlinked runs leave a fast
+// mover's pieces unlinked: the difference is what linking costs.
 //
 // Measure with (numbers: docs/performance.md):
 //   build/bench-run/bench/bench_tracking --benchmark_min_time=2 --benchmark_repetitions=3
@@ -77,9 +78,12 @@ class ObjectsRun {
   double cycle_time_ = 0.0;
 };
 
-void BM_Tracking(benchmark::State& state, bk::Scenario scenario) {
+/// `link_pieces` false: without linking a fast mover's pieces (its cost).
+void BM_Tracking(benchmark::State& state, bk::Scenario scenario, bool link_pieces) {
   ObjectsRun run(scenario, bk::cycle_stream_seconds(0.5));
-  sc::tracking::ObjectBoxes boxes;
+  sc::tracking::ObjectBoxParams params;
+  params.link_pieces = link_pieces;
+  sc::tracking::ObjectBoxes boxes(params);
   auto tracker = std::make_unique<sc::KalmanTracker>();
   std::vector<double> us;
   double objects = 0.0, tracks = 0.0, points = 0.0;
@@ -106,13 +110,19 @@ void BM_Tracking(benchmark::State& state, bk::Scenario scenario) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_Tracking, mid360_office, bk::Scenario{bk::Sensor::mid360, "office"})
+BENCHMARK_CAPTURE(BM_Tracking, mid360_office, bk::Scenario{bk::Sensor::mid360, "office"}, true)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_Tracking, avia_office, bk::Scenario{bk::Sensor::avia, "office"})
+BENCHMARK_CAPTURE(BM_Tracking, avia_office, bk::Scenario{bk::Sensor::avia, "office"}, true)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_Tracking, mid360_street, bk::Scenario{bk::Sensor::mid360, "street"})
+BENCHMARK_CAPTURE(BM_Tracking, mid360_street, bk::Scenario{bk::Sensor::mid360, "street"}, true)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Tracking, mid360_office_unlinked, bk::Scenario{bk::Sensor::mid360, "office"}, false)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Tracking, mid360_street_unlinked, bk::Scenario{bk::Sensor::mid360, "street"}, false)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 
