@@ -242,12 +242,9 @@ class ObjectBoxes {
       const std::vector<double>* t_in = &times_[slot];
       o.velocity = summaries_[slot].velocity;
       if (group_size_[slot] > 1) {
-        group_points_.clear();
-        group_times_.clear();
+        gather_group(slot);
         for (std::size_t m = 0; m < slots; ++m) {
           if (group_of_[m] != slot) continue;
-          group_points_.insert(group_points_.end(), points_[m].begin(), points_[m].end());
-          group_times_.insert(group_times_.end(), times_[m].begin(), times_[m].end());
           o.time_begin = std::min(o.time_begin, result.components[slot_component_[m]].time_begin);
         }
         xyz_in = &group_points_;
@@ -372,13 +369,7 @@ class ObjectBoxes {
     group_velocity_.resize(slots);
     for (std::size_t root = 0; root < slots; ++root) {
       if (group_of_[root] != root || group_size_[root] < 2) continue;
-      group_points_.clear();
-      group_times_.clear();
-      for (std::size_t m = 0; m < slots; ++m) {
-        if (group_of_[m] != root) continue;
-        group_points_.insert(group_points_.end(), points_[m].begin(), points_[m].end());
-        group_times_.insert(group_times_.end(), times_[m].begin(), times_[m].end());
-      }
+      gather_group(root);
       group_velocity_[root] = window_velocity(group_points_, group_times_, piece_velocity_, velocity_scratch_);
       if (clear_motion(group_velocity_[root])) continue;
       for (std::size_t m = 0; m < slots; ++m) {
@@ -388,6 +379,18 @@ class ObjectBoxes {
         }
       }
       group_size_[root] = 1;
+    }
+  }
+
+  /// group_points_ / group_times_: the points of every piece of the object
+  /// whose largest piece is `root`. O(slots + its points).
+  void gather_group(std::size_t root) {
+    group_points_.clear();
+    group_times_.clear();
+    for (std::size_t m = 0; m < group_of_.size(); ++m) {
+      if (group_of_[m] != root) continue;
+      group_points_.insert(group_points_.end(), points_[m].begin(), points_[m].end());
+      group_times_.insert(group_times_.end(), times_[m].begin(), times_[m].end());
     }
   }
 
