@@ -7,7 +7,9 @@
 #                                                   (CTest python_pytest)
 #   clang  Debug (-O1, asserts on), clang++-14, C++20, ASan+UBSan
 #                                    -> build/clang  tests and examples
-#                                                   (bench- and slow-labelled tests excluded;
+#                                                   (bench- and slow-labelled tests and the
+#                                                   doctest cases of test suite "slow" excluded,
+#                                                   the oracle on a pairwise cover of the policies;
 #                                                   the header self-containment check
 #                                                   and the FMA build are the gcc stage's)
 #   fuzz   clang++-14, libFuzzer  -> build/fuzz   every fuzz target for 10 s on its seed corpus
@@ -139,7 +141,10 @@ for stage in "${STAGES[@]}"; do
       # Benchmarks are timed in the gcc stage; sanitized they would measure nothing.
       # The slow test files (tests/CMakeLists.txt) run once, in the gcc stage.
       # Header self-containment and FMA contraction are checked once, in the gcc stage.
+      # The oracle runs a pairwise cover of the policy combinations (the whole
+      # product is the gcc stage's): tests/CMakeLists.txt.
       run_stage clang clang++-14 Debug -LE "bench|slow" -- -DSTREAMCLUST_SANITIZE=ON \
+        -DSTREAMCLUST_TEST_ORACLE_COMBOS=pairwise \
         -DSTREAMCLUST_TEST_CXX17=OFF -DSTREAMCLUST_BUILD_BENCH=OFF -DSTREAMCLUST_HEADER_CHECK=OFF \
         -DSTREAMCLUST_TEST_FMA=OFF
       ;;

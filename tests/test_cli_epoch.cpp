@@ -141,7 +141,8 @@ TEST_CASE("epoch times: the default preset gives the same partitions, and times 
   check_shift_invariant({});
 }
 
-TEST_CASE("epoch times: the objects preset with the recording's poses, verified, shift-invariant") {
+TEST_CASE("epoch times: the objects preset with the recording's poses, verified, shift-invariant" *
+          doctest::test_suite("slow")) {
   check_shift_invariant({"--preset", "objects-mid360", "--sensor-height", "1", "--poses", "TUM", "--verify"});
 }
 

@@ -151,7 +151,8 @@ TEST_CASE("cluster --preset objects-mid360: ground rows -2, ceiling rows -3, ver
   CHECK(last.at("latency_us").at("ground").get<double>() < last.at("latency_us").at("total").get<double>());
 }
 
-TEST_CASE("cluster --preset objects*: with a mount and a height, the labels of the library's preset") {
+TEST_CASE("cluster --preset objects*: with a mount and a height, the labels of the library's preset" *
+          doctest::test_suite("slow")) {
   namespace sc = streamclust;
   struct Case {
     const char* preset;

@@ -47,7 +47,8 @@ std::vector<std::string> lines_of(const std::string& text) {
 }  // namespace
 
 TEST_CASE("cluster --tracks: rows per track and cycle, tied to the cycle's components; standing objects still, "
-          "walkers moving; labels unchanged") {
+          "walkers moving; labels unchanged" *
+          doctest::test_suite("slow")) {
   const st::TempDir dir("cli_tracks", "office");
   const std::string input = dir.path("office.csv");
   REQUIRE(st::run_cli({"simulate", "--sensor", "mid360", "--scene", "office", "--seconds", "2.5", "--out", input,

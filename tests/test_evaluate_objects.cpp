@@ -319,7 +319,8 @@ TEST_CASE("evaluate --objects: option errors and help") {
   CHECK(cli::effective_height(cli::parse_evaluate_objects_options({"--height", "1.7"})) == doctest::Approx(1.7f));
 }
 
-TEST_CASE("evaluate --objects: short runs score in range and the objects method passes --verify") {
+TEST_CASE("evaluate --objects: short runs score in range and the objects method passes --verify" *
+          doctest::test_suite("slow")) {
   const streamclust::test::TempDir dir("evaluate_objects", "runs");
   struct Case {
     std::vector<std::string> args;

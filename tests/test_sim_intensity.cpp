@@ -420,7 +420,8 @@ float label_like_intensity(int instance) {
 
 }  // namespace
 
-TEST_CASE("sim intensity: is not a label (an intensity gate gains from the old constant, not from the model)") {
+TEST_CASE("sim intensity: is not a label (an intensity gate gains from the old constant, not from the model)" *
+          doctest::test_suite("slow")) {
   // Mid-360 at rest 1 m above the office floor, windows of 0.5 s at 1, 2 and
   // 3 s; the floor and ceiling removed by ground truth (as a perfect
   // structure stage would), the rest clustered by Euclidean 0.3 m with and

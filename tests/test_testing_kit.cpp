@@ -24,12 +24,18 @@
 #include <streamclust/testing/index_laws.hpp>
 #include <streamclust/testing/linkage_laws.hpp>
 #include <streamclust/testing/motion_laws.hpp>
+#include <streamclust/testing/type_product.hpp>
 
 #include "support/contains.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <set>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <vector>
 
 namespace sc = streamclust;
 namespace kit = streamclust::testing;
@@ -187,4 +193,67 @@ TEST_CASE("test kit: the exactness check of a configuration with ground removal 
   const kit::ExactnessReport r = kit::check_exactness<GroundConfig>(params, options);
   STREAMCLUST_CHECK_LAW(r);
   CHECK(r.comparisons > 12);
+}
+
+namespace {
+/// Lists of values as types: V<list, value>.
+template <int L, int Value>
+using V = std::integral_constant<int, L * 100 + Value>;
+template <int L, int... Values>
+using ValueList = std::tuple<V<L, Values>...>;
+
+/// The combinations of a tuple of tuples of V<...> as rows of values.
+template <class Combos>
+std::vector<std::vector<int>> rows_of() {
+  std::vector<std::vector<int>> rows;
+  kit::for_each_type<Combos>([&rows](auto combo) {
+    std::vector<int> row;
+    kit::for_each_type<typename decltype(combo)::type>([&row](auto value) { row.push_back(decltype(value)::type::value); });
+    rows.push_back(row);
+  });
+  return rows;
+}
+
+/// The pairs (value of list a, value of list b), a < b, that no row holds.
+std::size_t uncovered_pairs(const std::vector<std::vector<int>>& rows, const std::vector<int>& sizes) {
+  std::size_t uncovered = 0;
+  for (std::size_t a = 0; a < sizes.size(); ++a)
+    for (std::size_t b = a + 1; b < sizes.size(); ++b)
+      for (int i = 0; i < sizes[a]; ++i)
+        for (int j = 0; j < sizes[b]; ++j) {
+          bool held = false;
+          for (const auto& row : rows)
+            held = held || (row[a] == static_cast<int>(a) * 100 + i && row[b] == static_cast<int>(b) * 100 + j);
+          if (!held) ++uncovered;
+        }
+  return uncovered;
+}
+}  // namespace
+
+TEST_CASE("test kit: a pairwise cover holds every pair of two lists' values, in far fewer combinations") {
+  // The oracle's list sizes: projections, indexes, linkages, windows, connectivities.
+  using P = ValueList<0, 0, 1>;
+  using I = ValueList<1, 0, 1, 2>;
+  using L = ValueList<2, 0, 1, 2, 3, 4, 5>;
+  using W = ValueList<3, 0, 1>;
+  using C = ValueList<4, 0, 1, 2>;
+  const auto cover = rows_of<kit::tuple_pairwise_t<P, I, L, W, C>>();
+  const auto product = rows_of<kit::tuple_product_t<P, I, L, W, C>>();
+  REQUIRE(product.size() == 216);
+  CHECK(uncovered_pairs(cover, {2, 3, 6, 2, 3}) == 0);
+  CHECK(cover.size() >= 18);  // linkages x connectivities alone need 18
+  CHECK(cover.size() <= 21);
+  // Distinct combinations of the product, in its order.
+  std::size_t at = 0;
+  for (const auto& row : cover) {
+    while (at < product.size() && product[at] != row) ++at;
+    CHECK(at < product.size());
+    ++at;
+  }
+  // A cut cover misses pairs: the check above can fail.
+  CHECK(uncovered_pairs(std::vector<std::vector<int>>(cover.begin(), cover.end() - 1), {2, 3, 6, 2, 3}) > 0);
+  // Two lists: every pair is one combination, the cover is the product; one list: every value.
+  CHECK(rows_of<kit::tuple_pairwise_t<I, L>>() == rows_of<kit::tuple_product_t<I, L>>());
+  CHECK(rows_of<kit::tuple_pairwise_t<L>>().size() == 6);
+  CHECK(std::tuple_size_v<kit::tuple_pairwise_t<L, std::tuple<>>> == 0);
 }

@@ -11,6 +11,8 @@ using ::streamclust::testing::tuple_concat;
 using ::streamclust::testing::tuple_concat_t;
 using ::streamclust::testing::tuple_product;
 using ::streamclust::testing::tuple_product_t;
+using ::streamclust::testing::tuple_pairwise;
+using ::streamclust::testing::tuple_pairwise_t;
 using ::streamclust::testing::apply_each;
 using ::streamclust::testing::apply_each_t;
 using ::streamclust::testing::tuple_filter;

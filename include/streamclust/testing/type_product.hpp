@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Type-level helpers over std::tuple lists of policies: the cartesian
-// product of several lists, concatenation, filtering, and a compile-time
-// loop calling a functor once per type.
+// product of several lists and a pairwise cover of it, concatenation,
+// filtering, and a compile-time loop calling a functor once per type.
 
+#include <array>
 #include <cstddef>
 #include <tuple>
 #include <type_traits>
@@ -64,6 +65,104 @@ struct tuple_product<First, Rest...> {
 };
 template <class... Lists>
 using tuple_product_t = typename tuple_product<Lists...>::type;
+
+namespace internal {
+/// The combinations (indices into the product, ascending) that a greedy
+/// cover of every pair of values of two lists picks: each step takes the
+/// first combination that covers the most pairs not yet covered.
+/// O(cover x product x lists^2) constexpr steps.
+template <std::size_t... Sizes>
+struct pairwise_rows {
+  static constexpr std::size_t kLists = sizeof...(Sizes);
+  static constexpr std::array<std::size_t, kLists> kSizes{Sizes...};
+  static constexpr std::size_t kProduct = (std::size_t{1} * ... * Sizes);
+
+  static constexpr std::size_t pair_count() {
+    std::size_t total = 0;
+    for (std::size_t a = 0; a < kLists; ++a)
+      for (std::size_t b = a + 1; b < kLists; ++b) total += kSizes[a] * kSizes[b];
+    return total;
+  }
+  static constexpr std::size_t kPairs = pair_count();
+
+  struct Rows {
+    std::array<std::size_t, kProduct> index{};
+    std::size_t count = 0;
+  };
+
+  static constexpr std::size_t kPairsPerRow = kLists * (kLists - (kLists > 0 ? 1 : 0)) / 2;
+
+  static constexpr Rows compute() {
+    Rows rows;
+    if (kLists < 2 || kProduct == 0) {  // nothing to pair: every combination (or none)
+      for (std::size_t row = 0; row < kProduct; ++row) rows.index[rows.count++] = row;
+      return rows;
+    }
+    // Pairs (list a, value i) x (list b, value j), a < b, are numbered list
+    // pair by list pair; row_pairs holds the numbers of each combination's pairs.
+    std::array<std::size_t, kProduct * kPairsPerRow> row_pairs{};
+    for (std::size_t row = 0; row < kProduct; ++row) {
+      std::array<std::size_t, kLists> digit{};
+      for (std::size_t list = kLists, rest = row; list-- > 0; rest /= kSizes[list]) digit[list] = rest % kSizes[list];
+      std::size_t k = row * kPairsPerRow;
+      std::size_t first = 0;
+      for (std::size_t a = 0; a < kLists; ++a)
+        for (std::size_t b = a + 1; b < kLists; ++b) {
+          row_pairs[k++] = first + digit[a] * kSizes[b] + digit[b];
+          first += kSizes[a] * kSizes[b];
+        }
+    }
+    std::array<bool, kPairs> covered{};
+    std::array<bool, kProduct> taken{};
+    for (std::size_t uncovered = kPairs; uncovered > 0;) {
+      std::size_t best = 0;
+      std::size_t best_gain = 0;
+      for (std::size_t row = 0; row < kProduct; ++row) {
+        if (taken[row]) continue;
+        std::size_t gain = 0;
+        for (std::size_t k = row * kPairsPerRow; k < (row + 1) * kPairsPerRow; ++k) gain += covered[row_pairs[k]] ? 0 : 1;
+        if (gain > best_gain) {
+          best_gain = gain;
+          best = row;
+        }
+      }
+      taken[best] = true;
+      for (std::size_t k = best * kPairsPerRow; k < (best + 1) * kPairsPerRow; ++k) {
+        if (!covered[row_pairs[k]]) --uncovered;
+        covered[row_pairs[k]] = true;
+      }
+    }
+    for (std::size_t row = 0; row < kProduct; ++row)
+      if (taken[row]) rows.index[rows.count++] = row;
+    return rows;
+  }
+  static constexpr Rows kRows = compute();
+};
+
+template <class Product, class Rows, class Seq>
+struct pick_rows;
+template <class Product, class Rows, std::size_t... I>
+struct pick_rows<Product, Rows, std::index_sequence<I...>> {
+  using type = std::tuple<std::tuple_element_t<Rows::kRows.index[I], Product>...>;
+};
+}  // namespace internal
+
+/// A pairwise cover of the product of the tuples `Lists...`: combinations of
+/// tuple_product_t (in its order) such that every two values of two
+/// different lists appear together in at least one, so every value appears
+/// at least once. Far fewer than the product (2 x 3 x 6 x 2 x 3 lists: 19
+/// of 216); the whole product when there are fewer than two lists. For
+/// checks whose faults come from one policy or the meeting of two (a
+/// sanitizer run); a full check keeps the product. Compile time only,
+/// O(cover x product x lists^2) constexpr steps: products of a few thousand.
+template <class... Lists>
+struct tuple_pairwise {
+  using rows = internal::pairwise_rows<std::tuple_size_v<Lists>...>;
+  using type = typename internal::pick_rows<tuple_product_t<Lists...>, rows,
+                                            std::make_index_sequence<rows::kRows.count>>::type;
+};
+template <class... Lists>
+using tuple_pairwise_t = typename tuple_pairwise<Lists...>::type;
 
 /// Applies template `F` to every combination of tuple of tuples `Combos`:
 /// `std::tuple<F<A1, B1, ...>, F<A1, B2, ...>, ...>`.
