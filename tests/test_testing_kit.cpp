@@ -208,7 +208,8 @@ std::vector<std::vector<int>> rows_of() {
   std::vector<std::vector<int>> rows;
   kit::for_each_type<Combos>([&rows](auto combo) {
     std::vector<int> row;
-    kit::for_each_type<typename decltype(combo)::type>([&row](auto value) { row.push_back(decltype(value)::type::value); });
+    kit::for_each_type<typename decltype(combo)::type>(
+        [&row](auto value) { row.push_back(decltype(value)::type::value); });
     rows.push_back(row);
   });
   return rows;

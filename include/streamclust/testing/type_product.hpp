@@ -120,7 +120,9 @@ struct pairwise_rows {
       for (std::size_t row = 0; row < kProduct; ++row) {
         if (taken[row]) continue;
         std::size_t gain = 0;
-        for (std::size_t k = row * kPairsPerRow; k < (row + 1) * kPairsPerRow; ++k) gain += covered[row_pairs[k]] ? 0 : 1;
+        for (std::size_t k = row * kPairsPerRow; k < (row + 1) * kPairsPerRow; ++k) {
+          if (!covered[row_pairs[k]]) ++gain;
+        }
         if (gain > best_gain) {
           best_gain = gain;
           best = row;
