@@ -362,8 +362,10 @@ TEST_CASE("ros2: an incompatible QoS is reported, not silent") {
   TempDir dir("cli_ros2", "qos");
   constexpr unsigned kDomain = 69;
   // A reliable subscription cannot take a best-effort publisher's messages.
+  // The node waits 12 s: the publisher is a process of its own, which under
+  // the sanitizers, beside another test, took more than 4 s to appear.
   NodeThread node({"--dds-loopback", "--domain", std::to_string(kDomain), "--input-qos", "reliable", "--input-type",
-                   "livox_ros_driver2/msg/CustomMsg", "--wait", "4", "--no-status"});
+                   "livox_ros_driver2/msg/CustomMsg", "--wait", "12", "--no-status"});
   CHECK(run_tool_process({"replay", "--simulate", "--sensor", "mid360", "--seconds", "1.0", "--to",
                           "ros2:///livox/lidar", "--dds-loopback", "--domain", std::to_string(kDomain), "--qos",
                           "best-effort", "--subscribers", "0", "-q"},
