@@ -41,7 +41,8 @@ if [[ $# -gt 0 && "$1" =~ ^[0-9]+$ ]]; then
   shift
 fi
 TARGETS=("$@")
-[[ ${#TARGETS[@]} -eq 0 ]] && TARGETS=("${ALL_TARGETS[@]}")
+EVERY_TARGET=
+[[ ${#TARGETS[@]} -eq 0 ]] && TARGETS=("${ALL_TARGETS[@]}") && EVERY_TARGET=1
 for t in "${TARGETS[@]}"; do
   if [[ ! " ${ALL_TARGETS[*]} " =~ " $t " ]]; then
     echo "fuzz.sh: unknown target '$t' (known: ${ALL_TARGETS[*]})" >&2
@@ -98,7 +99,13 @@ if [[ -z "${SKIP_BUILD:-}" ]] && wants configure; then
 fi
 if [[ -z "${SKIP_BUILD:-}" ]] && wants build; then
   echo "=== fuzz.sh: building ${TARGETS[*]} ==="
-  cmake --build "$BUILD_DIR" -j "$JOBS" --target "${TARGETS[@]}"
+  # All of them as one goal (fuzz/CMakeLists.txt: streamclust_fuzz_all), so
+  # that the Makefile generator builds them in parallel.
+  if [[ -n "$EVERY_TARGET" ]]; then
+    cmake --build "$BUILD_DIR" -j "$JOBS" --target streamclust_fuzz_all
+  else
+    cmake --build "$BUILD_DIR" -j "$JOBS" --target "${TARGETS[@]}"
+  fi
 fi
 T_BUILD=$((SECONDS - T_ALL))
 wants run || exit 0

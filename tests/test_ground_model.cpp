@@ -692,7 +692,7 @@ TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out
   CHECK(shown_on.box_as_ground < 0.1);  // its bottom 0.1 m of 1.6 at most
 }
 
-TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not") {
+TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not; ceiling_height_near finds the first") {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   sc::HeightMapGround ceiling_model;
@@ -707,6 +707,19 @@ TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is 
     as_ceiling += c[i] == sc::SurfaceClass::ceiling;
   }
   CHECK(static_cast<double>(as_ceiling) / static_cast<double>(inner) > 0.95);
+  // Its height where it is seen, anywhere under it; nothing beyond it.
+  for (const Eigen::Vector2f& at : {Eigen::Vector2f(0.0f, 0.0f), Eigen::Vector2f(-3.0f, 2.5f)}) {
+    const std::optional<float> over = ceiling_model.ceiling_height_near(at.x(), at.y(), 0.5f);
+    INFO("at " << at.transpose());
+    REQUIRE(over);
+    CHECK(*over == doctest::Approx(1.8f).epsilon(0.03));
+  }
+  CHECK_FALSE(ceiling_model.ceiling_height_near(20.0f, 0.0f, 1.0f));
+  sc::HeightMapGround::Params without;
+  without.detect_ceiling = false;
+  sc::HeightMapGround blind_to_ceilings(without);
+  classify_all(blind_to_ceilings, ceiling);
+  CHECK_FALSE(blind_to_ceilings.ceiling_height_near(0.0f, 0.0f, 0.5f));
 
   // The underside of a crown: a sphere of radius 2 m centred 4 m up.
   sc::HeightMapGround crown_model;
@@ -720,6 +733,7 @@ TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is 
   std::size_t crown_ceiling = 0;
   for (const auto cls : k) crown_ceiling += cls == sc::SurfaceClass::ceiling;
   CHECK(static_cast<double>(crown_ceiling) / 20000.0 < 0.1);
+  CHECK_FALSE(crown_model.ceiling_height_near(3.0f, 0.0f, 0.5f));
 }
 
 TEST_CASE("HeightMapGround forgets every point: after the window passes no cell is live") {

@@ -346,6 +346,82 @@ TEST_CASE("KalmanTracker: where the ground is unknown, a crown above its trunk's
   CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_neighbourhood"), std::invalid_argument);
 }
 
+TEST_CASE("KalmanTracker: by position, an observation pairs with a track only at its height") {
+  sc::KalmanTracker tracker;  // gate_height 0.5 m
+  // A desk (box 0-0.75 m high) confirmed under component 1.
+  const auto box_at = [](sc::ComponentId id, Eigen::Vector2f centre, float bottom, float height) {
+    tr::ObjectObservation o = observed(id, centre);
+    o.box.length = 1.6f;
+    o.box.width = 0.8f;
+    o.box.height = height;
+    o.box.center.z() = bottom + 0.5f * height;
+    return o;
+  };
+  for (int c = 0; c < 3; ++c) tracker.update({box_at(1, {0, 0}, 0.0f, 0.75f)}, c * kCycle);
+  REQUIRE(tracker.tracks().size() == 1);
+  const std::uint64_t desk = tracker.tracks()[0].id;
+  // Its component is gone; 0.3 m away, 1.4-1.5 m up, a few points under
+  // a new id (a lamp's, a passer-by's arm): not the desk, which coasts.
+  tracker.update({box_at(2, {0.3f, 0.0f}, 1.4f, 0.1f)}, 3 * kCycle);
+  const tr::Track* coasting = find_track(tracker.tracks(), desk);
+  REQUIRE(coasting);
+  CHECK(coasting->cluster_id == sc::kNoComponent);
+  CHECK(coasting->position.z() == doctest::Approx(0.375f));
+  // The desk again under a new id, its top 0.4 m lower (its far half in a
+  // shadow): the same track.
+  tracker.update({box_at(3, {0.1f, 0.0f}, 0.0f, 0.35f)}, 4 * kCycle);
+  const tr::Track* again = find_track(tracker.tracks(), desk);
+  REQUIRE(again);
+  CHECK(again->cluster_id == 3);
+  sc::KalmanTracker::Params bad;
+  bad.gate_height = -1.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("gate_height"), std::invalid_argument);
+}
+
+TEST_CASE("KalmanTracker: what reaches the ceiling starts no track unless shaped like a pillar") {
+  sc::KalmanTracker tracker;  // birth_ceiling_gap 0.3 m
+  // Boxes standing on the floor (z = 0) or hanging, under a ceiling at 3 m.
+  const auto seen_at = [](sc::ComponentId id, float x, float bottom, float length, float height) {
+    tr::ObjectObservation o = observed(id, {x, 0.0f});
+    o.box.length = length;
+    o.box.width = std::min(length, 0.5f);
+    o.box.height = height;
+    o.box.center.z() = bottom + 0.5f * height;
+    o.ceiling_z = 3.0f;
+    return o;
+  };
+  std::vector<tr::ObjectObservation> seen{
+      seen_at(1, 0, 2.85f, 0.4f, 0.15f),   // a patch of ceiling the ground policy left
+      seen_at(2, 10, 2.3f, 0.6f, 0.6f),    // a lamp hung from it
+      seen_at(3, 20, 0.0f, 9.0f, 3.0f),    // a wall up to it
+      seen_at(4, 30, 0.0f, 0.5f, 3.0f),    // a pillar
+      seen_at(5, 40, 0.0f, 0.5f, 1.75f),   // a person below it
+      seen_at(6, 50, 0.0f, 3.0f, 2.8f),    // a row of shelves 0.2 m below it
+  };
+  // The same lamp where no ceiling is known: no rule.
+  tr::ObjectObservation unknown = seen_at(7, 60, 2.3f, 0.6f, 0.6f);
+  unknown.ceiling_z.reset();
+  unknown.ground_z = 2.0f;
+  seen.push_back(unknown);
+  for (int c = 0; c < 3; ++c) tracker.update(seen, c * kCycle);
+  std::map<sc::ComponentId, std::size_t> tracks_of;
+  for (const tr::Track& t : tracker.tracks()) ++tracks_of[t.cluster_id];
+  for (const sc::ComponentId id : {1, 2, 3, 6}) CHECK(tracks_of.count(id) == 0);
+  for (const sc::ComponentId id : {4, 5, 7}) CHECK(tracks_of[id] == 1);
+  // With no gap only what reaches the ceiling's height counts.
+  sc::KalmanTracker::Params exact;
+  exact.birth_ceiling_gap = 0.0f;
+  sc::KalmanTracker strict(exact);
+  for (int c = 0; c < 3; ++c) strict.update(seen, c * kCycle);
+  tracks_of.clear();
+  for (const tr::Track& t : strict.tracks()) ++tracks_of[t.cluster_id];
+  CHECK(tracks_of.count(3) == 0);
+  CHECK(tracks_of[6] == 1);
+  sc::KalmanTracker::Params bad;
+  bad.birth_ceiling_gap = -0.1f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_ceiling_gap"), std::invalid_argument);
+}
+
 TEST_CASE("KalmanTracker: what is shaped like structure starts no track; what is shaped like an object does") {
   sc::KalmanTracker tracker;  // birth_max_length 10 m, birth_flatness 0.1
   const auto shaped = [](sc::ComponentId id, float x, float length, float width, float height) {

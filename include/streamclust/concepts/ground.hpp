@@ -17,12 +17,13 @@
 /// | `g.heap_bytes()`          | `std::size_t`            | heap held by the model [bytes]                                 | O(1)       |
 ///
 /// Optional, for what reads the window after a retrieval (object boxes,
-/// tracking: tracking/object_boxes.hpp); without it a box stands on its
-/// lowest point:
+/// tracking: tracking/object_boxes.hpp); without the first a box stands on
+/// its lowest point, without the second nothing is known of a ceiling:
 ///
 /// | expression                          | type                   | meaning                                      |
 /// |-------------------------------------|------------------------|----------------------------------------------|
 /// | `g.ground_height_near(x, y, radius)` | `std::optional<float>` | the ground's height around (x, y) [m], nullopt when none is seen within `radius` [m] |
+/// | `g.ceiling_height_near(x, y, radius)` | `std::optional<float>` | the ceiling's height over (x, y) [m], nullopt when none is seen within `radius` [m] |
 ///
 /// `world` is the point in the world frame (+z up, against gravity) and
 /// `ray` the vector from the sensor to it (PlacedPoint, concepts/motion.hpp);
@@ -72,6 +73,19 @@ struct has_ground_height<G, std::void_t<decltype(std::declval<const G&>().ground
 /// (`ground_height_near`, the optional row above).
 template <class G>
 inline constexpr bool has_ground_height_v = detail::has_ground_height<G>::value;
+
+namespace detail {
+template <class G, class = void>
+struct has_ceiling_height : std::false_type {};
+template <class G>
+struct has_ceiling_height<G, std::void_t<decltype(std::declval<const G&>().ceiling_height_near(0.0f, 0.0f, 0.0f))>>
+    : std::true_type {};
+}  // namespace detail
+
+/// True when ground policy G tells the ceiling's height over a place
+/// (`ceiling_height_near`, the optional row above).
+template <class G>
+inline constexpr bool has_ceiling_height_v = detail::has_ceiling_height<G>::value;
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 template <class G>

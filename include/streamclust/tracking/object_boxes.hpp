@@ -43,6 +43,9 @@ struct ObjectObservation {
   /// the footprint and ground_margin around (the box's bottom stands on that),
   /// else up to 4 m further (a far object beyond sparse ground).
   std::optional<float> ground_z;
+  /// [m] the ceiling over the object, when the ground policy knows it
+  /// (has_ceiling_height_v): over the footprint and ground_margin around.
+  std::optional<float> ceiling_z;
 };
 
 /// Settings of ObjectBoxes.
@@ -106,7 +109,8 @@ struct ObjectBoxParams {
 /// points, its in-window velocity, then its oriented box from its points
 /// (moved to the retrieval's time when the velocity is clear), standing on
 /// the ground the engine's ground policy sees under it (when the policy
-/// tells heights: has_ground_height_v).
+/// tells heights: has_ground_height_v), under the ceiling it sees over it
+/// (has_ceiling_height_v).
 ///
 /// \code
 ///   streamclust::tracking::ObjectBoxes boxes;
@@ -135,14 +139,18 @@ class ObjectBoxes {
   const std::vector<ObjectObservation>& update(const Engine& engine, const Clustering& result) {
     gather(engine, result);
     using Ground = typename Engine::ground_type;
+    GroundLookup lookup{&engine.ground()};
     if constexpr (has_ground_height_v<Ground>) {
-      const GroundLookup lookup{&engine.ground(), [](const void* g, float x, float y, float radius) {
-                                  return static_cast<const Ground*>(g)->ground_height_near(x, y, radius);
-                                }};
-      return fit(result, lookup);
-    } else {
-      return fit(result, GroundLookup{});
+      lookup.height_near = [](const void* g, float x, float y, float radius) {
+        return static_cast<const Ground*>(g)->ground_height_near(x, y, radius);
+      };
     }
+    if constexpr (has_ceiling_height_v<Ground>) {
+      lookup.ceiling_near = [](const void* g, float x, float y, float radius) {
+        return static_cast<const Ground*>(g)->ceiling_height_near(x, y, radius);
+      };
+    }
+    return fit(result, lookup);
   }
 
   /// The last update's objects.
@@ -198,14 +206,20 @@ class ObjectBoxes {
     }
   }
 
-  /// The ground policy's ground_height_near, type-erased (one call per box):
+  /// The ground policy's ground_height_near and ceiling_height_near,
+  /// type-erased (a call or two per box; null when the policy has none):
   /// the fit below is compiled once, not once per engine type.
   struct GroundLookup {
     const void* ground = nullptr;
     std::optional<float> (*height_near)(const void*, float, float, float) = nullptr;
+    std::optional<float> (*ceiling_near)(const void*, float, float, float) = nullptr;
     std::optional<float> operator()(float x, float y, float radius) const {
       if (!height_near) return std::nullopt;
       return height_near(ground, x, y, radius);
+    }
+    std::optional<float> ceiling(float x, float y, float radius) const {
+      if (!ceiling_near) return std::nullopt;
+      return ceiling_near(ground, x, y, radius);
     }
   };
 
@@ -272,6 +286,7 @@ class ObjectBoxes {
       const std::optional<float> ground = ground_near(mid.x(), mid.y(), reach);
       o.box = fit_oriented_box(xyz, ground, params_.fit, fit_scratch_);
       o.ground_z = ground ? ground : ground_near(mid.x(), mid.y(), reach + 4.0f);
+      o.ceiling_z = ground_near.ceiling(mid.x(), mid.y(), reach);
       observations_.push_back(o);
     }
     return observations_;

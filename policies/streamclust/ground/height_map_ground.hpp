@@ -230,27 +230,37 @@ class HeightMapGround {
   /// At most 25 lookups.
   std::optional<float> ground_height_near(float x, float y, float radius) const {
     if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6f || std::abs(y) > 1e6f) return std::nullopt;
-    const Key k = key_of(Eigen::Vector3f(x, y, 0.0f));
-    const auto rings = static_cast<std::int32_t>(std::ceil(std::clamp(radius, 0.0f, 10.0f) * inverse_cell_));
-    const std::int32_t stride = std::max<std::int32_t>(1, (2 * rings + 1 + 4) / 5);
-    double sum = 0.0;
-    int surfaces = 0;
-    for (std::int32_t iy = k.iy - rings; iy <= k.iy + rings; iy += stride) {
-      for (std::int32_t ix = k.ix - rings; ix <= k.ix + rings; ix += stride) {
-        const std::optional<float> layer = lowest_layer(ix, iy);
-        if (!layer || !solid_surface(ix, iy) || !holds_ground(ix, iy)) continue;
-        float ground = *layer;
-        if (has_sensor_ && params_.sensor_height > 0.0f) {
-          const float cx = (static_cast<float>(ix) + 0.5f) * params_.cell_size - sensor_.x();
-          const float cy = (static_cast<float>(iy) + 0.5f) * params_.cell_size - sensor_.y();
-          ground = bounded_from_sensor(ground, sensor_.z(), std::hypot(cx, cy));
-        }
-        sum += static_cast<double>(ground);
-        ++surfaces;
-      }
+    const std::optional<float> ground = mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
+      const std::optional<float> layer = lowest_layer(ix, iy);
+      if (!layer || !solid_surface(ix, iy) || !holds_ground(ix, iy)) return std::optional<float>{};
+      if (!has_sensor_ || params_.sensor_height <= 0.0f) return layer;
+      const float cx = (static_cast<float>(ix) + 0.5f) * params_.cell_size - sensor_.x();
+      const float cy = (static_cast<float>(iy) + 0.5f) * params_.cell_size - sensor_.y();
+      return std::optional<float>{bounded_from_sensor(*layer, sensor_.z(), std::hypot(cx, cy))};
+    });
+    return ground ? ground : blind_ground_near(x, y, radius);
+  }
+
+  /// The ceiling's height over (x, y) [m], for what reads the window after a
+  /// retrieval (a box that reaches it hangs from it or is a piece of it): the
+  /// mean of the highest layers the classification takes for ceiling
+  /// (is_ceiling: peaked, level with its neighbours), at least
+  /// `ceiling_clearance` above the last point's sensor, in the square of
+  /// cells within `radius` [m] of (x, y) (at most 10 m, sampled as
+  /// ground_height_near samples it); nullopt when none is, or without
+  /// `detect_ceiling`. At most 25 cells of 25 lookups each.
+  std::optional<float> ceiling_height_near(float x, float y, float radius) const {
+    if (!params_.detect_ceiling || !std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6f ||
+        std::abs(y) > 1e6f) {
+      return std::nullopt;
     }
-    if (surfaces == 0) return blind_ground_near(x, y, radius);
-    return static_cast<float>(sum / surfaces);
+    return mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
+      const std::optional<float> top = highest_layer(ix, iy);
+      if (!top || (has_sensor_ && *top < sensor_.z() + params_.ceiling_clearance) || !is_ceiling(Key{ix, iy}, *top)) {
+        return std::optional<float>{};
+      }
+      return top;
+    });
   }
 
   std::size_t heap_bytes() const { return cells_.heap_bytes() + walls_.heap_bytes(); }
@@ -275,6 +285,29 @@ class HeightMapGround {
     const float foot = sensor_z - params_.sensor_height;
     if (bound <= sensor_z + lowest_ray_slope_ * distance + params_.blind_margin) bound = std::min(bound, foot);
     return std::min(bound, foot + slope_ * distance);
+  }
+
+  /// The mean of `cell_height(ix, iy)` (a std::optional<float>) over the
+  /// cells it has a value for, in the square of cells within `radius` [m] of
+  /// (x, y) (at most 10 m) sampled on a grid of at most 5 x 5 of them;
+  /// nullopt when it has none. (x, y) finite. At most 25 calls.
+  template <class HeightOf>
+  std::optional<float> mean_over_cells(float x, float y, float radius, const HeightOf& cell_height) const {
+    const Key k = key_of(Eigen::Vector3f(x, y, 0.0f));
+    const auto rings = static_cast<std::int32_t>(std::ceil(std::clamp(radius, 0.0f, 10.0f) * inverse_cell_));
+    const std::int32_t stride = std::max<std::int32_t>(1, (2 * rings + 1 + 4) / 5);
+    double sum = 0.0;
+    int cells = 0;
+    for (std::int32_t iy = k.iy - rings; iy <= k.iy + rings; iy += stride) {
+      for (std::int32_t ix = k.ix - rings; ix <= k.ix + rings; ix += stride) {
+        const std::optional<float> height = cell_height(ix, iy);
+        if (!height) continue;
+        sum += static_cast<double>(*height);
+        ++cells;
+      }
+    }
+    if (cells == 0) return std::nullopt;
+    return static_cast<float>(sum / cells);
   }
 
   /// Where no surface is seen: the ground under the last point's sensor

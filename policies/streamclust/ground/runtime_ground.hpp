@@ -56,6 +56,11 @@ class RuntimeGround {
     if (!used_) return std::nullopt;
     return model_.ground_height_near(x, y, radius);
   }
+  /// HeightMapGround::ceiling_height_near when used, else nullopt.
+  std::optional<float> ceiling_height_near(float x, float y, float radius) const {
+    if (!used_) return std::nullopt;
+    return model_.ceiling_height_near(x, y, radius);
+  }
   std::size_t heap_bytes() const { return used_ ? model_.heap_bytes() : 0; }
   bool uses_height_map() const { return used_; }
 

@@ -53,13 +53,16 @@ namespace streamclust {
 /// are seen in it (its id, their points) and keep their predictions. An observation whose component id is a track's last one goes to that track
 /// when within its gate (`gate_distance` plus 3 standard deviations of the
 /// predicted position); the rest are paired by distance within the gates,
-/// nearest first (merges and splits renumber components; an object seen again
+/// nearest first, when their heights overlap or lie less than `gate_height`
+/// apart (merges and splits renumber components; an object seen again
 /// after an occlusion has a new id). An observation left over with at least
 /// `birth_points` points, shaped like an object (at most `birth_max_length`
 /// long and `birth_max_area` large, at least `birth_flatness` times as high as long, not a flat
 /// vertical patch narrower than `birth_min_width`), not floating more than `birth_clearance` above
 /// the ground under it (where unknown: above the lowest observation within
-/// `birth_neighbourhood`) and not centred in the box of a
+/// `birth_neighbourhood`), not reaching within `birth_ceiling_gap` of the
+/// ceiling over it unless shaped like a pillar (at least 1.5 m high and
+/// higher than long), and not centred in the box of a
 /// confirmed track seen in this update (grown by `group_margin`: a part of
 /// that object), starts a tentative track; `confirm_hits` hits confirm
 /// it. A track not seen coasts on its prediction: a tentative one is
@@ -94,6 +97,7 @@ class KalmanTracker {
  public:
   struct Params {
     float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
+    float gate_height = 0.5f;            ///< [m] an observation this far above or below a track's box is not paired with it by position, [0, 100]
     std::size_t birth_points = 30;       ///< points an observation needs to start a track, [1, 1000000]
     float birth_clearance = 1.0f;        ///< [m] an observation whose lowest point is this far above the ground under it starts no track, (0, 1000]
     float birth_neighbourhood = 3.0f;    ///< [m] where that ground is unknown, the lowest point of the observations centred this near stands for it, [0, 100]
@@ -101,6 +105,7 @@ class KalmanTracker {
     float birth_max_area = 30.0f;        ///< [m^2] nor one whose footprint is larger (a bus: 12 x 2.5 m; a wide crown: 5 x 5 m), (0, 1000000]
     float birth_flatness = 0.1f;         ///< an observation lower than this fraction of its length starts no track (a patch of ground or ceiling), [0, 1]
     float birth_min_width = 0.08f;       ///< [m] an observation narrower than this and over 2.5 times as long starts no track (a piece of wall seen flat), [0, 10]
+    float birth_ceiling_gap = 0.3f;      ///< [m] an observation whose top is this near the ceiling over it starts no track, unless shaped like a pillar, [0, 10]
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
@@ -115,6 +120,7 @@ class KalmanTracker {
     /// Throws std::invalid_argument naming the first setting out of range.
     void validate() const {
       check(gate_distance > 0.0f && gate_distance <= 100.0f, "gate_distance", gate_distance, "(0, 100] m");
+      check(gate_height >= 0.0f && gate_height <= 100.0f, "gate_height", gate_height, "[0, 100] m");
       check(birth_points >= 1 && birth_points <= 1000000, "birth_points", static_cast<double>(birth_points),
             "[1, 1000000]");
       check(birth_clearance > 0.0f && birth_clearance <= 1000.0f, "birth_clearance", birth_clearance, "(0, 1000] m");
@@ -125,6 +131,8 @@ class KalmanTracker {
       check(birth_max_area > 0.0f && birth_max_area <= 1e6f, "birth_max_area", birth_max_area, "(0, 1000000] m^2");
       check(birth_flatness >= 0.0f && birth_flatness <= 1.0f, "birth_flatness", birth_flatness, "[0, 1]");
       check(birth_min_width >= 0.0f && birth_min_width <= 10.0f, "birth_min_width", birth_min_width, "[0, 10] m");
+      check(birth_ceiling_gap >= 0.0f && birth_ceiling_gap <= 10.0f, "birth_ceiling_gap", birth_ceiling_gap,
+            "[0, 10] m");
       check(confirm_hits >= 1 && confirm_hits <= 1000, "confirm_hits", confirm_hits, "[1, 1000]");
       check(coast_seconds >= 0.0 && coast_seconds <= 100.0, "coast_seconds", coast_seconds, "[0, 100] s");
       check(tentative_coast_seconds >= 0.0 && tentative_coast_seconds <= 100.0, "tentative_coast_seconds",
@@ -180,7 +188,7 @@ class KalmanTracker {
     // Births, then misses and deletions.
     for (std::size_t o = 0; o < objects.size(); ++o) {
       if (taken_[o] || objects[o].box.points < params_.birth_points || structure_shaped(objects[o]) ||
-          floating(objects[o], objects) || part_of_track(objects[o])) {
+          floating(objects[o], objects) || at_ceiling(objects[o]) || part_of_track(objects[o])) {
         continue;
       }
       filters_.push_back(born(objects[o]));
@@ -216,6 +224,7 @@ class KalmanTracker {
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   static constexpr double kChi2Gate = 9.21;  // chi-square, 2 degrees of freedom, 99 %
   static constexpr float kPi = 3.14159265358979323846f;
+  static constexpr float kPillarHeight = 1.5f;  // [m] at_ceiling: the least height of a pillar
 
   struct Filter {
     tracking::Track track;
@@ -276,6 +285,19 @@ class KalmanTracker {
     return bottom - lowest > params_.birth_clearance;
   }
 
+  /// True when the top of `o` is within birth_ceiling_gap of the ceiling
+  /// over it (ObjectObservation::ceiling_z) and `o` is not shaped like a
+  /// pillar (at least kPillarHeight high and higher than long): a lamp, a
+  /// piece of ceiling the ground policy did not class as one, a wall up to
+  /// the ceiling. A pillar, or a person under a low ceiling, passes. O(1).
+  bool at_ceiling(const tracking::ObjectObservation& o) const {
+    if (!o.ceiling_z) return false;
+    const float top = o.box.center.z() + 0.5f * o.box.height;
+    if (top < *o.ceiling_z - params_.birth_ceiling_gap) return false;
+    const float length = std::max(o.box.length, o.box.width);
+    return o.box.height < kPillarHeight || o.box.height < length;
+  }
+
   /// True when the centre of `o` lies in the box of a confirmed track seen
   /// in this update, grown by group_margin: a part of a tracked object that
   /// its component lost (a side beyond a shadow, a limb, a trunk below its
@@ -308,6 +330,17 @@ class KalmanTracker {
   }
   double distance(const Filter& f, const tracking::ObjectObservation& o) const {
     return std::hypot(static_cast<double>(o.box.center.x()) - f.x(0), static_cast<double>(o.box.center.y()) - f.x(1));
+  }
+
+  /// True when the heights of `o`'s box and the filter's box (its smoothed
+  /// centre height and height) overlap or lie less than gate_height apart:
+  /// a patch of ceiling over a walker, or a lamp over a desk, is none of it.
+  bool level_with(const Filter& f, const tracking::ObjectObservation& o) const {
+    const float track_bottom = f.track.position.z() - 0.5f * f.track.height;
+    const float track_top = f.track.position.z() + 0.5f * f.track.height;
+    const float bottom = o.box.center.z() - 0.5f * o.box.height;
+    const float top = o.box.center.z() + 0.5f * o.box.height;
+    return bottom <= track_top + params_.gate_height && top >= track_bottom - params_.gate_height;
   }
 
   /// True when the box of `o`, grown by group_margin, holds the filter's
@@ -388,7 +421,7 @@ class KalmanTracker {
       for (std::size_t o = 0; o < objects.size(); ++o) {
         if (taken_[o]) continue;
         const double d = distance(filters_[i], objects[o]);
-        if (d <= gate(filters_[i])) pairs_.push_back(Pair{d, i, o});
+        if (d <= gate(filters_[i]) && level_with(filters_[i], objects[o])) pairs_.push_back(Pair{d, i, o});
       }
     }
     std::sort(pairs_.begin(), pairs_.end(), [](const Pair& a, const Pair& b) {
