@@ -305,6 +305,45 @@ TEST_CASE("window_velocity: the motion within one window from the points' captur
   CHECK_THROWS_AS(tr::window_velocity(brief.xyz, {}, params, scratch), std::invalid_argument);
 }
 
+TEST_CASE("window_velocity: a standing object going out of view is no clear motion; a moving one is") {
+  // A desk 1.6 m long along x, standing; the edge of the field of view
+  // sweeps over it at 1.5 m/s, so at time t only x >= 2.4 + 1.5 t shows.
+  // Its centroid moves; its far end does not.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> time(0.0, 0.5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, 0.02f);
+  std::vector<Eigen::Vector3f> xyz;
+  std::vector<double> t;
+  for (int i = 0; i < 2000; ++i) {
+    const double ti = time(rng);
+    const float edge = 2.4f + 1.5f * static_cast<float>(ti);
+    const float x = edge + (4.0f - edge) * unit(rng);
+    xyz.emplace_back(x + noise(rng), -1.5f + 0.8f * unit(rng), 0.75f + noise(rng));
+    t.push_back(10.0 + ti);
+  }
+  tr::WindowVelocityParams params;
+  tr::WindowVelocityScratch scratch;
+  const tr::WindowVelocity sweep = tr::window_velocity(xyz, t, params, scratch);
+  REQUIRE(sweep.valid);
+  CAPTURE(sweep.velocity.transpose());
+  CAPTURE(sweep.error);
+  CAPTURE(sweep.end_difference);
+  // The centroid follows the edge, tightly: by its error alone it would be motion.
+  CHECK(sweep.velocity.x() > 0.5f);
+  CHECK(sweep.velocity.norm() > 3.0f * sweep.error);
+  // Its near end moves at the edge's 1.5 m/s, its far end stands.
+  CHECK(sweep.end_difference == doctest::Approx(1.5f).epsilon(0.2));
+  CHECK(sweep.end_difference > sweep.velocity.norm());
+  // A box moving at 1.5 m/s, seen whole: both ends move with it.
+  const MovingBox m = moving_box(Eigen::Vector2f(1.5f, 0.0f), 0.5, 2000, rng);
+  const tr::WindowVelocity moving = tr::window_velocity(m.xyz, m.t, params, scratch);
+  REQUIRE(moving.valid);
+  CAPTURE(moving.end_difference);
+  CHECK(moving.velocity.norm() > 5.0f * moving.error);
+  CHECK(moving.end_difference < 0.3f);
+}
+
 TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its box undone of the motion, on the "
           "ground") {
   // Sensor 1 m above level ground, at rest (world = sensor frame, ground at

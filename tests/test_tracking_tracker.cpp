@@ -148,6 +148,29 @@ TEST_CASE("KalmanTracker: a static object with a wandering centre is reported st
   CHECK(still >= cycles * 95 / 100);
 }
 
+TEST_CASE("KalmanTracker: a desk going out of view, its centre and window velocity following the view's edge, "
+          "stays static") {
+  // The edge of the field of view sweeps over a standing desk at 1.2 m/s:
+  // what shows of it, and its centre, move along x at 0.6 m/s, a tight
+  // window velocity; its far end stands (the ends differ by 1.2 m/s).
+  // The same observations with ends that agree are a mover.
+  for (const bool ends_agree : {false, true}) {
+    sc::KalmanTracker tracker;
+    bool moved = false;
+    for (int c = 0; c < 20; ++c) {
+      const double t = c * kCycle;
+      const Eigen::Vector2f centre(3.0f + 0.6f * static_cast<float>(t), -1.5f);
+      tr::ObjectObservation o = observed(7, centre, {0.6f, 0.0f}, 0.08f, t);
+      o.velocity.end_difference = ends_agree ? 0.1f : 1.2f;
+      const auto& tracks = tracker.update({o}, t);
+      REQUIRE(tracks.size() == 1);
+      moved = moved || tracks.front().moving;
+    }
+    CAPTURE(ends_agree);
+    CHECK(moved == ends_agree);
+  }
+}
+
 TEST_CASE("KalmanTracker: new component ids, a merge and an occlusion keep each object's track") {
   sc::KalmanTracker tracker;
   // A moves along +x past B, 2.5 m beside it; for 0.5 s they are one

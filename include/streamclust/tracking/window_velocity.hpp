@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ struct WindowVelocity {
   Eigen::Vector2f velocity = Eigen::Vector2f::Zero();  ///< [m/s] in the ground plane
   float error = 0.0f;  ///< [m/s] standard error of each component (at least min_error)
   std::size_t slices = 0;  ///< time slices fitted
+  /// [m/s] the difference between the velocities of the object's two ends
+  /// along `velocity` (each end the slices' extreme points, fitted as the
+  /// centroids are): near zero for a moving object, about the speed for a
+  /// standing one whose visible part shrinks or grows
+  float end_difference = 0.0f;
 };
 
 /// Scratch storage of window_velocity, reused between calls.
@@ -55,6 +61,8 @@ struct WindowVelocityScratch {
   struct Slice {
     double sum_x = 0.0, sum_y = 0.0, sum_t = 0.0;
     std::size_t n = 0;
+    double lo = std::numeric_limits<double>::infinity();  ///< [m] the slice's ends along the motion
+    double hi = -std::numeric_limits<double>::infinity();
   };
   std::vector<Slice> slices;
 };
@@ -66,7 +74,13 @@ struct WindowVelocityScratch {
 /// centroids (weighted by their points) gives the velocity. Its standard
 /// error comes from the residuals (at least `min_error`: different parts of
 /// an object show in different slices, a bias the residuals of a few slices
-/// understate). O(n + slices). Thread safety: none on `scratch`.
+/// understate). The velocities of the slices' two ends along that motion,
+/// fitted the same way, tell motion from a change of view
+/// (WindowVelocity::end_difference): a moving object moves both ends; a
+/// standing one whose visible part shrinks or grows (the field of view's
+/// edge sweeping over it while the sensor turns, an occluder passing) moves
+/// one end and its centroid, not the other. O(n + slices). Thread safety:
+/// none on `scratch`.
 inline WindowVelocity window_velocity(const std::vector<Eigen::Vector3f>& xyz, const std::vector<double>& t,
                                       const WindowVelocityParams& params, WindowVelocityScratch& scratch) {
   WindowVelocity out;
@@ -123,9 +137,33 @@ inline WindowVelocity window_velocity(const std::vector<Eigen::Vector3f>& xyz, c
   // per degree of freedom (used - 2), per component (x and y pooled).
   const double sigma2 = residual / (2.0 * static_cast<double>(used - 2));
   const double error = std::sqrt(sigma2 / stt);
+  // The two ends: the slopes of the slices' extremes along the motion.
+  double end_difference = 0.0;
+  const double speed = std::hypot(vx, vy);
+  if (speed > 0.0) {
+    const double ux = vx / speed, uy = vy / speed;
+    for (std::size_t i = 0; i < xyz.size(); ++i) {
+      const auto k = std::min(count - 1, static_cast<std::size_t>((t[i] - t0) / params.slice_seconds));
+      WindowVelocityScratch::Slice& s = scratch.slices[k];
+      const double along = ux * static_cast<double>(xyz[i].x() - origin.x()) +
+                           uy * static_cast<double>(xyz[i].y() - origin.y());
+      s.lo = std::min(s.lo, along);
+      s.hi = std::max(s.hi, along);
+    }
+    double slo = 0.0, shi = 0.0;  // sum of n dt end: the slope times stt (sum of n dt is 0)
+    for (const auto& s : scratch.slices) {
+      if (s.n < params.slice_points) continue;
+      const double n = static_cast<double>(s.n);
+      const double dt = s.sum_t / n - t_mean;
+      slo += n * dt * s.lo;
+      shi += n * dt * s.hi;
+    }
+    end_difference = std::fabs(shi - slo) / stt;
+  }
   out.valid = true;
   out.velocity = Eigen::Vector2f(static_cast<float>(vx), static_cast<float>(vy));
   out.error = std::max(static_cast<float>(error), params.min_error);
+  out.end_difference = static_cast<float>(end_difference);
   out.slices = used;
   return out;
 }

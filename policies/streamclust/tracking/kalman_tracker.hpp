@@ -75,7 +75,9 @@ namespace streamclust {
 ///
 /// Moving or static: a track moves when its speed is at least
 /// `moving_speed` and three standard deviations and its smoothed window
-/// velocity (the points' own motion) at least half `moving_speed` (no
+/// velocity (the points' own motion; one within three standard errors of
+/// zero, or, while static, whose object's ends differ in velocity by more
+/// than its speed, counts as zero) at least half `moving_speed` (no
 /// window velocity yet: static); it is
 /// static again below half `moving_speed`, or a quarter for the window
 /// velocity. A static track reports zero velocity (a parked car's
@@ -320,6 +322,18 @@ class KalmanTracker {
     return speed >= 2.0f * params_.moving_speed && speed >= 5.0f * o.velocity.error;
   }
 
+  /// What a window velocity adds to the smoothed one that decides moving or
+  /// static: itself, or zero when it is within three standard errors of
+  /// zero or, for a track not moving, its object's two ends differ in
+  /// velocity by more than its speed (a standing object whose visible part
+  /// shrinks moves one end, and its centroid with it; a mover going out of
+  /// view moves the other, and stays a mover).
+  static Eigen::Vector2f motion_sample(const tracking::WindowVelocity& v, bool moving) {
+    const float speed = v.velocity.norm();
+    const bool ends_agree = moving || v.end_difference <= speed;
+    return speed >= 3.0f * v.error && ends_agree ? v.velocity : Eigen::Vector2f::Zero();
+  }
+
   float position_sigma(const tracking::ObjectObservation& o) const {
     return o.box.quality == tracking::BoxQuality::two_sides ? params_.position_noise : params_.partial_position_noise;
   }
@@ -466,10 +480,10 @@ class KalmanTracker {
     if (o.velocity.valid) {
       const double rv = static_cast<double>(o.velocity.error) * o.velocity.error * overlap;
       update_pair<2>(f, o.velocity.velocity.cast<double>(), rv, true);
+      const Eigen::Vector2f sample = motion_sample(o.velocity, f.track.moving);
       f.window_velocity = f.has_window_velocity
-                              ? Eigen::Vector2f(f.window_velocity + params_.extent_smoothing *
-                                                                        (o.velocity.velocity - f.window_velocity))
-                              : o.velocity.velocity;
+                              ? Eigen::Vector2f(f.window_velocity + params_.extent_smoothing * (sample - f.window_velocity))
+                              : sample;
       f.has_window_velocity = true;
     }
     smooth_box(f, o, false);
@@ -521,7 +535,7 @@ class KalmanTracker {
       f.x.template tail<2>() = o.velocity.velocity.cast<double>();
       f.p(2, 2) = f.p(3, 3) = se * se;
     }
-    if (o.velocity.valid) f.window_velocity = o.velocity.velocity;
+    if (o.velocity.valid) f.window_velocity = motion_sample(o.velocity, shows_motion(o));
     f.has_window_velocity = o.velocity.valid;
     smooth_box(f, o, true);
     f.seen = true;
