@@ -692,7 +692,8 @@ TEST_CASE("HeightMapGround with surface evidence: a far object with its foot out
   CHECK(shown_on.box_as_ground < 0.1);  // its bottom 0.1 m of 1.6 at most
 }
 
-TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not; ceiling_height_near finds the first") {
+TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is not; "
+          "ceiling_height_near finds the first") {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   sc::HeightMapGround ceiling_model;

@@ -99,7 +99,7 @@ class KalmanTracker {
  public:
   struct Params {
     float gate_distance = 1.5f;          ///< [m] association distance beyond the prediction's uncertainty, (0, 100]
-    float gate_height = 0.5f;            ///< [m] an observation this far above or below a track's box is not paired with it by position, [0, 100]
+    float gate_height = 0.5f;            ///< [m] farther above or below a track's box: not paired by position, [0, 100]
     std::size_t birth_points = 30;       ///< points an observation needs to start a track, [1, 1000000]
     float birth_clearance = 1.0f;        ///< [m] an observation whose lowest point is this far above the ground under it starts no track, (0, 1000]
     float birth_neighbourhood = 3.0f;    ///< [m] where that ground is unknown, the lowest point of the observations centred this near stands for it, [0, 100]
@@ -107,7 +107,7 @@ class KalmanTracker {
     float birth_max_area = 30.0f;        ///< [m^2] nor one whose footprint is larger (a bus: 12 x 2.5 m; a wide crown: 5 x 5 m), (0, 1000000]
     float birth_flatness = 0.1f;         ///< an observation lower than this fraction of its length starts no track (a patch of ground or ceiling), [0, 1]
     float birth_min_width = 0.08f;       ///< [m] an observation narrower than this and over 2.5 times as long starts no track (a piece of wall seen flat), [0, 10]
-    float birth_ceiling_gap = 0.3f;      ///< [m] an observation whose top is this near the ceiling over it starts no track, unless shaped like a pillar, [0, 10]
+    float birth_ceiling_gap = 0.3f;      ///< [m] a top this near the ceiling starts no track (but a pillar's), [0, 10]
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
@@ -481,9 +481,9 @@ class KalmanTracker {
       const double rv = static_cast<double>(o.velocity.error) * o.velocity.error * overlap;
       update_pair<2>(f, o.velocity.velocity.cast<double>(), rv, true);
       const Eigen::Vector2f sample = motion_sample(o.velocity, f.track.moving);
-      f.window_velocity = f.has_window_velocity
-                              ? Eigen::Vector2f(f.window_velocity + params_.extent_smoothing * (sample - f.window_velocity))
-                              : sample;
+      const float a = params_.extent_smoothing;
+      f.window_velocity = f.has_window_velocity ? Eigen::Vector2f(f.window_velocity + a * (sample - f.window_velocity))
+                                                : sample;
       f.has_window_velocity = true;
     }
     smooth_box(f, o, false);
