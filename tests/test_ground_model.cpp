@@ -715,6 +715,17 @@ TEST_CASE("HeightMapGround: a flat ceiling overhead is ceiling, a tree crown is 
     REQUIRE(over);
     CHECK(*over == doctest::Approx(1.8f).epsilon(0.03));
   }
+  // Over a wide square (its layers looked up cell by cell, not tabled), and
+  // at its edge, where the cells beyond hold nothing.
+  for (const float radius : {4.0f, 9.0f}) {
+    const std::optional<float> wide = ceiling_model.ceiling_height_near(0.0f, 0.0f, radius);
+    INFO("radius " << radius);
+    REQUIRE(wide);
+    CHECK(*wide == doctest::Approx(1.8f).epsilon(0.03));
+  }
+  const std::optional<float> edge = ceiling_model.ceiling_height_near(4.9f, 0.0f, 0.5f);
+  REQUIRE(edge);
+  CHECK(*edge == doctest::Approx(1.8f).epsilon(0.03));
   CHECK_FALSE(ceiling_model.ceiling_height_near(20.0f, 0.0f, 1.0f));
   sc::HeightMapGround::Params without;
   without.detect_ceiling = false;

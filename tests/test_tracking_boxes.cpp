@@ -417,6 +417,75 @@ TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its b
   CHECK_THROWS_AS(boxes.update(engine, stale), std::logic_error);
 }
 
+TEST_CASE("ObjectBoxes: a standing object's ground is looked up again after lookup_reuse_seconds") {
+  // Sensor 1 m above level ground, at rest; a 1 x 1 x 1.5 m box standing
+  // 16 m out, where the ground stays unknown until its returns (9-14.5 m out,
+  // apart from the box) begin at 1 s. Three ObjectBoxes read the same retrievals: one looks the
+  // ground up at every retrieval, one reuses a lookup for 0.5 s, one for 10 s.
+  sc::ObjectsSetup setup;
+  setup.sensor_height = 1.0f;
+  sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> ground_r(9.0f, 14.5f), ground_a(-kPi, kPi);
+  std::uniform_int_distribution<int> side(0, 1);
+  const Rect box{Eigen::Vector2f(16.0f, 1.0f), 1.0f, 1.0f, 0.3f};
+  tr::ObjectBoxParams fresh_params, reuse_params, long_params;
+  fresh_params.lookup_reuse_seconds = 0.0;
+  long_params.lookup_reuse_seconds = 10.0;
+  tr::ObjectBoxes fresh(fresh_params), reuse(reuse_params), stale(long_params);
+  auto ground_of_box = [&](const std::vector<tr::ObjectObservation>& objects) {
+    for (const auto& o : objects) {
+      if ((o.box.center.head<2>() - box.centre).norm() < 0.5f) return std::optional<std::optional<float>>{o.ground_z};
+    }
+    return std::optional<std::optional<float>>{};
+  };
+  const double rate = 100000.0;  // points per second
+  double next_retrieval = 0.55, fresh_found = -1.0, reuse_found = -1.0;
+  int compared = 0;
+  for (int i = 0; i < 250000; ++i) {
+    const double t = static_cast<double>(i) / rate;
+    sc::Point p;
+    p.t = t;
+    if (i % 4 == 0 || t < 1.0) {
+      const auto q = points_on_sides(box, {side(rng) == 0 ? 0 : 2}, 1, -1.0f, 1.5f, 0.01f, rng);
+      p.x = q.front().x();
+      p.y = q.front().y();
+      p.z = q.front().z();
+    } else {
+      const float rr = ground_r(rng), a = ground_a(rng);
+      p.x = rr * std::cos(a);
+      p.y = rr * std::sin(a);
+      p.z = -1.0f;
+    }
+    engine.insert(p);
+    if (t < next_retrieval) continue;
+    next_retrieval += 0.05;
+    const sc::Clustering& result = engine.retrieve();
+    const auto a = ground_of_box(fresh.update(engine, result));
+    const auto b = ground_of_box(reuse.update(engine, result));
+    const auto c = ground_of_box(stale.update(engine, result));
+    REQUIRE(a);
+    REQUIRE(b);
+    REQUIRE(c);
+    CAPTURE(result.time);
+    if (result.time < 1.0) {
+      CHECK_FALSE(*a);  // no ground in view yet
+      CHECK_FALSE(*b);
+    }
+    if (*a && fresh_found < 0.0) fresh_found = result.time;
+    if (*b && reuse_found < 0.0) reuse_found = result.time;
+    CHECK_FALSE(*c);  // looked up once, before the ground came, and never again
+    if (*a && *b) {
+      CHECK(**b == doctest::Approx(**a).epsilon(0.05));
+      ++compared;
+    }
+  }
+  REQUIRE(fresh_found > 0.0);
+  REQUIRE(reuse_found >= fresh_found);
+  CHECK(reuse_found - fresh_found <= 0.5 + 1e-6);
+  CHECK(compared >= 10);
+}
+
 TEST_CASE("ObjectBoxes: a fast mover seen in pieces one after another is one object with its velocity") {
   // A 1.0 x 0.6 x 1.5 m box at 15 m/s, 20 m out, seen only in bursts of
   // 0.1 s every 0.25 s (a scan pattern coming back to it): each burst is a

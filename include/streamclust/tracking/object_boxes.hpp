@@ -58,6 +58,13 @@ struct ObjectBoxParams {
   /// walker's 0.5 s window is 0.75 m long otherwise), [0, 100]
   float compensate_speed = 0.3f;
   float ground_margin = 0.5f;  ///< [m] the ground is looked up this far around the footprint, [0, 10]
+  /// The ground and ceiling a component's box was last looked up with are
+  /// used again, for at most `lookup_reuse_seconds` after that lookup, while
+  /// its footprint's centre and half side each stay within
+  /// `lookup_reuse_shift` of the looked up ones: a standing object is looked
+  /// up about once every 0.5 s, not at every retrieval. 0 s: at every one.
+  double lookup_reuse_seconds = 0.5;  ///< [s] [0, 10]
+  float lookup_reuse_shift = 0.25f;   ///< [m] [0, 10]
   /// Linking the pieces of a fast mover (a car passing at 10 m/s breaks
   /// into components that each cover 0.1-0.2 s of its path): two components
   /// without a window velocity of their own, seen one after the other (time
@@ -91,6 +98,10 @@ struct ObjectBoxParams {
     check(compensate_speed >= 0.0f && compensate_speed <= 100.0f, "compensate_speed", compensate_speed,
           "[0, 100] m/s");
     check(ground_margin >= 0.0f && ground_margin <= 10.0f, "ground_margin", ground_margin, "[0, 10] m");
+    check(lookup_reuse_seconds >= 0.0 && lookup_reuse_seconds <= 10.0, "lookup_reuse_seconds", lookup_reuse_seconds,
+          "[0, 10] s");
+    check(lookup_reuse_shift >= 0.0f && lookup_reuse_shift <= 10.0f, "lookup_reuse_shift", lookup_reuse_shift,
+          "[0, 10] m");
     check(piece_min_speed > 0.0f && piece_min_speed <= 100.0f, "piece_min_speed", piece_min_speed, "(0, 100] m/s");
     check(piece_max_speed >= piece_min_speed && piece_max_speed <= 100.0f, "piece_max_speed", piece_max_speed,
           "[piece_min_speed, 100] m/s");
@@ -223,6 +234,42 @@ class ObjectBoxes {
     }
   };
 
+  /// The ground and ceiling around a component's footprint, as last looked
+  /// up (lookup_reuse_seconds).
+  struct FootprintLookup {
+    ComponentId id = kNoComponent;
+    Eigen::Vector2f mid = Eigen::Vector2f::Zero();  ///< [m] the footprint's centre
+    float reach = 0.0f;                             ///< [m] half its larger side plus ground_margin
+    double time = 0.0;                              ///< [s] the retrieval it was looked up at
+    std::optional<float> ground, ground_z, ceiling_z;
+  };
+
+  /// The lookups of component `id` with footprint centre `mid` and `reach`
+  /// at `time`: last update's when they may be used again, else new ones.
+  /// `reused_` walks last update's lookups, sorted by id; ids must come in
+  /// increasing order within an update. Amortized O(1) plus the lookups.
+  FootprintLookup look_up(ComponentId id, const Eigen::Vector2f& mid, float reach, double time,
+                          const GroundLookup& ground_near) {
+    while (reused_ < last_lookups_.size() && last_lookups_[reused_].id < id) ++reused_;
+    if (reused_ < last_lookups_.size()) {
+      const FootprintLookup& last = last_lookups_[reused_];
+      const float shift = params_.lookup_reuse_shift;
+      if (last.id == id && time >= last.time && time - last.time < params_.lookup_reuse_seconds &&
+          (last.mid - mid).norm() <= shift && std::fabs(last.reach - reach) <= shift) {
+        return last;
+      }
+    }
+    FootprintLookup fresh;
+    fresh.id = id;
+    fresh.mid = mid;
+    fresh.reach = reach;
+    fresh.time = time;
+    fresh.ground = ground_near(mid.x(), mid.y(), reach);
+    fresh.ground_z = fresh.ground ? fresh.ground : ground_near(mid.x(), mid.y(), reach + 4.0f);
+    fresh.ceiling_z = ground_near.ceiling(mid.x(), mid.y(), reach);
+    return fresh;
+  }
+
   /// What the linking of pieces reads of a gathered component.
   struct SlotSummary {
     double t_min = 0.0, t_max = 0.0, t_mean = 0.0;  ///< [s] capture times
@@ -246,6 +293,8 @@ class ObjectBoxes {
     summaries_.resize(slots);
     for (std::size_t slot = 0; slot < slots; ++slot) summarize(slot);
     link(slots, ground_near);
+    reused_ = 0;
+    lookups_.clear();
     for (std::size_t slot = 0; slot < slots; ++slot) {
       if (group_of_[slot] != slot) continue;  // a piece of an object emitted at its largest piece
       const ComponentSummary& c = result.components[slot_component_[slot]];
@@ -283,12 +332,14 @@ class ObjectBoxes {
       }
       const Eigen::Vector2f mid = 0.5f * (lo + hi);
       const float reach = 0.5f * (hi - lo).maxCoeff() + params_.ground_margin;
-      const std::optional<float> ground = ground_near(mid.x(), mid.y(), reach);
-      o.box = fit_oriented_box(xyz, ground, params_.fit, fit_scratch_);
-      o.ground_z = ground ? ground : ground_near(mid.x(), mid.y(), reach + 4.0f);
-      o.ceiling_z = ground_near.ceiling(mid.x(), mid.y(), reach);
+      lookups_.push_back(look_up(o.id, mid, reach, result.time, ground_near));
+      const FootprintLookup& around = lookups_.back();
+      o.box = fit_oriented_box(xyz, around.ground, params_.fit, fit_scratch_);
+      o.ground_z = around.ground_z;
+      o.ceiling_z = around.ceiling_z;
       observations_.push_back(o);
     }
+    lookups_.swap(last_lookups_);
     return observations_;
   }
 
@@ -460,6 +511,9 @@ class ObjectBoxes {
   std::vector<double> group_times_;
   BoxFitScratch fit_scratch_;
   WindowVelocityScratch velocity_scratch_;
+  std::vector<FootprintLookup> lookups_;       // this update's, by id
+  std::vector<FootprintLookup> last_lookups_;  // the last update's, by id
+  std::size_t reused_ = 0;                     // look_up's place in last_lookups_
 };
 
 }  // namespace tracking

@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -248,18 +249,43 @@ class HeightMapGround {
   /// `ceiling_clearance` above the last point's sensor, in the square of
   /// cells within `radius` [m] of (x, y) (at most 10 m, sampled as
   /// ground_height_near samples it); nullopt when none is, or without
-  /// `detect_ceiling`. At most 25 cells of 25 lookups each.
+  /// `detect_ceiling`. Each cell's highest layer is looked up once, when
+  /// first needed, into a table on the stack while the square and the two
+  /// rings around it are at most kTopsSide cells wide (within 3 m on 0.5 m
+  /// cells); a wider one takes at most 25 cells of 26 lookups each.
   std::optional<float> ceiling_height_near(float x, float y, float radius) const {
     if (!params_.detect_ceiling || !std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6f ||
         std::abs(y) > 1e6f) {
       return std::nullopt;
     }
-    return mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
-      const std::optional<float> top = highest_layer(ix, iy);
-      if (!top || (has_sensor_ && *top < sensor_.z() + params_.ceiling_clearance) || !is_ceiling(Key{ix, iy}, *top)) {
+    auto ceiling_top = [&](Key k, const auto& top_at) {
+      const std::optional<float> top = top_at(0, 0);
+      if (!top || (has_sensor_ && *top < sensor_.z() + params_.ceiling_clearance) ||
+          !ceiling_shaped(k, *top, top_at)) {
         return std::optional<float>{};
       }
       return top;
+    };
+    const Key centre = key_of(Eigen::Vector3f(x, y, 0.0f));
+    const std::int32_t reach = rings_within(radius) + 2;
+    const std::int32_t side = 2 * reach + 1;
+    if (side > kTopsSide) {
+      return mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
+        return ceiling_top(Key{ix, iy}, [&](std::int32_t dx, std::int32_t dy) { return highest_layer(ix + dx, iy + dy); });
+      });
+    }
+    // NaN: not looked up yet; -infinity: the cell has no layer.
+    constexpr float kUnread = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kNone = -std::numeric_limits<float>::infinity();
+    std::array<float, static_cast<std::size_t>(kTopsSide * kTopsSide)> tops;
+    std::fill_n(tops.begin(), side * side, kUnread);
+    return mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
+      return ceiling_top(Key{ix, iy}, [&](std::int32_t dx, std::int32_t dy) {
+        const std::int32_t i = ix + dx - centre.ix + reach, j = iy + dy - centre.iy + reach;
+        float& top = tops[static_cast<std::size_t>(j * side + i)];
+        if (std::isnan(top)) top = highest_layer(ix + dx, iy + dy).value_or(kNone);
+        return top == kNone ? std::optional<float>{} : std::optional<float>{top};
+      });
     });
   }
 
@@ -287,6 +313,11 @@ class HeightMapGround {
     return std::min(bound, foot + slope_ * distance);
   }
 
+  /// Rings of cells within `radius` [m] (clamped to [0, 10] m). O(1).
+  std::int32_t rings_within(float radius) const {
+    return static_cast<std::int32_t>(std::ceil(std::clamp(radius, 0.0f, 10.0f) * inverse_cell_));
+  }
+
   /// The mean of `cell_height(ix, iy)` (a std::optional<float>) over the
   /// cells it has a value for, in the square of cells within `radius` [m] of
   /// (x, y) (at most 10 m) sampled on a grid of at most 5 x 5 of them;
@@ -294,7 +325,7 @@ class HeightMapGround {
   template <class HeightOf>
   std::optional<float> mean_over_cells(float x, float y, float radius, const HeightOf& cell_height) const {
     const Key k = key_of(Eigen::Vector3f(x, y, 0.0f));
-    const auto rings = static_cast<std::int32_t>(std::ceil(std::clamp(radius, 0.0f, 10.0f) * inverse_cell_));
+    const std::int32_t rings = rings_within(radius);
     const std::int32_t stride = std::max<std::int32_t>(1, (2 * rings + 1 + 4) / 5);
     double sum = 0.0;
     int cells = 0;
@@ -587,6 +618,15 @@ class HeightMapGround {
   bool is_ceiling(Key k, float z) const {
     const std::optional<float> top = highest_layer(k.ix, k.iy);
     if (!top || z < *top - params_.ceiling_tolerance) return false;
+    return ceiling_shaped(k, *top, [&](std::int32_t dx, std::int32_t dy) { return highest_layer(k.ix + dx, k.iy + dy); });
+  }
+
+  /// True when cell k's highest layer, at `top` [m], is shaped like a
+  /// ceiling: peaked, and level with ceiling_min_agreement of the 24 cells
+  /// within two rings, whose highest layers `top_at(dx, dy)` gives. At most
+  /// 24 calls of top_at.
+  template <class TopAt>
+  bool ceiling_shaped(Key k, float top, const TopAt& top_at) const {
     // A surface seen from below piles its points into its bins; the top of a
     // tall object's side does not (its points spread evenly over heights).
     const HeightColumn& column = cells_[cells_.find(k.ix, k.iy)].heights;
@@ -601,8 +641,8 @@ class HeightMapGround {
       for (std::int32_t dx = -2; dx <= 2; ++dx) {
         if (dx == 0 && dy == 0) continue;
         --left;
-        const std::optional<float> other = highest_layer(k.ix + dx, k.iy + dy);
-        if (other && std::fabs(*other - *top) <= params_.ceiling_flatness) ++agreeing;
+        const std::optional<float> other = top_at(dx, dy);
+        if (other && std::fabs(*other - top) <= params_.ceiling_flatness) ++agreeing;
         if (static_cast<float>(agreeing) >= needed) return true;
         if (static_cast<float>(agreeing + left) < needed) return false;
       }
@@ -612,6 +652,9 @@ class HeightMapGround {
 
   /// Bins below a ceiling layer its peak is compared with.
   static constexpr std::int32_t kPeakSpan = 10;
+  /// Side of the largest square of highest layers ceiling_height_near
+  /// reads into a table on the stack (cells).
+  static constexpr std::int32_t kTopsSide = 17;
 
   /// A cell's heights and how many of its points were classed ground.
   struct Cell {
