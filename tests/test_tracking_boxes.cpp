@@ -83,6 +83,28 @@ std::vector<Eigen::Vector3f> points_on_sides(const Rect& r, const std::vector<in
 
 /// The tightest box of `pts` at the rectangle's own heading: what a perfect
 /// heading gives (the sides' sampled ends fall short of the corners).
+/// A point captured at `t`: on side `side` of `r` (`bottom` to 1.5 m above
+/// it) when `r` is given, else on level ground (z = -1 m) at a range drawn
+/// from `ground_range` [m] in any direction.
+sc::Point side_or_ground(double t, const Rect* r, int side, float bottom,
+                         std::uniform_real_distribution<float>& ground_range, std::mt19937& rng) {
+  sc::Point p;
+  p.t = t;
+  if (r != nullptr) {
+    const Eigen::Vector3f q = points_on_sides(*r, {side}, 1, bottom, 1.5f, 0.01f, rng).front();
+    p.x = q.x();
+    p.y = q.y();
+    p.z = q.z();
+  } else {
+    std::uniform_real_distribution<float> direction(-kPi, kPi);
+    const float range = ground_range(rng), a = direction(rng);
+    p.x = range * std::cos(a);
+    p.y = range * std::sin(a);
+    p.z = -1.0f;
+  }
+  return p;
+}
+
 Rect tight_at_heading(const std::vector<Eigen::Vector3f>& pts, const Rect& r) {
   const float c = std::cos(r.yaw), s = std::sin(r.yaw);
   float lo1 = 1e9f, hi1 = -1e9f, lo2 = 1e9f, hi2 = -1e9f;
@@ -353,7 +375,7 @@ TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its b
   setup.sensor_height = 1.0f;
   sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
   std::mt19937 rng(23);
-  std::uniform_real_distribution<float> ground_r(9.0f, 20.0f), ground_a(-kPi, kPi);
+  std::uniform_real_distribution<float> ground_r(9.0f, 20.0f);
   std::uniform_int_distribution<int> side(0, 1);
   const Eigen::Vector2f start(12.0f, -2.0f), v(0.0f, 1.2f);
   constexpr float kYaw = 0.4f;
@@ -363,21 +385,9 @@ TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its b
   double next_retrieval = 0.55;
   for (int i = 0; i < 120000; ++i) {
     const double t = static_cast<double>(i) / rate;
-    sc::Point p;
-    p.t = t;
-    if (i % 4 == 0) {  // the box's two sides facing the sensor
-      const Rect r{start + v * static_cast<float>(t), 1.8f, 0.8f, kYaw};
-      const auto q = points_on_sides(r, {side(rng) == 0 ? 0 : 2}, 1, -0.8f, 1.5f, 0.01f, rng);
-      p.x = q.front().x();
-      p.y = q.front().y();
-      p.z = q.front().z();
-    } else {
-      const float rr = ground_r(rng), a = ground_a(rng);
-      p.x = rr * std::cos(a);
-      p.y = rr * std::sin(a);
-      p.z = -1.0f;
-    }
-    engine.insert(p);
+    const Rect r{start + v * static_cast<float>(t), 1.8f, 0.8f, kYaw};
+    const bool on_box = i % 4 == 0;  // the box's two sides facing the sensor
+    engine.insert(side_or_ground(t, on_box ? &r : nullptr, on_box && side(rng) == 0 ? 0 : 2, -0.8f, ground_r, rng));
     if (i == 20000) {  // 0.2 s: the engine still calibrates; its result holds no point
       REQUIRE(engine.calibrating());
       CHECK(boxes.update(engine, engine.retrieve()).empty());
@@ -426,7 +436,7 @@ TEST_CASE("ObjectBoxes: a standing object's ground is looked up again after look
   setup.sensor_height = 1.0f;
   sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
   std::mt19937 rng(31);
-  std::uniform_real_distribution<float> ground_r(9.0f, 14.5f), ground_a(-kPi, kPi);
+  std::uniform_real_distribution<float> ground_r(9.0f, 14.5f);
   std::uniform_int_distribution<int> side(0, 1);
   const Rect box{Eigen::Vector2f(16.0f, 1.0f), 1.0f, 1.0f, 0.3f};
   tr::ObjectBoxParams fresh_params, reuse_params, long_params;
@@ -444,20 +454,8 @@ TEST_CASE("ObjectBoxes: a standing object's ground is looked up again after look
   int compared = 0;
   for (int i = 0; i < 250000; ++i) {
     const double t = static_cast<double>(i) / rate;
-    sc::Point p;
-    p.t = t;
-    if (i % 4 == 0 || t < 1.0) {
-      const auto q = points_on_sides(box, {side(rng) == 0 ? 0 : 2}, 1, -1.0f, 1.5f, 0.01f, rng);
-      p.x = q.front().x();
-      p.y = q.front().y();
-      p.z = q.front().z();
-    } else {
-      const float rr = ground_r(rng), a = ground_a(rng);
-      p.x = rr * std::cos(a);
-      p.y = rr * std::sin(a);
-      p.z = -1.0f;
-    }
-    engine.insert(p);
+    const bool on_box = i % 4 == 0 || t < 1.0;
+    engine.insert(side_or_ground(t, on_box ? &box : nullptr, on_box && side(rng) == 0 ? 0 : 2, -1.0f, ground_r, rng));
     if (t < next_retrieval) continue;
     next_retrieval += 0.05;
     const sc::Clustering& result = engine.retrieve();
@@ -508,29 +506,16 @@ TEST_CASE("ObjectBoxes: a fast mover seen in pieces one after another is one obj
     sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
     tr::ObjectBoxes boxes(params);
     std::mt19937 rng(29);
-    std::uniform_real_distribution<float> ground_r(9.0f, 30.0f), ground_a(-kPi, kPi);
+    std::uniform_real_distribution<float> ground_r(9.0f, 30.0f);
     std::uniform_int_distribution<int> side(0, 1);
     const double rate = 100000.0;
     double next_retrieval = 0.6;
     Outcome out;
     for (int i = 0; i < 120000; ++i) {
       const double t = static_cast<double>(i) / rate;
-      sc::Point p;
-      p.t = t;
-      const bool burst = std::fmod(t, 0.25) < 0.1;
-      if (burst && i % 4 == 0) {
-        const Rect r{start + v * static_cast<float>(t), 1.0f, 0.6f, kYaw};
-        const auto q = points_on_sides(r, {side(rng) == 0 ? 1 : 2}, 1, bottom, 1.5f, 0.01f, rng);
-        p.x = q.front().x();
-        p.y = q.front().y();
-        p.z = q.front().z();
-      } else {
-        const float rr = ground_r(rng), a = ground_a(rng);
-        p.x = rr * std::cos(a);
-        p.y = rr * std::sin(a);
-        p.z = -1.0f;
-      }
-      engine.insert(p);
+      const bool on_box = std::fmod(t, 0.25) < 0.1 && i % 4 == 0;  // in a burst
+      const Rect r{start + v * static_cast<float>(t), 1.0f, 0.6f, kYaw};
+      engine.insert(side_or_ground(t, on_box ? &r : nullptr, on_box && side(rng) == 0 ? 1 : 2, bottom, ground_r, rng));
       if (t < next_retrieval) continue;
       next_retrieval += 0.05;
       const sc::Clustering& result = engine.retrieve();
