@@ -262,6 +262,16 @@ TEST_CASE("box, velocity and object settings out of range name themselves") {
   objects.ground_margin = -1.0f;
   CHECK_THROWS_WITH_AS(tr::ObjectBoxes{objects}, doctest::Contains("ObjectBoxParams: ground_margin"),
                        std::invalid_argument);
+  tr::ObjectBoxParams reuse;
+  reuse.lookup_reuse_seconds = -0.1;
+  CHECK_THROWS_WITH_AS(tr::ObjectBoxes{reuse}, doctest::Contains("ObjectBoxParams: lookup_reuse_seconds"),
+                       std::invalid_argument);
+  reuse.lookup_reuse_seconds = 0.0;  // at every retrieval: allowed
+  reuse.lookup_reuse_shift = 11.0f;
+  CHECK_THROWS_WITH_AS(tr::ObjectBoxes{reuse}, doctest::Contains("ObjectBoxParams: lookup_reuse_shift"),
+                       std::invalid_argument);
+  reuse.lookup_reuse_shift = 0.0f;
+  CHECK_NOTHROW(tr::ObjectBoxes{reuse});
 }
 
 namespace {
