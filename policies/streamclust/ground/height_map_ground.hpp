@@ -271,7 +271,7 @@ class HeightMapGround {
     const std::int32_t side = 2 * reach + 1;
     if (side > kTopsSide) {
       return mean_over_cells(x, y, radius, [&](std::int32_t ix, std::int32_t iy) {
-        return ceiling_top(Key{ix, iy}, [&](std::int32_t dx, std::int32_t dy) { return highest_layer(ix + dx, iy + dy); });
+        return ceiling_top(Key{ix, iy}, highest_layers_around(Key{ix, iy}));
       });
     }
     // NaN: not looked up yet; -infinity: the cell has no layer.
@@ -618,8 +618,19 @@ class HeightMapGround {
   bool is_ceiling(Key k, float z) const {
     const std::optional<float> top = highest_layer(k.ix, k.iy);
     if (!top || z < *top - params_.ceiling_tolerance) return false;
-    return ceiling_shaped(k, *top, [&](std::int32_t dx, std::int32_t dy) { return highest_layer(k.ix + dx, k.iy + dy); });
+    return ceiling_shaped(k, *top, highest_layers_around(k));
   }
+
+  /// `top_at(dx, dy)` for ceiling_shaped: the highest layer of the cell
+  /// (dx, dy) from k, looked up at each call.
+  struct HighestLayersAround {
+    const HeightMapGround* ground;
+    Key k;
+    std::optional<float> operator()(std::int32_t dx, std::int32_t dy) const {
+      return ground->highest_layer(k.ix + dx, k.iy + dy);
+    }
+  };
+  HighestLayersAround highest_layers_around(Key k) const { return HighestLayersAround{this, k}; }
 
   /// True when cell k's highest layer, at `top` [m], is shaped like a
   /// ceiling: peaked, and level with ceiling_min_agreement of the 24 cells
