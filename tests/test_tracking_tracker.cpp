@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <map>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace sc = streamclust;
@@ -443,6 +444,99 @@ TEST_CASE("KalmanTracker: what reaches the ceiling starts no track unless shaped
   sc::KalmanTracker::Params bad;
   bad.birth_ceiling_gap = -0.1f;
   CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_ceiling_gap"), std::invalid_argument);
+}
+
+TEST_CASE("KalmanTracker: a static track whose box grows to the ceiling is dropped; a pillar's is kept") {
+  // Under a ceiling at 3 m: a cabinet (1 x 0.5 x 2 m) whose component merges
+  // with the wall behind it (4 x 0.5 x 3 m, up to the ceiling), for a moment
+  // or for good; a pillar; a lamp first seen before the ceiling was known.
+  const auto box_at = [](sc::ComponentId id, float x, float length, float height, float bottom) {
+    tr::ObjectObservation o = observed(id, {x, 0.0f});
+    o.box.length = length;
+    o.box.width = 0.5f;
+    o.box.height = height;
+    o.box.center.z() = bottom + 0.5f * height;
+    o.ceiling_z = 3.0f;
+    return o;
+  };
+  const auto cabinet = [&](sc::ComponentId id, float x, bool merged) {
+    return merged ? box_at(id, x, 4.0f, 3.0f, 0.0f) : box_at(id, x, 1.0f, 2.0f, 0.0f);
+  };
+  const auto run = [&](const sc::KalmanTracker::Params& params) {
+    sc::KalmanTracker tracker(params);
+    std::vector<int> present(4, 0);  // per object: the updates it was tracked in after the merge began
+    for (int c = 0; c < 30; ++c) {
+      const bool merged = c >= 10;
+      tr::ObjectObservation lamp = box_at(4, 30.0f, 0.6f, 0.6f, 2.3f);
+      if (c < 10) lamp.ceiling_z.reset();
+      const std::vector<tr::ObjectObservation> seen{cabinet(1, 0.0f, merged && c < 12), cabinet(2, 10.0f, merged),
+                                                    box_at(3, 20.0f, 0.5f, 3.0f, 0.0f), lamp};
+      for (const tr::Track& t : tracker.update(seen, c * kCycle)) {
+        if (c >= 10) ++present[static_cast<std::size_t>(t.cluster_id) - 1];
+      }
+    }
+    return present;
+  };
+  const std::vector<int> present = run({});
+  CHECK(present[0] == 20);  // merged for two updates: kept
+  CHECK(present[1] >= 3);   // merged for good: dropped once its smoothed top reaches 2.7 m three times in a row
+  CHECK(present[1] <= 8);
+  CHECK(present[2] == 20);  // the pillar
+  CHECK(present[3] == 2);   // the lamp: dropped at the third update that knows the ceiling
+  sc::KalmanTracker::Params never;
+  never.ceiling_drop_updates = 0;
+  CHECK(run(never) == std::vector<int>{20, 20, 20, 20});
+  sc::KalmanTracker::Params bad;
+  bad.ceiling_drop_updates = 1001;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("ceiling_drop_updates"), std::invalid_argument);
+}
+
+TEST_CASE("KalmanTracker: a static track whose windows show clear motion in successive updates starts moving") {
+  // A bicycle stands for 1 s, then rides off along x at 5 m/s: its windows
+  // show the motion from the first update on, its ends agreeing. The static
+  // prior holds the track back; restart_updates such windows restart it.
+  // A standing object whose windows show the same motion twice, then none,
+  // stays still.
+  std::mt19937 rng(5);
+  std::normal_distribution<float> pos_noise(0.0f, 0.05f), vel_noise(0.0f, 0.1f);
+  const Eigen::Vector2f start(5.0f, 1.0f), v(5.0f, 0.0f);
+  const auto ride = [&](const sc::KalmanTracker::Params& params, int motion_updates) {
+    sc::KalmanTracker tracker(params);
+    std::vector<float> speed_error;  // per update from the start of the ride
+    bool ever_moved = false;
+    for (int c = 0; c < 20 + 8; ++c) {
+      const double t = c * kCycle;
+      const int riding = c - 20;  // updates since the ride began
+      const bool rides = riding >= 0 && riding < motion_updates;
+      const Eigen::Vector2f velocity = rides ? v : Eigen::Vector2f::Zero();
+      Eigen::Vector2f centre = start;
+      if (riding >= 0 && motion_updates > 8) centre += v * static_cast<float>(riding * kCycle);
+      const Eigen::Vector2f window_v = velocity + draw2(vel_noise, rng);
+      const auto& tracks = tracker.update({observed(7, centre + draw2(pos_noise, rng), window_v, 0.1f, t)}, t);
+      REQUIRE(tracks.size() == 1);
+      ever_moved = ever_moved || tracks.front().moving;
+      if (riding >= 0) speed_error.push_back((tracks.front().velocity.head<2>() - velocity).norm());
+    }
+    return std::make_pair(speed_error, ever_moved);
+  };
+  const auto [restarted, moved] = ride({}, 100);
+  CHECK(moved);
+  for (std::size_t k = 3; k < restarted.size(); ++k) {
+    CAPTURE(k);
+    CHECK(restarted[k] < 1.0f);  // from the third update on, within 1 m/s
+  }
+  sc::KalmanTracker::Params late;
+  late.restart_updates = 1000;
+  const auto [held, held_moved] = ride(late, 100);
+  CHECK(held[7] > 1.0f);  // without the restart, the static prior holds it back
+  const auto [twice, twice_moved] = ride({}, 2);
+  CHECK_FALSE(twice_moved);
+  sc::KalmanTracker::Params bad;
+  bad.restart_speed = 0.0f;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("restart_speed"), std::invalid_argument);
+  bad = {};
+  bad.restart_updates = 0;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("restart_updates"), std::invalid_argument);
 }
 
 TEST_CASE("KalmanTracker: what is shaped like structure starts no track; what is shaped like an object does") {

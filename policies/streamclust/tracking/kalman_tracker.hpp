@@ -72,6 +72,14 @@ namespace streamclust {
 /// A static track takes a zero-velocity pseudo-measurement of standard
 /// deviation `moving_speed` at each update (a box centre that wanders as
 /// sides come into view builds no speed), and keeps its place in a group.
+/// When its windows show clear motion at `restart_speed` or faster, its
+/// object's ends agreeing, in `restart_updates` successive updates, it
+/// starts moving at the window velocity as a birth does (a cyclist whose
+/// component a standing object's track took over). A static track whose
+/// smoothed box reaches within `birth_ceiling_gap` of the ceiling over it,
+/// not shaped like a pillar, in `ceiling_drop_updates` successive updates is
+/// dropped: a lamp or a patch of ceiling whose first observations ended
+/// lower, or an object merged with a wall for that long.
 ///
 /// Moving or static: a track moves when its speed is at least
 /// `moving_speed` and three standard deviations and its smoothed window
@@ -118,6 +126,9 @@ class KalmanTracker {
     float initial_speed_noise = 3.0f;    ///< [m/s] velocity uncertainty of a new track without a window velocity, (0, 100]
     float moving_speed = 0.4f;           ///< [m/s] speed above which a track can move, (0, 100]
     float extent_smoothing = 0.3f;       ///< weight of a new box's extent, height and heading, (0, 1]
+    float restart_speed = 2.0f;          ///< [m/s] a static track whose windows show motion this fast..., (0, 100]
+    std::uint32_t restart_updates = 3;   ///< ...in this many successive updates starts moving at it, [1, 1000]
+    std::uint32_t ceiling_drop_updates = 3;  ///< a static track reaching the ceiling this often in a row: dropped, [0, 1000]
 
     /// Throws std::invalid_argument naming the first setting out of range.
     void validate() const {
@@ -149,6 +160,9 @@ class KalmanTracker {
             "(0, 100] m/s");
       check(moving_speed > 0.0f && moving_speed <= 100.0f, "moving_speed", moving_speed, "(0, 100] m/s");
       check(extent_smoothing > 0.0f && extent_smoothing <= 1.0f, "extent_smoothing", extent_smoothing, "(0, 1]");
+      check(restart_speed > 0.0f && restart_speed <= 100.0f, "restart_speed", restart_speed, "(0, 100] m/s");
+      check(restart_updates >= 1 && restart_updates <= 1000, "restart_updates", restart_updates, "[1, 1000]");
+      check(ceiling_drop_updates <= 1000, "ceiling_drop_updates", ceiling_drop_updates, "[0, 1000]");
     }
 
    private:
@@ -184,7 +198,9 @@ class KalmanTracker {
       if (grouped_[i]) {
         seen_in_group(filters_[i], o);
       } else {
-        correct(filters_[i], o, dt);
+        Filter& f = filters_[i];
+        correct(f, o, dt);
+        f.ceiling_updates = grown_to_ceiling(f, o) ? f.ceiling_updates + 1 : 0;
       }
     }
     // Births, then misses and deletions.
@@ -198,6 +214,7 @@ class KalmanTracker {
     std::size_t kept = 0;
     for (std::size_t i = 0; i < filters_.size(); ++i) {
       Filter& f = filters_[i];
+      if (params_.ceiling_drop_updates > 0 && f.ceiling_updates >= params_.ceiling_drop_updates) continue;
       if (!f.seen) {
         f.track.cluster_id = kNoComponent;
         f.track.points = 0;
@@ -236,6 +253,8 @@ class KalmanTracker {
     Eigen::Vector2f window_velocity = Eigen::Vector2f::Zero();  // the observations' in-window velocities, smoothed
     bool has_window_velocity = false;
     bool seen = false;     // an observation went to it in this update
+    std::uint32_t motion_updates = 0;   // successive updates whose windows showed motion at restart_speed
+    std::uint32_t ceiling_updates = 0;  // successive updates with its box reaching the ceiling
   };
 
   void predict(Filter& f, double dt) const {
@@ -294,10 +313,26 @@ class KalmanTracker {
   /// the ceiling. A pillar, or a person under a low ceiling, passes. O(1).
   bool at_ceiling(const tracking::ObjectObservation& o) const {
     if (!o.ceiling_z) return false;
-    const float top = o.box.center.z() + 0.5f * o.box.height;
-    if (top < *o.ceiling_z - params_.birth_ceiling_gap) return false;
-    const float length = std::max(o.box.length, o.box.width);
-    return o.box.height < kPillarHeight || o.box.height < length;
+    return reaches_ceiling(o.box.center.z() + 0.5f * o.box.height, o.box.height, std::max(o.box.length, o.box.width),
+                           *o.ceiling_z);
+  }
+
+  /// at_ceiling for a static track's smoothed box, under the ceiling its
+  /// observation `o` sees: a lamp or a patch of ceiling whose first
+  /// observations ended lower, or a box that grew into the wall its object
+  /// merged with. O(1).
+  bool grown_to_ceiling(const Filter& f, const tracking::ObjectObservation& o) const {
+    if (f.track.moving || !o.ceiling_z) return false;
+    const tracking::Track& t = f.track;
+    return reaches_ceiling(t.position.z() + 0.5f * t.height, t.height, std::max(t.length, t.width), *o.ceiling_z);
+  }
+
+  /// True when a box with its top at `top`, `height` high and `length` along
+  /// its larger side [m] reaches within birth_ceiling_gap of `ceiling` and is
+  /// not shaped like a pillar (at least kPillarHeight high and higher than long).
+  bool reaches_ceiling(float top, float height, float length, float ceiling) const {
+    if (top < ceiling - params_.birth_ceiling_gap) return false;
+    return height < kPillarHeight || height < length;
   }
 
   /// True when the centre of `o` lies in the box of a confirmed track seen
@@ -468,9 +503,19 @@ class KalmanTracker {
     // split, a new side in view) counts as if on it, so a jump of the box
     // moves the track without making speed.
     update_pair<0>(f, o.box.center.template head<2>().cast<double>(), sp * sp, true);
+    // A static track whose windows show clear motion at restart_speed, its
+    // object's ends agreeing, restart_updates times in a row starts moving
+    // at that velocity, as a birth does: a cyclist that the track of
+    // something standing took over, which the static prior below would hold.
+    const float window_speed = o.velocity.velocity.norm();
+    const bool shows = !f.track.moving && shows_motion(o) && window_speed >= params_.restart_speed &&
+                       o.velocity.end_difference <= window_speed;
+    f.motion_updates = shows ? f.motion_updates + 1 : 0;
+    const bool restarts = shows && f.motion_updates >= params_.restart_updates;
+    if (restarts) start_moving(f, o);
     // Static: a zero-velocity pseudo-measurement of `moving_speed`, so a box
     // centre that wanders (a side coming into view) does not build speed.
-    if (!f.track.moving) {
+    if (!f.track.moving && !restarts) {
       update_pair<2>(f, Eigen::Vector2d::Zero(), static_cast<double>(params_.moving_speed) * params_.moving_speed, false);
     }
     // The window velocity, its variance times the overlap of successive
@@ -530,16 +575,22 @@ class KalmanTracker {
     const double sv = params_.initial_speed_noise;
     f.x << o.box.center.x(), o.box.center.y(), 0.0, 0.0;
     f.p = Vector4(sp * sp, sp * sp, sv * sv, sv * sv).asDiagonal();
-    if (shows_motion(o)) {
-      const double se = std::max(3.0 * static_cast<double>(o.velocity.error), 0.5);
-      f.x.template tail<2>() = o.velocity.velocity.cast<double>();
-      f.p(2, 2) = f.p(3, 3) = se * se;
-    }
+    if (shows_motion(o)) start_moving(f, o);
     if (o.velocity.valid) f.window_velocity = motion_sample(o.velocity, shows_motion(o));
     f.has_window_velocity = o.velocity.valid;
     smooth_box(f, o, true);
     f.seen = true;
     return f;
+  }
+
+  /// The filter's velocity set to `o`'s window velocity, uncertain by three
+  /// standard errors (at least 0.5 m/s) and independent of its position.
+  static void start_moving(Filter& f, const tracking::ObjectObservation& o) {
+    const double se = std::max(3.0 * static_cast<double>(o.velocity.error), 0.5);
+    f.x.template tail<2>() = o.velocity.velocity.cast<double>();
+    f.p.template bottomRows<2>().setZero();
+    f.p.template rightCols<2>().setZero();
+    f.p(2, 2) = f.p(3, 3) = se * se;
   }
 
   /// Extent, height, centre height and heading, smoothed; on a two-sided
