@@ -437,6 +437,34 @@ TEST_CASE("ObjectBoxes: a box moving past an objects engine: its velocity, its b
   CHECK_THROWS_AS(boxes.update(engine, stale), std::logic_error);
 }
 
+TEST_CASE("ObjectBoxes: every observation is seen from the sensor's position in the world") {
+  // A standing box 10 m out, the sensor mounted 2 m ahead and 1 m to the
+  // right of the world's origin (level): each observation's viewpoint is
+  // the mount's place; before any point is boxed, none is known.
+  sc::ObjectsSetup setup;
+  setup.sensor_height = 1.0f;
+  setup.mount.translation = Eigen::Vector3d(2.0, -1.0, 0.0);
+  sc::StreamClusterer<sc::ObjectsConfig> engine(sc::objects_mid360_params(setup));
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> ground_r(9.0f, 20.0f);
+  const Rect r{{10.0f, 1.0f}, 1.0f, 0.6f, 0.2f};
+  tr::ObjectBoxes boxes;
+  int seen = 0;
+  for (int i = 0; i < 70000; ++i) {
+    const double t = static_cast<double>(i) / 100000.0;
+    engine.insert(side_or_ground(t, i % 4 == 0 ? &r : nullptr, i % 8 == 0 ? 0 : 3, -0.8f, ground_r, rng));
+    if (i % 5000 != 4999 || t < 0.55) continue;
+    for (const tr::ObjectObservation& o : boxes.update(engine, engine.retrieve())) {
+      REQUIRE(o.viewpoint);
+      CHECK((*o.viewpoint - Eigen::Vector3f(2.0f, -1.0f, 0.0f)).norm() < 1e-3f);
+      ++seen;
+    }
+  }
+  CHECK(seen >= 3);
+  tr::ObjectObservation unseen;
+  CHECK_FALSE(unseen.viewpoint);
+}
+
 TEST_CASE("ObjectBoxes: a standing object's ground is looked up again after lookup_reuse_seconds") {
   // Sensor 1 m above level ground, at rest; a 1 x 1 x 1.5 m box standing
   // 16 m out, where the ground stays unknown until its returns (9-14.5 m out,

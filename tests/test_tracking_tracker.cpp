@@ -230,6 +230,43 @@ TEST_CASE("KalmanTracker: new component ids, a merge and an occlusion keep each 
   }
 }
 
+TEST_CASE("KalmanTracker: a standing object unseen with nothing in front of it coasts for out_of_sight_seconds") {
+  // Seen from a sensor at the origin: a desk 8 m ahead along x and a cabinet
+  // off to the side, both standing. At 1 s the desk is no longer seen: out of
+  // the field of view (nothing in front of it), or hidden behind a person
+  // who stands 4 m ahead from then on.
+  const auto unseen_for = [](bool hidden_behind, bool with_viewpoint) {
+    sc::KalmanTracker tracker;  // coast_seconds 1, out_of_sight_seconds 0.4
+    std::uint64_t desk = 0;
+    double last_listed = 0.0;
+    for (int c = 0; c <= 60; ++c) {
+      const double t = c * kCycle;
+      std::vector<tr::ObjectObservation> seen{observed(1, {-5.0f, 5.0f}, {0, 0}, 0.1f, t)};
+      if (t < 1.0) seen.push_back(observed(2, {8.0f, 0.0f}, {0, 0}, 0.1f, t));
+      if (t >= 1.0 && hidden_behind) {
+        tr::ObjectObservation person = observed(3, {4.0f, 0.0f}, {0, 0}, 0.1f, t);
+        person.box.length = person.box.width = 0.5f;
+        seen.push_back(person);
+      }
+      for (tr::ObjectObservation& o : seen) {
+        if (with_viewpoint) o.viewpoint = Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+      }
+      for (const tr::Track& tk : tracker.update(seen, t)) {
+        if (tk.cluster_id == 2 && desk == 0) desk = tk.id;
+        if (desk != 0 && tk.id == desk) last_listed = t;
+      }
+    }
+    REQUIRE(desk != 0);
+    return last_listed - 0.95;  // unseen since its last sighting at 0.95 s
+  };
+  CHECK(unseen_for(false, true) == doctest::Approx(0.4).epsilon(0.01));
+  CHECK(unseen_for(true, true) == doctest::Approx(1.0).epsilon(0.01));
+  CHECK(unseen_for(false, false) == doctest::Approx(1.0).epsilon(0.01));  // no viewpoint: no rule
+  sc::KalmanTracker::Params bad;
+  bad.out_of_sight_seconds = -1.0;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("out_of_sight_seconds"), std::invalid_argument);
+}
+
 TEST_CASE("KalmanTracker: many objects under shuffled component ids keep their tracks (association by position)") {
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> place(-40.0f, 40.0f), speed(-2.0f, 2.0f);

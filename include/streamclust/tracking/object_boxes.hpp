@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,10 @@ struct ObjectObservation {
   /// [m] the ceiling over the object, when the ground policy knows it
   /// (has_ceiling_height_v): over the footprint and ground_margin around.
   std::optional<float> ceiling_z;
+  /// [m] where the sensor was (world frame) when the newest point of the
+  /// retrieval's boxed components was captured: the same for every
+  /// observation of an update; unset when not known.
+  std::optional<Eigen::Vector3f> viewpoint;
 };
 
 /// Settings of ObjectBoxes.
@@ -174,6 +179,7 @@ class ObjectBoxes {
   template <class Engine>
   void gather(const Engine& engine, const Clustering& result) {
     const std::vector<ComponentSummary>& comps = result.components;
+    viewpoint_.reset();
     slot_of_.assign(comps.size(), kNoSlot);
     slot_component_.clear();
     for (std::size_t i = 0; i < comps.size(); ++i) {
@@ -197,6 +203,7 @@ class ObjectBoxes {
     const std::size_t n = result.points.size();
     if (engine.size() != n) throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
     std::size_t cached = 0;
+    double newest = -std::numeric_limits<double>::infinity();
     for (std::size_t pos = 0; pos < n; ++pos) {
       const PointLabel& p = result.points[pos];
       if (cached >= comps.size() || comps[cached].id != p.label) {
@@ -214,6 +221,10 @@ class ObjectBoxes {
       const Sample sample = engine.sample(h);
       points_[slot].push_back(sample.position);
       times_[slot].push_back(sample.time);
+      if (sample.time >= newest) {  // the sensor: back along the point's ray
+        newest = sample.time;
+        viewpoint_ = Eigen::Vector3f(sample.position - sample.direction * sample.range);
+      }
     }
   }
 
@@ -337,6 +348,7 @@ class ObjectBoxes {
       o.box = fit_oriented_box(xyz, around.ground, params_.fit, fit_scratch_);
       o.ground_z = around.ground_z;
       o.ceiling_z = around.ceiling_z;
+      o.viewpoint = viewpoint_;
       observations_.push_back(o);
     }
     lookups_.swap(last_lookups_);
@@ -501,6 +513,7 @@ class ObjectBoxes {
   std::vector<std::vector<Eigen::Vector3f>> points_;
   std::vector<std::vector<double>> times_;
   std::vector<ObjectObservation> observations_;
+  std::optional<Eigen::Vector3f> viewpoint_;  ///< [m] the sensor at the newest gathered point (gather)
   std::vector<SlotSummary> summaries_;          // per slot
   std::vector<std::size_t> group_of_;           // per slot: the slot of its object's largest piece
   std::vector<std::size_t> group_size_;         // per slot: pieces of the object it is the largest of

@@ -67,7 +67,11 @@ namespace streamclust {
 /// that object), starts a tentative track; `confirm_hits` hits confirm
 /// it. A track not seen coasts on its prediction: a tentative one is
 /// dropped after `tentative_coast_seconds`, a confirmed one after
-/// `coast_seconds`.
+/// `coast_seconds`, a confirmed static one after `out_of_sight_seconds`
+/// unless an observation stands between it and the sensor (the
+/// observations' `viewpoint`; without one, the rule is off): a standing
+/// object not seen while nothing hides it has left the field of view or
+/// is gone, while one hidden behind a passer-by is there again after it.
 ///
 /// A static track takes a zero-velocity pseudo-measurement of standard
 /// deviation `moving_speed` at each update (a box centre that wanders as
@@ -119,6 +123,7 @@ class KalmanTracker {
     std::uint32_t confirm_hits = 3;      ///< retrievals a track is seen in before it is confirmed, [1, 1000]
     double coast_seconds = 1.0;          ///< [s] a confirmed track unseen this long is dropped, [0, 100]
     double tentative_coast_seconds = 0.2;  ///< [s] the same for a tentative track, [0, 100]
+    double out_of_sight_seconds = 0.4;   ///< [s] the same for a static one with nothing between it and the sensor, [0, 100]
     float acceleration_noise = 0.5f;     ///< [m/s^2] white acceleration of the motion model (spectral density: its square, m^2/s^3), (0, 100]
     float group_margin = 0.3f;           ///< [m] a box holding two confirmed tracks' predictions this far inside its edges is a group, [0, 10]
     float position_noise = 0.15f;        ///< [m] centre of a box seen on two sides, (0, 10]
@@ -150,6 +155,8 @@ class KalmanTracker {
       check(coast_seconds >= 0.0 && coast_seconds <= 100.0, "coast_seconds", coast_seconds, "[0, 100] s");
       check(tentative_coast_seconds >= 0.0 && tentative_coast_seconds <= 100.0, "tentative_coast_seconds",
             tentative_coast_seconds, "[0, 100] s");
+      check(out_of_sight_seconds >= 0.0 && out_of_sight_seconds <= 100.0, "out_of_sight_seconds", out_of_sight_seconds,
+            "[0, 100] s");
       check(acceleration_noise > 0.0f && acceleration_noise <= 100.0f, "acceleration_noise", acceleration_noise,
             "(0, 100] m/s^2");
       check(group_margin >= 0.0f && group_margin <= 10.0f, "group_margin", group_margin, "[0, 10] m");
@@ -211,6 +218,7 @@ class KalmanTracker {
       }
       filters_.push_back(born(objects[o]));
     }
+    const Eigen::Vector3f* viewpoint = objects.empty() || !objects.front().viewpoint ? nullptr : &*objects.front().viewpoint;
     std::size_t kept = 0;
     for (std::size_t i = 0; i < filters_.size(); ++i) {
       Filter& f = filters_[i];
@@ -219,7 +227,10 @@ class KalmanTracker {
         f.track.cluster_id = kNoComponent;
         f.track.points = 0;
         const bool confirmed = f.track.hits >= params_.confirm_hits;
-        const double limit = confirmed ? params_.coast_seconds : params_.tentative_coast_seconds;
+        double limit = confirmed ? params_.coast_seconds : params_.tentative_coast_seconds;
+        if (confirmed && !f.track.moving && viewpoint && !hidden(f, *viewpoint, objects)) {
+          limit = std::min(limit, params_.out_of_sight_seconds);
+        }
         if (time - f.track.last_seen > limit) continue;
       }
       if (kept != i) filters_[kept] = std::move(f);
@@ -343,6 +354,28 @@ class KalmanTracker {
     for (const Filter& f : filters_) {
       if (!f.seen || f.track.hits < params_.confirm_hits) continue;
       if (in_grown_box(o.box.center.x(), o.box.center.y(), f.x(0), f.x(1), f.box_yaw, f.track.length, f.track.width)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// True when an observation of this update stands between `from` (the
+  /// sensor) and the filter's predicted centre in the ground plane: its centre
+  /// within half its larger side of the line of sight, between the two, and
+  /// farther than that from the track's centre (not the track's own place).
+  /// O(observations).
+  bool hidden(const Filter& f, const Eigen::Vector3f& from, const std::vector<tracking::ObjectObservation>& objects) const {
+    const Eigen::Vector2d a = from.head<2>().cast<double>();
+    const Eigen::Vector2d sight = f.x.template head<2>() - a;
+    const double length2 = sight.squaredNorm();
+    if (length2 <= 0.0) return false;
+    for (const tracking::ObjectObservation& o : objects) {
+      const Eigen::Vector2d c = o.box.center.head<2>().cast<double>();
+      const double along = (c - a).dot(sight) / length2;
+      const double reach = 0.5 * static_cast<double>(std::max(o.box.length, o.box.width));
+      if (along > 0.0 && along < 1.0 && (a + along * sight - c).norm() <= reach &&
+          (c - f.x.template head<2>()).norm() > reach) {
         return true;
       }
     }
