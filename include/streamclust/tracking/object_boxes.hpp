@@ -204,6 +204,7 @@ class ObjectBoxes {
     if (engine.size() != n) throw std::logic_error("ObjectBoxes::update: the result is not the engine's last retrieval");
     std::size_t cached = 0;
     double newest = -std::numeric_limits<double>::infinity();
+    PointHandle newest_handle = kNoPoint;
     for (std::size_t pos = 0; pos < n; ++pos) {
       const PointLabel& p = result.points[pos];
       if (cached >= comps.size() || comps[cached].id != p.label) {
@@ -221,10 +222,14 @@ class ObjectBoxes {
       const Sample sample = engine.sample(h);
       points_[slot].push_back(sample.position);
       times_[slot].push_back(sample.time);
-      if (sample.time >= newest) {  // the sensor: back along the point's ray
+      if (sample.time >= newest) {
         newest = sample.time;
-        viewpoint_ = Eigen::Vector3f(sample.position - sample.direction * sample.range);
+        newest_handle = h;
       }
+    }
+    if (newest > -std::numeric_limits<double>::infinity()) {  // the sensor: back along that point's ray
+      const Sample sample = engine.sample(newest_handle);
+      viewpoint_ = Eigen::Vector3f(sample.position - sample.direction * sample.range);
     }
   }
 
