@@ -5,7 +5,8 @@
 // labels equal `cluster` on its --record file and on the recording replayed
 // to it, cycle for cycle; PointCloud2 and CustomMsg inputs; malformed CDR
 // counted and skipped; a publisher that leaves and comes back; a late
-// subscriber of the outputs; an incompatible QoS reported.
+// subscriber of the outputs; an incompatible QoS reported; participants of
+// one process sharing a domain.
 
 #include <doctest/doctest.h>
 
@@ -37,6 +38,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -375,6 +377,37 @@ TEST_CASE("ros2: an incompatible QoS is reported, not silent") {
   CHECK(got.code == 6);
   CHECK(got.err.find("offers a QoS this subscription cannot accept (reliability") != std::string::npos);
   CHECK(got.err.find("1 with an incompatible QoS") != std::string::npos);
+}
+
+TEST_CASE("ros2: participants of one process share their domain; the first one's end leaves the others working") {
+  namespace r2 = streamclust::ros2;
+  constexpr unsigned kDomain = 75;
+  // The first participant creates the domain (loopback discovery): as the
+  // node's does when a test's publisher comes after it, or the other way.
+  auto first = std::make_unique<r2::DdsParticipant>(r2::DomainOptions{kDomain, true});
+  r2::DdsParticipant second(r2::DomainOptions{kDomain, true});
+  r2::CdrPublisher pub(second, r2::dds_topic_name("/shared"), r2::dds_type_name("std_msgs/msg/String"),
+                       r2::default_qos(16));
+  first.reset();
+  r2::DdsParticipant third(r2::DomainOptions{kDomain, true});
+  r2::CdrSubscription::Options so;
+  so.dds_topic = r2::dds_topic_name("/shared");
+  so.dds_type = r2::dds_type_name("std_msgs/msg/String");
+  so.qos = r2::default_qos(16);
+  r2::CdrSubscription sub(third, so);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (pub.counters().subscribers == 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  REQUIRE(pub.counters().subscribers == 1);
+  // A std_msgs/String "hi": the CDR little-endian header, the length with its NUL, the text.
+  const std::vector<std::uint8_t> hello = {0, 1, 0, 0, 3, 0, 0, 0, 'h', 'i', 0, 0};
+  REQUIRE_NOTHROW(pub.publish(hello));
+  CHECK(pub.wait_for_acks(std::chrono::seconds(10)));
+  while (sub.size() == 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const r2::CdrMessage got = sub.pop();
+  REQUIRE(got.size() >= hello.size());
+  CHECK(std::vector<std::uint8_t>(got.data(), got.data() + hello.size()) == hello);
 }
 
 TEST_CASE("ros2: bad options are usage errors (exit 2) naming the problem") {

@@ -64,7 +64,13 @@ class CdrPublisher {
   /// Sends one message: `payload` holds the encapsulation header and the
   /// body. Throws DdsError when DDS refuses it. O(size) (one copy).
   void publish(const std::uint8_t* payload, std::size_t size) {
-    check_dds(dds_writecdr(writer_, make_raw_cdr_sample(type_, payload, size)), "publishing on " + dds_topic_);
+    ddsi_serdata* sample = make_raw_cdr_sample(type_, payload, size);
+    const dds_return_t rc = dds_writecdr(writer_, sample);
+    // dds_writecdr takes the sample's reference once it holds the writer;
+    // a writer it cannot hold (deleted, or not a writer) leaves it to us.
+    if (rc == DDS_RETCODE_BAD_PARAMETER || rc == DDS_RETCODE_ALREADY_DELETED || rc == DDS_RETCODE_ILLEGAL_OPERATION)
+      ddsi_serdata_unref(sample);
+    check_dds(rc, "publishing on " + dds_topic_);
     const std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.published;
   }

@@ -8,14 +8,21 @@
 /// `loopback`, discovery on 127.0.0.1 by unicast (no multicast: Linux's `lo`
 /// has none), which every participant of the exchange must use.
 ///
+/// Participants of one process on one domain share it: the domain a
+/// loopback participant creates lives until the last participant on that
+/// domain id in the process is gone, so one participant's end never takes
+/// another's entities with it.
+///
 /// Thread-safety: the participant's handle may be used from any thread
 /// (Cyclone's entities are thread-safe); construction and destruction are
-/// the owner's.
+/// the owner's, and participants may be made and destroyed concurrently.
 
 #include <dds/dds.h>
 
 #include <cstdint>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -65,6 +72,66 @@ struct DomainOptions {
   bool loopback = false;                   ///< discovery on 127.0.0.1 by unicast (loopback_config)
 };
 
+namespace detail {
+
+/// The domains this process's participants use: per domain id, the domain
+/// entity a loopback participant created (0 when Cyclone made the domain
+/// implicitly) and how many participants are on it.
+class DomainUsers {
+ public:
+  static DomainUsers& instance() {
+    static DomainUsers users;
+    return users;
+  }
+
+  /// A new participant on `domain_id`, creating the domain with the loopback
+  /// configuration first when asked and the domain does not exist yet.
+  dds_entity_t join(std::uint32_t domain_id, bool loopback) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Domain& d = domains_[domain_id];
+    if (loopback && d.participants == 0) {
+      // The domain may exist already without a participant of ours (one
+      // made by other code): that one's configuration then holds.
+      const dds_entity_t e = dds_create_domain(domain_id, loopback_config().c_str());
+      if (e < 0 && e != DDS_RETCODE_PRECONDITION_NOT_MET) {
+        domains_.erase(domain_id);
+        check_dds(e, "creating DDS domain " + std::to_string(domain_id));
+      }
+      if (e >= 0) d.entity = e;
+    }
+    const dds_entity_t participant = dds_create_participant(domain_id, nullptr, nullptr);
+    if (participant < 0) {
+      if (d.participants == 0) release(domain_id, d);
+      check_dds(participant, "creating a DDS participant on domain " + std::to_string(domain_id));
+    }
+    ++d.participants;
+    return participant;
+  }
+
+  /// Deletes `participant`, and the domain with the last one.
+  void leave(std::uint32_t domain_id, dds_entity_t participant) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    dds_delete(participant);
+    const auto it = domains_.find(domain_id);
+    if (it != domains_.end() && --it->second.participants == 0) release(domain_id, it->second);
+  }
+
+ private:
+  struct Domain {
+    dds_entity_t entity = 0;
+    std::size_t participants = 0;
+  };
+  void release(std::uint32_t domain_id, const Domain& d) {
+    if (d.entity > 0) dds_delete(d.entity);
+    domains_.erase(domain_id);
+  }
+
+  std::mutex mutex_;
+  std::map<std::uint32_t, Domain> domains_;
+};
+
+}  // namespace detail
+
 /// A participant on the domain. Not copyable.
 class DdsParticipant {
  public:
@@ -73,20 +140,9 @@ class DdsParticipant {
     if (domain_ > kMaxDomainId)
       throw std::invalid_argument("domain id " + std::to_string(domain_) + ": expected 0 to " +
                                   std::to_string(kMaxDomainId));
-    if (o.loopback) {
-      // The domain may exist already in this process (another participant
-      // on it): that one's configuration then holds.
-      const dds_entity_t d = dds_create_domain(domain_, loopback_config().c_str());
-      if (d < 0 && d != DDS_RETCODE_PRECONDITION_NOT_MET) check_dds(d, "creating DDS domain " + std::to_string(domain_));
-      if (d >= 0) domain_entity_ = d;
-    }
-    handle_ = check_dds(dds_create_participant(domain_, nullptr, nullptr),
-                        "creating a DDS participant on domain " + std::to_string(domain_));
+    handle_ = detail::DomainUsers::instance().join(domain_, o.loopback);
   }
-  ~DdsParticipant() {
-    if (handle_ > 0) dds_delete(handle_);
-    if (domain_entity_ > 0) dds_delete(domain_entity_);
-  }
+  ~DdsParticipant() { detail::DomainUsers::instance().leave(domain_, handle_); }
   DdsParticipant(const DdsParticipant&) = delete;
   DdsParticipant& operator=(const DdsParticipant&) = delete;
 
@@ -95,7 +151,6 @@ class DdsParticipant {
 
  private:
   std::uint32_t domain_ = 0;
-  dds_entity_t domain_entity_ = 0;
   dds_entity_t handle_ = 0;
 };
 
