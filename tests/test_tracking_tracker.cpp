@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <map>
 #include <random>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -483,10 +484,11 @@ TEST_CASE("KalmanTracker: what reaches the ceiling starts no track unless shaped
   CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("birth_ceiling_gap"), std::invalid_argument);
 }
 
-TEST_CASE("KalmanTracker: a static track whose box grows to the ceiling is dropped; a pillar's is kept") {
+TEST_CASE("KalmanTracker: a static track whose box grows to the ceiling is set aside until its object comes apart") {
   // Under a ceiling at 3 m: a cabinet (1 x 0.5 x 2 m) whose component merges
-  // with the wall behind it (4 x 0.5 x 3 m, up to the ceiling), for a moment
-  // or for good; a pillar; a lamp first seen before the ceiling was known.
+  // with the wall behind it (4 x 0.5 x 3 m, up to the ceiling, its centre
+  // 1.5 m off the cabinet's), for a moment, for good, or for ten updates; a
+  // pillar; a lamp first seen before the ceiling was known.
   const auto box_at = [](sc::ComponentId id, float x, float length, float height, float bottom) {
     tr::ObjectObservation o = observed(id, {x, 0.0f});
     o.box.length = length;
@@ -497,35 +499,51 @@ TEST_CASE("KalmanTracker: a static track whose box grows to the ceiling is dropp
     return o;
   };
   const auto cabinet = [&](sc::ComponentId id, float x, bool merged) {
-    return merged ? box_at(id, x, 4.0f, 3.0f, 0.0f) : box_at(id, x, 1.0f, 2.0f, 0.0f);
+    return merged ? box_at(id, x + 1.5f, 4.0f, 3.0f, 0.0f) : box_at(id, x, 1.0f, 2.0f, 0.0f);
+  };
+  struct Seen {
+    std::vector<int> present = std::vector<int>(5, 0);  // per object: updates tracked in after the merge began
+    std::map<sc::ComponentId, std::set<std::uint64_t>> ids;  // per object: the track ids reported
+    bool back_at_cabinet = false;  // the third cabinet's track, back, has the cabinet's box
   };
   const auto run = [&](const sc::KalmanTracker::Params& params) {
     sc::KalmanTracker tracker(params);
-    std::vector<int> present(4, 0);  // per object: the updates it was tracked in after the merge began
+    Seen seen;
     for (int c = 0; c < 30; ++c) {
       const bool merged = c >= 10;
       tr::ObjectObservation lamp = box_at(4, 30.0f, 0.6f, 0.6f, 2.3f);
       if (c < 10) lamp.ceiling_z.reset();
-      const std::vector<tr::ObjectObservation> seen{cabinet(1, 0.0f, merged && c < 12), cabinet(2, 10.0f, merged),
-                                                    box_at(3, 20.0f, 0.5f, 3.0f, 0.0f), lamp};
-      for (const tr::Track& t : tracker.update(seen, c * kCycle)) {
-        if (c >= 10) ++present[static_cast<std::size_t>(t.cluster_id) - 1];
+      const std::vector<tr::ObjectObservation> now{cabinet(1, 0.0f, merged && c < 12), cabinet(2, 10.0f, merged),
+                                                   box_at(3, 20.0f, 0.5f, 3.0f, 0.0f), lamp,
+                                                   cabinet(5, 40.0f, merged && c < 20)};
+      for (const tr::Track& t : tracker.update(now, c * kCycle)) {
+        seen.ids[t.cluster_id].insert(t.id);
+        if (c >= 10) ++seen.present[static_cast<std::size_t>(t.cluster_id) - 1];
+        if (t.cluster_id == 5 && c == 20) {
+          seen.back_at_cabinet = std::abs(t.position.x() - 40.0f) < 0.01f && std::abs(t.length - 1.0f) < 0.01f;
+        }
       }
     }
-    return present;
+    return seen;
   };
-  const std::vector<int> present = run({});
-  CHECK(present[0] == 20);  // merged for two updates: kept
-  CHECK(present[1] >= 3);   // merged for good: dropped once its smoothed top reaches 2.7 m three times in a row
-  CHECK(present[1] <= 8);
-  CHECK(present[2] == 20);  // the pillar
-  CHECK(present[3] == 2);   // the lamp: dropped at the third update that knows the ceiling
+  const Seen seen = run({});
+  CHECK(seen.present[0] == 20);  // merged for two updates: kept
+  CHECK(seen.present[1] >= 3);   // merged for good: set aside once its smoothed top reaches 2.7 m three times in a row
+  CHECK(seen.present[1] <= 8);
+  CHECK(seen.present[2] == 20);  // the pillar
+  CHECK(seen.present[3] == 2);   // the lamp: set aside at the third update that knows the ceiling, for good
+  // Merged for ten updates: set aside, then back at the cabinet's place and
+  // box from its first update apart, under the id it had.
+  CHECK(seen.present[4] >= 3 + 10);
+  CHECK(seen.present[4] <= 8 + 10);
+  CHECK(seen.back_at_cabinet);
+  for (const sc::ComponentId id : {1, 2, 3, 4, 5}) CHECK(seen.ids.at(id).size() == 1);
   sc::KalmanTracker::Params never;
-  never.ceiling_drop_updates = 0;
-  CHECK(run(never) == std::vector<int>{20, 20, 20, 20});
+  never.ceiling_hide_updates = 0;
+  CHECK(run(never).present == std::vector<int>{20, 20, 20, 20, 20});
   sc::KalmanTracker::Params bad;
-  bad.ceiling_drop_updates = 1001;
-  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("ceiling_drop_updates"), std::invalid_argument);
+  bad.ceiling_hide_updates = 1001;
+  CHECK_THROWS_WITH_AS(sc::KalmanTracker{bad}, doctest::Contains("ceiling_hide_updates"), std::invalid_argument);
 }
 
 TEST_CASE("KalmanTracker: a static track whose windows show clear motion in successive updates starts moving") {

@@ -81,9 +81,12 @@ namespace streamclust {
 /// starts moving at the window velocity as a birth does (a cyclist whose
 /// component a standing object's track took over). A static track whose
 /// smoothed box reaches within `birth_ceiling_gap` of the ceiling over it,
-/// not shaped like a pillar, in `ceiling_drop_updates` successive updates is
-/// dropped: a lamp or a patch of ceiling whose first observations ended
-/// lower, or an object merged with a wall for that long.
+/// not shaped like a pillar, in `ceiling_hide_updates` successive updates is
+/// hidden (kept, not reported): a lamp or a patch of ceiling whose first
+/// observations ended lower, or an object merged with a wall for that long.
+/// It is reported again, under its id, from the first observation it takes
+/// that could start a track (an object come apart from the wall), at that
+/// observation's place and box; a lamp's never can.
 ///
 /// Moving or static: a track moves when its speed is at least
 /// `moving_speed` and three standard deviations and its smoothed window
@@ -140,22 +143,24 @@ class KalmanTracker {
       } else {
         Filter& f = filters_[i];
         correct(f, o, dt);
-        f.ceiling_updates = grown_to_ceiling(f, o) ? f.ceiling_updates + 1 : 0;
+        if (f.set_aside && could_start_track(o, objects) && clear_of_ceiling(o)) {
+          reappear(f, o);
+        } else {
+          f.ceiling_updates = grown_to_ceiling(f, o) ? f.ceiling_updates + 1 : 0;
+          const std::uint32_t hide = params_.ceiling_hide_updates;
+          f.set_aside = f.set_aside || (hide > 0 && f.ceiling_updates >= hide);
+        }
       }
     }
     // Births, then misses and deletions.
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      if (taken_[o] || objects[o].box.points < params_.birth_points || structure_shaped(objects[o]) ||
-          floating(objects[o], objects) || at_ceiling(objects[o]) || part_of_track(objects[o])) {
-        continue;
-      }
+      if (taken_[o] || !could_start_track(objects[o], objects) || part_of_track(objects[o])) continue;
       filters_.push_back(born(objects[o]));
     }
     const Eigen::Vector3f* viewpoint = objects.empty() || !objects.front().viewpoint ? nullptr : &*objects.front().viewpoint;
     std::size_t kept = 0;
     for (std::size_t i = 0; i < filters_.size(); ++i) {
       Filter& f = filters_[i];
-      if (params_.ceiling_drop_updates > 0 && f.ceiling_updates >= params_.ceiling_drop_updates) continue;
       if (!f.seen) {
         f.track.cluster_id = kNoComponent;
         f.track.points = 0;
@@ -173,7 +178,7 @@ class KalmanTracker {
     tracks_.clear();
     for (Filter& f : filters_) {
       publish(f);
-      tracks_.push_back(f.track);
+      if (!f.set_aside) tracks_.push_back(f.track);
     }
     return tracks_;
   }
@@ -199,6 +204,7 @@ class KalmanTracker {
     bool seen = false;     // an observation went to it in this update
     std::uint32_t motion_updates = 0;   // successive updates whose windows showed motion at restart_speed
     std::uint32_t ceiling_updates = 0;  // successive updates with its box reaching the ceiling
+    bool set_aside = false;  // grown to the ceiling: kept, not reported (ceiling_hide_updates)
   };
 
   void predict(Filter& f, double dt) const {
@@ -215,6 +221,14 @@ class KalmanTracker {
     }
     f.x = a * f.x;
     f.p = a * f.p * a.transpose() + noise;
+  }
+
+  /// True when `o` could start a track: enough points, shaped like an
+  /// object, standing on the ground and below the ceiling. O(objects) when
+  /// the ground under it is unknown, else O(1).
+  bool could_start_track(const tracking::ObjectObservation& o,
+                         const std::vector<tracking::ObjectObservation>& objects) const {
+    return o.box.points >= params_.birth_points && !structure_shaped(o) && !floating(o, objects) && !at_ceiling(o);
   }
 
   /// True when `o` is longer than birth_max_length, larger than
@@ -261,6 +275,12 @@ class KalmanTracker {
                            *o.ceiling_z);
   }
 
+  /// True when the top of `o` is lower than birth_ceiling_gap below the
+  /// ceiling over it, or no ceiling is known there (a pillar is not). O(1).
+  bool clear_of_ceiling(const tracking::ObjectObservation& o) const {
+    return !o.ceiling_z || o.box.center.z() + 0.5f * o.box.height < *o.ceiling_z - params_.birth_ceiling_gap;
+  }
+
   /// at_ceiling for a static track's smoothed box, under the ceiling its
   /// observation `o` sees: a lamp or a patch of ceiling whose first
   /// observations ended lower, or a box that grew into the wall its object
@@ -285,7 +305,7 @@ class KalmanTracker {
   /// crown), no object of its own.
   bool part_of_track(const tracking::ObjectObservation& o) const {
     for (const Filter& f : filters_) {
-      if (!f.seen || f.track.hits < params_.confirm_hits) continue;
+      if (!f.seen || f.set_aside || f.track.hits < params_.confirm_hits) continue;
       if (in_grown_box(o.box.center.x(), o.box.center.y(), f.x(0), f.x(1), f.box_yaw, f.track.length, f.track.width)) {
         return true;
       }
@@ -405,7 +425,9 @@ class KalmanTracker {
       const std::size_t own = members_.size();
       for (std::size_t i = 0; i < filters_.size(); ++i) {
         const Filter& f = filters_[i];
-        if (track_of_[i] != kNone || f.track.hits < params_.confirm_hits || !holds(objects[o], f)) continue;
+        if (track_of_[i] != kNone || f.set_aside || f.track.hits < params_.confirm_hits || !holds(objects[o], f)) {
+          continue;
+        }
         const double here = distance(f, objects[o]);
         bool nearer_elsewhere = false;
         for (std::size_t q = 0; q < objects.size() && !nearer_elsewhere; ++q) {
@@ -557,6 +579,19 @@ class KalmanTracker {
     f.p.template bottomRows<2>().setZero();
     f.p.template rightCols<2>().setZero();
     f.p(2, 2) = f.p(3, 3) = se * se;
+  }
+
+  /// A track set aside, reported again at observation `o`'s place and box:
+  /// the object come apart from what it grew into.
+  void reappear(Filter& f, const tracking::ObjectObservation& o) const {
+    const double sp = position_sigma(o);
+    f.x.template head<2>() = o.box.center.template head<2>().cast<double>();
+    f.p.template topRows<2>().setZero();
+    f.p.template leftCols<2>().setZero();
+    f.p(0, 0) = f.p(1, 1) = sp * sp;
+    smooth_box(f, o, true);
+    f.set_aside = false;
+    f.ceiling_updates = 0;
   }
 
   /// Extent, height, centre height and heading, smoothed; on a two-sided

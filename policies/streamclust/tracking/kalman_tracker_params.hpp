@@ -37,7 +37,7 @@ struct KalmanTrackerParams {
   float extent_smoothing = 0.3f;       ///< weight of a new box's extent, height and heading, (0, 1]
   float restart_speed = 2.0f;          ///< [m/s] a static track whose windows show motion this fast..., (0, 100]
   std::uint32_t restart_updates = 3;   ///< ...in this many successive updates starts moving at it, [1, 1000]
-  std::uint32_t ceiling_drop_updates = 3;  ///< a static track reaching the ceiling this often in a row: dropped, [0, 1000]
+  std::uint32_t ceiling_hide_updates = 3;  ///< a static track reaching the ceiling this often in a row: hidden, [0, 1000]
 
   /// Throws std::invalid_argument naming the first setting out of range.
   void validate() const {
@@ -73,7 +73,7 @@ struct KalmanTrackerParams {
     check(extent_smoothing > 0.0f && extent_smoothing <= 1.0f, "extent_smoothing", extent_smoothing, "(0, 1]");
     check(restart_speed > 0.0f && restart_speed <= 100.0f, "restart_speed", restart_speed, "(0, 100] m/s");
     check(restart_updates >= 1 && restart_updates <= 1000, "restart_updates", restart_updates, "[1, 1000]");
-    check(ceiling_drop_updates <= 1000, "ceiling_drop_updates", ceiling_drop_updates, "[0, 1000]");
+    check(ceiling_hide_updates <= 1000, "ceiling_hide_updates", ceiling_hide_updates, "[0, 1000]");
   }
 
  private:
