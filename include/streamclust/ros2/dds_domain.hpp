@@ -94,7 +94,7 @@ class DomainUsers {
       // made by other code): that one's configuration then holds.
       const dds_entity_t e = dds_create_domain(domain_id, loopback_config().c_str());
       if (e < 0 && e != DDS_RETCODE_PRECONDITION_NOT_MET) {
-        domains_.erase(domain_id);
+        release(domain_id, d);
         check_dds(e, "creating DDS domain " + std::to_string(domain_id));
       }
       if (e >= 0) d.entity = e;

@@ -82,7 +82,7 @@ namespace streamclust {
 /// component a standing object's track took over). A static track whose
 /// smoothed box reaches within `birth_ceiling_gap` of the ceiling over it,
 /// not shaped like a pillar, in `ceiling_hide_updates` successive updates is
-/// hidden (kept, not reported): a lamp or a patch of ceiling whose first
+/// set aside (kept, not reported): a lamp or a patch of ceiling whose first
 /// observations ended lower, or an object merged with a wall for that long.
 /// It is reported again, under its id, from the first observation it takes
 /// that could start a track (an object come apart from the wall), at that
@@ -278,7 +278,7 @@ class KalmanTracker {
   /// True when the top of `o` is lower than birth_ceiling_gap below the
   /// ceiling over it, or no ceiling is known there (a pillar is not). O(1).
   bool clear_of_ceiling(const tracking::ObjectObservation& o) const {
-    return !o.ceiling_z || o.box.center.z() + 0.5f * o.box.height < *o.ceiling_z - params_.birth_ceiling_gap;
+    return !o.ceiling_z || !within_ceiling_gap(o.box.center.z() + 0.5f * o.box.height, *o.ceiling_z);
   }
 
   /// at_ceiling for a static track's smoothed box, under the ceiling its
@@ -295,9 +295,11 @@ class KalmanTracker {
   /// its larger side [m] reaches within birth_ceiling_gap of `ceiling` and is
   /// not shaped like a pillar (at least kPillarHeight high and higher than long).
   bool reaches_ceiling(float top, float height, float length, float ceiling) const {
-    if (top < ceiling - params_.birth_ceiling_gap) return false;
-    return height < kPillarHeight || height < length;
+    return within_ceiling_gap(top, ceiling) && (height < kPillarHeight || height < length);
   }
+
+  /// True when a box's top at `top` [m] is within birth_ceiling_gap of `ceiling`, or above it.
+  bool within_ceiling_gap(float top, float ceiling) const { return top >= ceiling - params_.birth_ceiling_gap; }
 
   /// True when the centre of `o` lies in the box of a confirmed track seen
   /// in this update, grown by group_margin: a part of a tracked object that

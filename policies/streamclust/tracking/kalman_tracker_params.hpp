@@ -37,7 +37,7 @@ struct KalmanTrackerParams {
   float extent_smoothing = 0.3f;       ///< weight of a new box's extent, height and heading, (0, 1]
   float restart_speed = 2.0f;          ///< [m/s] a static track whose windows show motion this fast..., (0, 100]
   std::uint32_t restart_updates = 3;   ///< ...in this many successive updates starts moving at it, [1, 1000]
-  std::uint32_t ceiling_hide_updates = 3;  ///< a static track reaching the ceiling this often in a row: hidden, [0, 1000]
+  std::uint32_t ceiling_hide_updates = 3;  ///< a static track reaching the ceiling this often in a row: set aside, [0, 1000]
 
   /// Throws std::invalid_argument naming the first setting out of range.
   void validate() const {
